@@ -1,0 +1,47 @@
+// Physics-only real-time factor of the shipped scenes: the closed loop with
+// the ground-truth driver, no rendering, no vision, no file output.
+//
+//   physics_benchmark [--seconds S] [SCENARIO.yaml ...]
+//
+// Defaults: scenes/corridor.yaml and scenes/outdoor.yaml, each for its own
+// duration. Prints one line per scene; the figure to compare is the ratio of
+// simulated to wall-clock time on one core.
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "trackbed/scenes/closed_loop_runner.h"
+#include "trackbed/scenes/scenario_yaml.h"
+
+int main(int argc, char** argv) {
+  std::vector<std::string> files;
+  double seconds = 0.0;
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--seconds") == 0 && i + 1 < argc) {
+      seconds = std::stod(argv[++i]);
+    } else {
+      files.emplace_back(argv[i]);
+    }
+  }
+  if (files.empty()) {
+    files = {TRACKBED_SOURCE_DIR "/scenes/corridor.yaml",
+             TRACKBED_SOURCE_DIR "/scenes/outdoor.yaml"};
+  }
+  try {
+    for (const std::string& f : files) {
+      std::vector<trackbed::scenes::Override> overrides;
+      if (seconds > 0) overrides.push_back({"duration_s", std::to_string(seconds)});
+      const trackbed::scenes::Scenario s = trackbed::scenes::LoadScenario(f, overrides);
+      const trackbed::scenes::RunMetrics m = trackbed::scenes::RunClosedLoop(s);
+      std::printf("%-10s sim %7.1f s  wall %6.2f s  physics-only real-time factor %6.1fx  (%s)\n",
+                  s.scene.name.c_str(), m.sim_time_s, m.wall_time_s, m.real_time_factor(),
+                  m.stop_reason.c_str());
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "physics_benchmark: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,16 @@
+# Per-target settings for trackbed's own code: language level and warnings.
+# Used instead of global CMAKE_CXX_FLAGS edits (style.md §1).
+function(trackbed_settings target)
+  get_target_property(_type ${target} TYPE)
+  if(_type STREQUAL "INTERFACE_LIBRARY")
+    target_compile_features(${target} INTERFACE cxx_std_17)
+    return()
+  endif()
+  target_compile_features(${target} PUBLIC cxx_std_17)
+  set_target_properties(${target} PROPERTIES CXX_EXTENSIONS OFF)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow
+                         -Wnon-virtual-dtor -Wold-style-cast)
+  if(TRACKBED_WERROR)
+    target_compile_options(${target} PRIVATE -Werror)
+  endif()
+endfunction()

@@ -1,0 +1,31 @@
+// Calibration of the skid-steer ICR expansion factor χ (Martinez et al. 2005,
+// Mandow et al. 2007): the yaw rate the encoders imply with the nominal gauge,
+// r(ω_r − ω_l)/B, equals χ times the true yaw rate. Equivalently, with y_L and
+// y_R the lateral coordinates of the two tracks' instantaneous centres of
+// rotation, χ = (y_L − y_R)/B. On a calibration run with a reference yaw rate
+// (a gyro, a motion-capture system, or the simulator's ground truth) χ is the
+// least-squares slope through the origin; B_eff = χ·B.
+#pragma once
+
+#include <vector>
+
+namespace trackbed::estimation {
+
+/// One sample of a calibration run.
+struct IcrSample {
+  double encoder_yaw_rate_radps = 0.0;    ///< r (ω_r − ω_l) / B, nominal gauge.
+  double reference_yaw_rate_radps = 0.0;  ///< True (or gyro) yaw rate.
+};
+
+struct IcrFit {
+  double chi = 1.0;      ///< Expansion factor, B_eff / B.
+  int samples_used = 0;  ///< Samples with |reference| above the threshold.
+  double rms_residual_radps = 0.0;
+};
+
+/// Least-squares χ over samples whose reference yaw rate exceeds
+/// `min_yaw_rate_radps` in magnitude. Returns samples_used = 0 (and χ = 1)
+/// when there are none.
+IcrFit FitIcrExpansion(const std::vector<IcrSample>& samples, double min_yaw_rate_radps = 0.05);
+
+}  // namespace trackbed::estimation

@@ -1,0 +1,29 @@
+// Sprocket encoders: quantized shaft angle, sampled at a fixed rate.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+namespace trackbed::robot {
+
+struct EncoderOptions {
+  /// Counts per sprocket revolution (after quadrature decoding), >= 1.
+  int ticks_per_rev = 4096;
+  /// Sampling rate [Hz], >= 100 (design.md §2).
+  double rate_hz = 100.0;
+
+  void Validate() const;
+};
+
+/// The count an incremental encoder shows at shaft angle `angle_rad` (counted
+/// from zero at start): floor(angle / 2π · ticks_per_rev).
+inline std::int64_t EncoderTicks(double angle_rad, int ticks_per_rev) {
+  return static_cast<std::int64_t>(std::floor(angle_rad / (2.0 * M_PI) * ticks_per_rev));
+}
+
+/// Shaft angle [rad] a tick count stands for.
+inline double TicksToAngle(std::int64_t ticks, int ticks_per_rev) {
+  return static_cast<double>(ticks) * 2.0 * M_PI / ticks_per_rev;
+}
+
+}  // namespace trackbed::robot

@@ -1,0 +1,153 @@
+// The closed-loop runner (see closed_loop_runner.h).
+#include "trackbed/scenes/closed_loop_runner.h"
+
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <sstream>
+
+#include "trackbed/estimation/skid_steer.h"
+#include "trackbed/navigation/pure_pursuit.h"
+#include "trackbed/robot/encoder.h"
+#include "trackbed/robot/tracked_vehicle.h"
+#include "trackbed/sim/sim_clock.h"
+#include "trackbed/sim/world.h"
+
+namespace trackbed::scenes {
+namespace {
+
+// Seeds of independent random streams derived from the scenario's seed.
+std::uint64_t StreamSeed(std::uint64_t seed, std::uint64_t stream) {
+  std::uint64_t z = seed + 0x9e3779b97f4a7c15ULL * (stream + 1);  // splitmix64
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+double Yaw(const Eigen::Matrix3d& R) { return std::atan2(R(1, 0), R(0, 0)); }
+
+// The drive: what the tracks are told, at the drive's rate.
+class Driver {
+ public:
+  Driver(const DriveSpec& spec, double nominal_gauge_m) : spec_(spec), gauge_(nominal_gauge_m) {
+    if (spec_.mode == DriveSpec::Mode::kPath) {
+      navigation::PurePursuitOptions o;
+      o.speed_mps = spec_.speed_mps;
+      o.lookahead_m = spec_.lookahead_m;
+      o.goal_tolerance_m = spec_.goal_tolerance_m;
+      follower_.emplace(o, spec_.waypoints, spec_.closed, spec_.laps);
+    }
+  }
+
+  // Returns the track speeds to command; sets *finished when the path is done.
+  estimation::TrackSpeeds Update(double t_s, const robot::ChassisState& truth, bool* finished) {
+    *finished = false;
+    if (follower_) {
+      const Eigen::Isometry3d& T = truth.T_world_body;
+      const navigation::PurePursuitCommand c =
+          follower_->Update({T.translation().x(), T.translation().y(), Yaw(T.linear())});
+      *finished = c.finished;
+      return estimation::TrackSpeedsFromTwist(c.twist, gauge_);
+    }
+    while (next_ < spec_.script.size() && spec_.script[next_].t_s <= t_s + 1e-9) ++next_;
+    if (next_ == 0) return {};
+    const DriveCommand& c = spec_.script[next_ - 1];
+    if (c.track_speeds) return {c.left_mps, c.right_mps};
+    return estimation::TrackSpeedsFromTwist({c.v_mps, c.yaw_rate_radps}, gauge_);
+  }
+
+ private:
+  DriveSpec spec_;
+  double gauge_;
+  std::optional<navigation::PurePursuit> follower_;
+  std::size_t next_ = 0;
+};
+
+}  // namespace
+
+RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers) {
+  scenario.Validate();
+  const auto wall_start = std::chrono::steady_clock::now();
+
+  sim::World world(scenario.scene.world,
+                   sim::Terrain(scenario.scene.terrain, StreamSeed(scenario.seed, 0)),
+                   scenario.scene.objects);
+  const RobotSpec& rs = scenario.robot;
+  robot::TrackedVehicle vehicle(rs.vehicle, &world, rs.start.x_m, rs.start.y_m,
+                                rs.start.yaw_deg * M_PI / 180.0);
+  robot::Imu imu(rs.imu, scenario.scene.world.gravity_mps2, StreamSeed(scenario.seed, 1));
+  Driver driver(scenario.drive, rs.vehicle.track_gauge_m);
+  MetricsAccumulator metrics(rs.vehicle.sprocket_radius_m, rs.vehicle.track_gauge_m,
+                             rs.encoders.ticks_per_rev);
+
+  sim::SimClock clock(scenario.scene.world.physics_step_s);
+  const std::int64_t encoder_period = clock.StepsPerPeriod(rs.encoders.rate_hz);
+  const std::int64_t imu_period = clock.StepsPerPeriod(rs.imu.rate_hz);
+  const std::int64_t drive_period = clock.StepsPerPeriod(scenario.drive.rate_hz);
+  const auto end_step =
+      static_cast<std::int64_t>(std::llround(scenario.duration_s / clock.step_s()));
+  const double dt = clock.step_s();
+
+  std::string stop_reason = "duration reached";
+  bool failed = false;
+  Eigen::Vector3d v_at_last_imu = vehicle.chassis().v_world;
+  for (;;) {
+    const robot::ChassisState truth = vehicle.chassis();
+    if (clock.Fires(encoder_period)) {
+      RunSample s;
+      s.t_s = clock.now_s();
+      s.chassis = truth;
+      for (int side = 0; side < 2; ++side) {
+        s.tracks[side] = vehicle.track(static_cast<robot::Side>(side));
+        s.ticks[side] =
+            robot::EncoderTicks(s.tracks[side].sprocket_angle_rad, rs.encoders.ticks_per_rev);
+      }
+      const Eigen::Vector3d p = truth.T_world_body.translation();
+      const sim::GroundSample g = world.terrain().Sample(p.x(), p.y());
+      s.material = &g.material->name;
+      if (!p.allFinite() || !truth.v_world.allFinite()) {
+        failed = true;
+        stop_reason =
+            "simulation diverged: non-finite chassis state at t = " + std::to_string(s.t_s) + " s";
+        break;
+      }
+      if (p.z() < g.height_m) {
+        failed = true;
+        stop_reason =
+            "simulation diverged: chassis below the terrain at t = " + std::to_string(s.t_s) + " s";
+        break;
+      }
+      metrics.Add(s, g.height_m);
+      if (observers.on_sample) observers.on_sample(s);
+    }
+    if (clock.steps() > 0 && clock.Fires(imu_period)) {
+      const Eigen::Vector3d accel = (truth.v_world - v_at_last_imu) / (imu_period * dt);
+      v_at_last_imu = truth.v_world;
+      const robot::ImuSample sample =
+          imu.Sample(clock.now_s(), truth.T_world_body.linear(), truth.omega_world, accel);
+      if (observers.on_imu) observers.on_imu(sample);
+    }
+    if (clock.steps() >= end_step) break;
+    if (clock.Fires(drive_period)) {
+      bool finished = false;
+      const estimation::TrackSpeeds cmd = driver.Update(clock.now_s(), truth, &finished);
+      vehicle.CommandTrackSpeeds(cmd.left_mps, cmd.right_mps);
+      if (finished) {
+        stop_reason = "path finished";
+        break;
+      }
+    }
+    vehicle.ApplyForces(dt);
+    world.Step();
+    clock.Tick();
+  }
+
+  RunMetrics m = metrics.Metrics();
+  m.completed = !failed;
+  m.stop_reason = stop_reason;
+  m.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  return m;
+}
+
+}  // namespace trackbed::scenes

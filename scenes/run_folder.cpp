@@ -1,0 +1,150 @@
+// Run folder writer (see run_folder.h).
+#include "trackbed/scenes/run_folder.h"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "trackbed/estimation/trajectory.h"
+#include "trackbed/scenes/closed_loop_runner.h"
+#include "trackbed/scenes/scenario_yaml.h"
+
+namespace trackbed::scenes {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A text file with a large buffer; checks every write.
+class LogFile {
+ public:
+  LogFile(const fs::path& path, const std::string& header) : path_(path) {
+    file_.rdbuf()->pubsetbuf(buffer_, sizeof(buffer_));
+    file_.open(path, std::ios::out | std::ios::trunc);
+    if (!file_) Fail("cannot create");
+    if (!header.empty()) Line(header.c_str());
+  }
+  void Line(const char* text) {
+    file_ << text << '\n';
+    if (!file_) Fail("cannot write");
+  }
+  void Close() {
+    file_.close();
+    if (!file_) Fail("cannot close");
+  }
+
+ private:
+  [[noreturn]] void Fail(const char* what) const {
+    throw std::runtime_error(path_.string() + ": " + what + ": " + std::strerror(errno));
+  }
+  fs::path path_;
+  char buffer_[1 << 16];
+  std::ofstream file_;
+};
+
+void WriteAtomically(const fs::path& path, const std::string& text) {
+  const fs::path tmp = path.string() + ".tmp";
+  {
+    std::ofstream f(tmp, std::ios::out | std::ios::trunc);
+    f << text;
+    f.close();
+    if (!f) throw std::runtime_error(tmp.string() + ": cannot write: " + std::strerror(errno));
+  }
+  fs::rename(tmp, path);
+}
+
+nlohmann::ordered_json SlipJson(const SlipStats& s) {
+  nlohmann::ordered_json j;
+  j["mean_abs_slip_ratio"] = s.mean_abs_ratio();
+  j["mean_slip_ratio"] = s.mean_ratio();
+  j["mean_abs_slip_velocity_mps"] = s.mean_abs_velocity_mps();
+  j["samples"] = s.samples;
+  return j;
+}
+
+}  // namespace
+
+std::string MetricsJson(const RunMetrics& m) {
+  nlohmann::ordered_json j;
+  j["status"] = m.completed ? "completed" : "failed";
+  j["stop_reason"] = m.stop_reason;
+  j["sim_time_s"] = m.sim_time_s;
+  j["wall_time_s"] = m.wall_time_s;
+  j["real_time_factor"] = m.real_time_factor();
+  j["distance_m"] = m.distance_m;
+  j["encoder_distance_m"] = m.encoder_distance_m;
+  j["encoder_distance_error_pct"] =
+      m.distance_m > 0 ? 100.0 * (m.encoder_distance_m - m.distance_m) / m.distance_m : 0.0;
+  j["min_com_height_m"] = m.min_com_height_m;
+  nlohmann::ordered_json slip;
+  slip["left"] = SlipJson(m.slip[robot::kLeft]);
+  slip["right"] = SlipJson(m.slip[robot::kRight]);
+  nlohmann::ordered_json by_material = nlohmann::ordered_json::object();
+  for (const auto& [name, stats] : m.slip_by_material) by_material[name] = SlipJson(stats);
+  slip["by_material"] = by_material;
+  j["slip"] = slip;
+  j["icr_expansion"] = {{"chi", m.icr.chi},
+                        {"samples", m.icr.samples_used},
+                        {"rms_residual_radps", m.icr.rms_residual_radps}};
+  j["estimators"] = nlohmann::ordered_json::object();
+  return j.dump(2) + "\n";
+}
+
+RunMetrics RunToFolder(const Scenario& scenario, const fs::path& dir) {
+  scenario.Validate();
+  fs::create_directories(dir);
+  fs::remove(dir / "metrics.json");  // no stale result may pass for this run's
+  WriteAtomically(dir / "scenario.yaml", ScenarioToYaml(scenario));
+
+  RunMetrics metrics;
+  try {
+    LogFile truth(dir / "ground_truth.tum", "");
+    LogFile encoders(dir / "encoders.csv", "t,left_ticks,right_ticks");
+    LogFile slip(dir / "slip.csv",
+                 "t,left_true_mps,right_true_mps,left_track_mps,right_track_mps,"
+                 "left_ground_mps,right_ground_mps,material");
+    LogFile tracks(dir / "tracks.csv",
+                   "t,left_torque_nm,right_torque_nm,left_load_n,right_load_n,"
+                   "left_traction_n,right_traction_n,left_compaction_n,right_compaction_n,"
+                   "left_contacts,right_contacts");
+    LogFile imu(dir / "imu.csv",
+                "t,gyro_x_radps,gyro_y_radps,gyro_z_radps,accel_x_mps2,accel_y_mps2,accel_z_mps2");
+    char line[512];
+    RunObservers observers;
+    observers.on_sample = [&](const RunSample& s) {
+      truth.Line(estimation::FormatTumLine({s.t_s, s.chassis.T_world_body}).c_str());
+      std::snprintf(line, sizeof(line), "%.6f,%lld,%lld", s.t_s, s.ticks[0], s.ticks[1]);
+      encoders.Line(line);
+      const robot::TrackState &l = s.tracks[0], &r = s.tracks[1];
+      std::snprintf(line, sizeof(line), "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%s", s.t_s,
+                    l.slip_velocity_mps, r.slip_velocity_mps, l.track_speed_mps, r.track_speed_mps,
+                    l.ground_speed_mps, r.ground_speed_mps, s.material ? s.material->c_str() : "");
+      slip.Line(line);
+      std::snprintf(line, sizeof(line), "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%d", s.t_s,
+                    l.motor_torque_nm, r.motor_torque_nm, l.normal_load_n, r.normal_load_n,
+                    l.traction_n, r.traction_n, l.compaction_resistance_n,
+                    r.compaction_resistance_n, l.stations_in_contact, r.stations_in_contact);
+      tracks.Line(line);
+    };
+    observers.on_imu = [&](const robot::ImuSample& s) {
+      std::snprintf(line, sizeof(line), "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", s.t_s,
+                    s.gyro_radps.x(), s.gyro_radps.y(), s.gyro_radps.z(), s.accel_mps2.x(),
+                    s.accel_mps2.y(), s.accel_mps2.z());
+      imu.Line(line);
+    };
+    metrics = RunClosedLoop(scenario, observers);
+    for (LogFile* f : {&truth, &encoders, &slip, &tracks, &imu}) f->Close();
+  } catch (const std::exception& e) {
+    metrics.completed = false;
+    metrics.stop_reason = std::string("failed: ") + e.what();
+    WriteAtomically(dir / "metrics.json", MetricsJson(metrics));
+    throw;
+  }
+  WriteAtomically(dir / "metrics.json", MetricsJson(metrics));
+  return metrics;
+}
+
+}  // namespace trackbed::scenes

@@ -1,0 +1,112 @@
+// Validation of the scenario structs. Field names are the scenario file's keys
+// (docs/scenario_format.md), so the YAML reader can report `robot.vehicle.mass_kg`
+// straight from an OptionError.
+#include "trackbed/scenes/scenario.h"
+
+#include <cmath>
+#include <string>
+
+#include "trackbed/common/option_error.h"
+#include "trackbed/sim/terrain_material.h"
+
+namespace trackbed::scenes {
+namespace {
+
+std::string Indexed(const std::string& name, std::size_t k) {
+  return name + "[" + std::to_string(k) + "]";
+}
+
+void Finite(const std::string& field, double value) { option_check::Finite(field.c_str(), value); }
+
+// Throws unless `name` is a built-in material or one the terrain defines.
+void KnownMaterial(const std::string& field, const std::string& name,
+                   const sim::TerrainOptions& terrain) {
+  std::string known;
+  for (const auto* list : {&sim::BuiltinMaterials(), &terrain.materials}) {
+    for (const sim::TerrainMaterial& m : *list) {
+      if (m.name == name) return;
+      known += (known.empty() ? "" : ", ") + m.name;
+    }
+  }
+  throw OptionError(field, "unknown material '" + name + "' (known: " + known + ")");
+}
+
+}  // namespace
+
+void SceneSpec::Validate() const {
+  if (name.empty()) throw OptionError("name", "must not be empty");
+  option_check::Nested("world", world);
+  option_check::Nested("terrain", terrain);
+  KnownMaterial("terrain.default_material", terrain.default_material, terrain);
+  for (std::size_t k = 0; k < terrain.regions.size(); ++k) {
+    KnownMaterial("terrain." + Indexed("regions", k) + ".material", terrain.regions[k].material,
+                  terrain);
+  }
+  for (std::size_t k = 0; k < objects.size(); ++k) {
+    option_check::Nested(Indexed("objects", k), objects[k]);
+  }
+}
+
+void RobotSpec::Validate() const {
+  option_check::Finite("start.x_m", start.x_m);
+  option_check::Finite("start.y_m", start.y_m);
+  option_check::Finite("start.yaw_deg", start.yaw_deg);
+  option_check::Nested("vehicle", vehicle);
+  option_check::Nested("encoders", encoders);
+  option_check::Nested("imu", imu);
+}
+
+void DriveSpec::Validate() const {
+  if (laps < 1) throw OptionError("laps", "must be >= 1 (got " + std::to_string(laps) + ")");
+  option_check::Positive("speed_mps", speed_mps);
+  option_check::Positive("lookahead_m", lookahead_m);
+  option_check::Positive("rate_hz", rate_hz);
+  option_check::Positive("goal_tolerance_m", goal_tolerance_m);
+  if (mode == Mode::kPath) {
+    if (waypoints.size() < 2) {
+      throw OptionError("waypoints", "mode path needs at least 2 waypoints (got " +
+                                         std::to_string(waypoints.size()) + ")");
+    }
+    for (std::size_t k = 0; k < waypoints.size(); ++k) {
+      if (!waypoints[k].allFinite()) {
+        throw OptionError(Indexed("waypoints", k), "must be finite");
+      }
+    }
+  } else {
+    if (script.empty()) throw OptionError("script", "mode script needs at least 1 command");
+    for (std::size_t k = 0; k < script.size(); ++k) {
+      const DriveCommand& c = script[k];
+      const std::string at = Indexed("script", k);
+      option_check::NonNegative((at + ".t_s").c_str(), c.t_s);
+      if (k > 0 && c.t_s < script[k - 1].t_s) {
+        throw OptionError(at + ".t_s", "must not be earlier than the previous command's t_s");
+      }
+      if (c.track_speeds) {
+        Finite(at + ".left_mps", c.left_mps);
+        Finite(at + ".right_mps", c.right_mps);
+      } else {
+        Finite(at + ".v_mps", c.v_mps);
+        Finite(at + ".yaw_rate_radps", c.yaw_rate_radps);
+      }
+    }
+  }
+}
+
+void OutputsSpec::Validate() const {
+  if (save_images != "none" && save_images != "kitti") {
+    throw OptionError("save_images", "must be none or kitti (got '" + save_images + "')");
+  }
+}
+
+void Scenario::Validate() const {
+  if (!(std::isfinite(duration_s) && duration_s > 0.0 && duration_s <= 1e6)) {
+    throw OptionError("duration_s",
+                      "must be in (0, 1e6] (got " + option_check::Describe(duration_s) + ")");
+  }
+  option_check::Nested("scene", scene);
+  option_check::Nested("robot", robot);
+  option_check::Nested("drive", drive);
+  option_check::Nested("outputs", outputs);
+}
+
+}  // namespace trackbed::scenes

@@ -1,0 +1,29 @@
+// The closed loop: the simulated world and robot on one clock, the drive
+// (script or pure-pursuit driver) commanding the tracks, sensors sampled at
+// their rates, and ground truth scored as the run goes.
+#pragma once
+
+#include <functional>
+#include <memory>
+
+#include "trackbed/robot/imu.h"
+#include "trackbed/scenes/run_metrics.h"
+#include "trackbed/scenes/scenario.h"
+
+namespace trackbed::scenes {
+
+/// Observers of a run; any may be empty.
+struct RunObservers {
+  /// Every encoder sample (ground truth alongside).
+  std::function<void(const RunSample&)> on_sample;
+  /// Every IMU sample.
+  std::function<void(const robot::ImuSample&)> on_imu;
+};
+
+/// Runs one scenario in closed loop. Throws std::invalid_argument for an
+/// invalid scenario; a simulation that diverges (NaN, chassis through the
+/// ground) ends early with completed = false and the reason, keeping what
+/// was measured until then.
+RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers = {});
+
+}  // namespace trackbed::scenes

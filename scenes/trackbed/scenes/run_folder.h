@@ -1,0 +1,23 @@
+// A run folder (design.md §3): the resolved scenario, ground truth, sensor
+// logs and metrics.json, streamed while the run goes so that a run that stops
+// early leaves readable files. metrics.json is written last, atomically, and
+// says whether the run completed and why it stopped.
+#pragma once
+
+#include <filesystem>
+
+#include "trackbed/scenes/run_metrics.h"
+#include "trackbed/scenes/scenario.h"
+
+namespace trackbed::scenes {
+
+/// Runs `scenario` in closed loop, writing the run folder `dir` (created if
+/// needed; files of an earlier run there are replaced). Throws
+/// std::runtime_error when a file cannot be written (metrics.json then still
+/// records the failure when it can).
+RunMetrics RunToFolder(const Scenario& scenario, const std::filesystem::path& dir);
+
+/// The metrics.json document of a run, as text.
+std::string MetricsJson(const RunMetrics& metrics);
+
+}  // namespace trackbed::scenes

@@ -1,0 +1,73 @@
+// Per-run figures scored against ground truth, accumulated sample by sample.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "trackbed/estimation/icr_calibration.h"
+#include "trackbed/robot/tracked_vehicle.h"
+
+namespace trackbed::scenes {
+
+/// What the runner records at the encoder rate.
+struct RunSample {
+  double t_s = 0.0;
+  robot::ChassisState chassis;            ///< Ground truth.
+  robot::TrackState tracks[2];            ///< Ground truth per track (left, right).
+  long long ticks[2] = {0, 0};            ///< Encoder counts (left, right).
+  const std::string* material = nullptr;  ///< Material under the centre of mass.
+};
+
+/// Slip statistics of the samples where a track moved (|track speed| > 0.05 m/s).
+struct SlipStats {
+  double sum_abs_ratio = 0.0;
+  double sum_ratio = 0.0;
+  double sum_abs_velocity_mps = 0.0;
+  long long samples = 0;
+
+  double mean_abs_ratio() const { return samples ? sum_abs_ratio / samples : 0.0; }
+  double mean_ratio() const { return samples ? sum_ratio / samples : 0.0; }
+  double mean_abs_velocity_mps() const { return samples ? sum_abs_velocity_mps / samples : 0.0; }
+};
+
+struct RunMetrics {
+  bool completed = false;
+  /// Why the run ended: "duration reached", "path finished", or the failure.
+  std::string stop_reason;
+  double sim_time_s = 0.0;
+  double wall_time_s = 0.0;
+  /// Length of the ground-truth polyline sampled at the encoder rate [m].
+  double distance_m = 0.0;
+  /// Σ |r (Δφ_l + Δφ_r) / 2| over encoder samples [m].
+  double encoder_distance_m = 0.0;
+  SlipStats slip[2];                                  ///< Per track.
+  std::map<std::string, SlipStats> slip_by_material;  ///< Both tracks pooled.
+  /// χ fitted on this run against true yaw rate (meaningful when it turns).
+  estimation::IcrFit icr;
+  /// Lowest clearance of the centre of mass above the terrain [m].
+  double min_com_height_m = 0.0;
+
+  double real_time_factor() const { return wall_time_s > 0 ? sim_time_s / wall_time_s : 0.0; }
+};
+
+/// Accumulates RunMetrics from consecutive samples.
+class MetricsAccumulator {
+ public:
+  MetricsAccumulator(double sprocket_radius_m, double track_gauge_m, int ticks_per_rev);
+  void Add(const RunSample& sample, double terrain_height_m);
+  /// The metrics so far (wall time, completion and reason left to the caller).
+  RunMetrics Metrics() const;
+
+ private:
+  double r_, gauge_;
+  int ticks_per_rev_;
+  bool has_previous_ = false;
+  RunSample previous_;
+  RunMetrics m_;
+  std::vector<estimation::IcrSample> icr_samples_;
+};
+
+}  // namespace trackbed::scenes

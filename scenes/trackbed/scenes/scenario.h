@@ -1,0 +1,103 @@
+// A scenario: everything one closed-loop run needs, as plain values.
+//
+// The YAML file format mirrors these structs key for key (scenario_yaml.h);
+// docs/scenario_format.md lists every key with its unit and default.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "trackbed/robot/encoder.h"
+#include "trackbed/robot/imu.h"
+#include "trackbed/robot/tracked_vehicle.h"
+#include "trackbed/sim/static_object.h"
+#include "trackbed/sim/terrain.h"
+#include "trackbed/sim/world.h"
+
+namespace trackbed::scenes {
+
+/// The world the robot drives in.
+struct SceneSpec {
+  /// Free-form name (corridor, outdoor, …).
+  std::string name = "unnamed";
+  sim::WorldOptions world;
+  sim::TerrainOptions terrain;
+  std::vector<sim::StaticObject> objects;
+
+  void Validate() const;
+};
+
+/// Where the robot starts (on the ground, aligned with its slope).
+struct StartPose {
+  double x_m = 0.0;
+  double y_m = 0.0;
+  double yaw_deg = 0.0;
+};
+
+struct RobotSpec {
+  StartPose start;
+  robot::TrackedVehicleOptions vehicle;
+  robot::EncoderOptions encoders;
+  robot::ImuOptions imu;
+
+  void Validate() const;
+};
+
+/// One command of a time-stamped script, held until the next one.
+/// Either a body twist (v, yaw rate; converted with the nominal gauge) or track speeds.
+struct DriveCommand {
+  double t_s = 0.0;
+  bool track_speeds = false;
+  double v_mps = 0.0;
+  double yaw_rate_radps = 0.0;
+  double left_mps = 0.0;
+  double right_mps = 0.0;
+};
+
+/// How the robot is commanded: a replayed script, or a pure-pursuit driver
+/// following a reference path on ground truth (the paper's human driver).
+struct DriveSpec {
+  enum class Mode { kScript, kPath };
+  Mode mode = Mode::kPath;
+  std::vector<DriveCommand> script;
+  /// Reference path vertices [m], world frame.
+  std::vector<Eigen::Vector2d> waypoints;
+  /// Whether the path closes back on its first vertex.
+  bool closed = false;
+  /// Laps of a closed path to drive, >= 1.
+  int laps = 1;
+  /// Cruise speed [m/s], > 0.
+  double speed_mps = 0.4;
+  /// Pure-pursuit look-ahead distance [m], > 0.
+  double lookahead_m = 0.8;
+  /// Rate of the driver [Hz], > 0.
+  double rate_hz = 20.0;
+  /// Distance to the path's end at which the driver stops [m], > 0.
+  double goal_tolerance_m = 0.1;
+
+  void Validate() const;
+};
+
+struct OutputsSpec {
+  /// Camera images to save: none, or kitti (KITTI odometry layout).
+  std::string save_images = "none";
+
+  void Validate() const;
+};
+
+struct Scenario {
+  std::uint64_t seed = 1;
+  /// Simulated time limit [s], > 0. A path drive may end sooner.
+  double duration_s = 60.0;
+  SceneSpec scene;
+  RobotSpec robot;
+  DriveSpec drive;
+  OutputsSpec outputs;
+
+  void Validate() const;
+};
+
+}  // namespace trackbed::scenes

@@ -1,0 +1,209 @@
+// Heightfield terrain: seeded value-noise roughness, material regions, and
+// surface queries that match Bullet's triangulation (see terrain.h).
+#include "trackbed/sim/terrain.h"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+
+#include "trackbed/common/option_error.h"
+
+namespace trackbed::sim {
+
+void TerrainRoughness::Validate() const {
+  option_check::NonNegative("undulation_amplitude_m", undulation_amplitude_m);
+  option_check::Positive("undulation_wavelength_m", undulation_wavelength_m);
+  option_check::NonNegative("bump_amplitude_m", bump_amplitude_m);
+  option_check::Positive("bump_wavelength_m", bump_wavelength_m);
+  option_check::InRange("slope_x", slope_x, -1.0, 1.0);
+  option_check::InRange("slope_y", slope_y, -1.0, 1.0);
+}
+
+bool MaterialRegion::Contains(double x, double y) const {
+  if (shape == Shape::kCircle) {
+    return (Eigen::Vector2d(x, y) - center_m).squaredNorm() <= radius_m * radius_m;
+  }
+  return x >= min_m.x() && x <= max_m.x() && y >= min_m.y() && y <= max_m.y();
+}
+
+void MaterialRegion::Validate() const {
+  if (material.empty()) throw OptionError("material", "must name a material");
+  if (shape == Shape::kCircle) {
+    option_check::Positive("radius_m", radius_m);
+  } else if (!(max_m.x() > min_m.x() && max_m.y() > min_m.y())) {
+    throw OptionError("max", "must exceed min in both x and y");
+  }
+}
+
+void TerrainOptions::Validate() const {
+  if (!(extent_m[2] > extent_m[0] && extent_m[3] > extent_m[1])) {
+    throw OptionError("extent_m", "must be [x_min, y_min, x_max, y_max] with max > min");
+  }
+  option_check::InRange("cell_size_m", cell_size_m, 0.01, 2.0);
+  const double cells =
+      (extent_m[2] - extent_m[0]) * (extent_m[3] - extent_m[1]) / (cell_size_m * cell_size_m);
+  if (cells > 16e6) throw OptionError("cell_size_m", "gives more than 16 million cells");
+  option_check::Nested("roughness", roughness);
+  for (std::size_t k = 0; k < materials.size(); ++k) {
+    option_check::Nested("materials[" + std::to_string(k) + "]", materials[k]);
+  }
+  for (std::size_t k = 0; k < regions.size(); ++k) {
+    option_check::Nested("regions[" + std::to_string(k) + "]", regions[k]);
+  }
+}
+
+namespace {
+
+// Smooth 2-D value noise in [-1, 1]: random values on a lattice of the given
+// wavelength, blended with the quintic fade of Perlin (2002) so the surface
+// has continuous slope.
+class ValueNoise {
+ public:
+  ValueNoise(double x0, double y0, double width, double height, double wavelength,
+             std::mt19937_64* rng)
+      : x0_(x0), y0_(y0), wavelength_(wavelength) {
+    nx_ = static_cast<int>(std::ceil(width / wavelength)) + 2;
+    ny_ = static_cast<int>(std::ceil(height / wavelength)) + 2;
+    values_.resize(static_cast<std::size_t>(nx_) * ny_);
+    for (double& v : values_) {
+      // 53 random bits to a double in [-1, 1): exact and portable.
+      v = static_cast<double>((*rng)() >> 11) * 0x1.0p-52 - 1.0;
+    }
+  }
+
+  double operator()(double x, double y) const {
+    const double gx = (x - x0_) / wavelength_, gy = (y - y0_) / wavelength_;
+    const int i = std::clamp(static_cast<int>(std::floor(gx)), 0, nx_ - 2);
+    const int j = std::clamp(static_cast<int>(std::floor(gy)), 0, ny_ - 2);
+    const double u = Fade(gx - i), v = Fade(gy - j);
+    const double a = At(i, j), b = At(i + 1, j), c = At(i, j + 1), d = At(i + 1, j + 1);
+    return (a * (1 - u) + b * u) * (1 - v) + (c * (1 - u) + d * u) * v;
+  }
+
+ private:
+  static double Fade(double t) {
+    t = std::clamp(t, 0.0, 1.0);
+    return t * t * t * (t * (t * 6 - 15) + 10);
+  }
+  double At(int i, int j) const { return values_[static_cast<std::size_t>(j) * nx_ + i]; }
+
+  double x0_, y0_, wavelength_;
+  int nx_ = 0, ny_ = 0;
+  std::vector<double> values_;
+};
+
+}  // namespace
+
+Terrain::Terrain(const TerrainOptions& options, std::uint64_t seed) {
+  options.Validate();
+  cell_ = options.cell_size_m;
+  x0_ = options.extent_m[0];
+  y0_ = options.extent_m[1];
+  cols_ = static_cast<int>(std::ceil((options.extent_m[2] - x0_) / cell_)) + 1;
+  rows_ = static_cast<int>(std::ceil((options.extent_m[3] - y0_) / cell_)) + 1;
+
+  // Heights: two octaves for each of undulation and bumps, then the slope.
+  std::mt19937_64 rng(seed ^ 0x7e77a1ULL);
+  const TerrainRoughness& r = options.roughness;
+  const double width = cell_ * (cols_ - 1), height = cell_ * (rows_ - 1);
+  ValueNoise hills(x0_, y0_, width, height, r.undulation_wavelength_m, &rng);
+  ValueNoise hills2(x0_, y0_, width, height, r.undulation_wavelength_m / 2.0, &rng);
+  ValueNoise bumps(x0_, y0_, width, height, r.bump_wavelength_m, &rng);
+  ValueNoise bumps2(x0_, y0_, width, height, r.bump_wavelength_m / 2.0, &rng);
+  heights_.resize(static_cast<std::size_t>(cols_) * rows_);
+  min_h_ = 1e300;
+  max_h_ = -1e300;
+  for (int j = 0; j < rows_; ++j) {
+    for (int i = 0; i < cols_; ++i) {
+      const double x = x0_ + i * cell_, y = y0_ + j * cell_;
+      double z = r.slope_x * x + r.slope_y * y;
+      if (r.undulation_amplitude_m > 0.0) {
+        z += r.undulation_amplitude_m * (0.75 * hills(x, y) + 0.25 * hills2(x, y));
+      }
+      if (r.bump_amplitude_m > 0.0) {
+        z += r.bump_amplitude_m * (0.75 * bumps(x, y) + 0.25 * bumps2(x, y));
+      }
+      heights_[static_cast<std::size_t>(j) * cols_ + i] = z;
+      min_h_ = std::min(min_h_, z);
+      max_h_ = std::max(max_h_, z);
+    }
+  }
+
+  // Materials: built-ins, then the scenario's own (which may shadow a built-in).
+  materials_ = BuiltinMaterials();
+  for (const TerrainMaterial& m : options.materials) {
+    auto it = std::find_if(materials_.begin(), materials_.end(),
+                           [&](const TerrainMaterial& b) { return b.name == m.name; });
+    if (it != materials_.end()) {
+      *it = m;
+    } else {
+      materials_.push_back(m);
+    }
+  }
+  if (materials_.size() > 255) throw OptionError("materials", "at most 255 materials");
+  auto index_of = [&](const std::string& name, const std::string& field) {
+    for (std::size_t k = 0; k < materials_.size(); ++k) {
+      if (materials_[k].name == name) return static_cast<std::uint8_t>(k);
+    }
+    std::string known;
+    for (const TerrainMaterial& m : materials_) known += (known.empty() ? "" : ", ") + m.name;
+    throw OptionError(field, "unknown material '" + name + "' (known: " + known + ")");
+  };
+  const std::uint8_t fallback = index_of(options.default_material, "default_material");
+  std::vector<std::uint8_t> region_material;
+  for (std::size_t k = 0; k < options.regions.size(); ++k) {
+    region_material.push_back(
+        index_of(options.regions[k].material, "regions[" + std::to_string(k) + "].material"));
+  }
+  cell_material_.assign(static_cast<std::size_t>(cols_ - 1) * (rows_ - 1), fallback);
+  for (int j = 0; j + 1 < rows_; ++j) {
+    for (int i = 0; i + 1 < cols_; ++i) {
+      const double x = x0_ + (i + 0.5) * cell_, y = y0_ + (j + 0.5) * cell_;
+      for (std::size_t k = 0; k < options.regions.size(); ++k) {
+        if (options.regions[k].Contains(x, y)) {
+          cell_material_[static_cast<std::size_t>(j) * (cols_ - 1) + i] = region_material[k];
+        }
+      }
+    }
+  }
+}
+
+void Terrain::Locate(double x, double y, int* i, int* j, double* u, double* v) const {
+  const double gx = std::clamp((x - x0_) / cell_, 0.0, cols_ - 1.0);
+  const double gy = std::clamp((y - y0_) / cell_, 0.0, rows_ - 1.0);
+  *i = std::min(static_cast<int>(gx), cols_ - 2);
+  *j = std::min(static_cast<int>(gy), rows_ - 2);
+  *u = gx - *i;
+  *v = gy - *j;
+}
+
+double Terrain::Height(double x, double y) const { return Sample(x, y).height_m; }
+
+GroundSample Terrain::Sample(double x, double y) const {
+  int i, j;
+  double u, v;
+  Locate(x, y, &i, &j, &u, &v);
+  const std::size_t base = static_cast<std::size_t>(j) * cols_ + i;
+  const double h00 = heights_[base], h10 = heights_[base + 1];
+  const double h01 = heights_[base + cols_], h11 = heights_[base + cols_ + 1];
+  GroundSample s;
+  double dzdu, dzdv;
+  if (u >= v) {  // triangle (i,j), (i+1,j), (i+1,j+1)
+    dzdu = h10 - h00;
+    dzdv = h11 - h10;
+  } else {  // triangle (i,j), (i,j+1), (i+1,j+1)
+    dzdu = h11 - h01;
+    dzdv = h01 - h00;
+  }
+  s.height_m = h00 + u * dzdu + v * dzdv;
+  s.normal = Eigen::Vector3d(-dzdu / cell_, -dzdv / cell_, 1.0).normalized();
+  s.material = &materials_[cell_material_[static_cast<std::size_t>(j) * (cols_ - 1) + i]];
+  return s;
+}
+
+const TerrainMaterial& Terrain::MaterialAt(double x, double y) const {
+  return *Sample(x, y).material;
+}
+
+}  // namespace trackbed::sim

@@ -1,0 +1,119 @@
+// Terrain: a heightfield with material regions.
+//
+// Heights live on a regular grid (x fastest); between grid points the surface
+// is the two-triangle split of each cell along the (i, j)–(i+1, j+1) diagonal,
+// exactly as Bullet's btHeightfieldTerrainShape triangulates it with
+// flipQuadEdges = true, so the track model, the physics and the renderer all
+// see the same surface. Roughness is seeded value noise: long-wave undulation
+// plus short-wave bumps plus a constant slope.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "trackbed/sim/terrain_material.h"
+
+namespace trackbed::sim {
+
+/// Procedural roughness of the ground. All zero gives a flat floor at z = 0.
+struct TerrainRoughness {
+  /// Peak amplitude of long-wave hills [m], >= 0.
+  double undulation_amplitude_m = 0.0;
+  /// Wavelength of the hills [m], > 0.
+  double undulation_wavelength_m = 8.0;
+  /// Peak amplitude of short bumps [m], >= 0.
+  double bump_amplitude_m = 0.0;
+  /// Wavelength of the bumps [m], > 0.
+  double bump_wavelength_m = 0.6;
+  /// Constant slope dz/dx [-] (rise over run).
+  double slope_x = 0.0;
+  /// Constant slope dz/dy [-].
+  double slope_y = 0.0;
+
+  void Validate() const;
+};
+
+/// Where a material lies: an axis-aligned rectangle or a disc in the world's xy plane.
+struct MaterialRegion {
+  enum class Shape { kRectangle, kCircle };
+  /// Name of a built-in or scenario-defined material.
+  std::string material;
+  Shape shape = Shape::kRectangle;
+  /// Rectangle corners [m] (min and max x, y).
+  Eigen::Vector2d min_m = Eigen::Vector2d::Zero();
+  Eigen::Vector2d max_m = Eigen::Vector2d::Zero();
+  /// Disc centre [m] and radius [m].
+  Eigen::Vector2d center_m = Eigen::Vector2d::Zero();
+  double radius_m = 0.0;
+
+  bool Contains(double x, double y) const;
+  void Validate() const;
+};
+
+/// Everything that defines a terrain. Regions later in the list cover earlier ones.
+struct TerrainOptions {
+  /// World-frame extent [m]: x_min, y_min, x_max, y_max.
+  Eigen::Vector4d extent_m{-5.0, -5.0, 5.0, 5.0};
+  /// Grid spacing of the heightfield [m], > 0.
+  double cell_size_m = 0.1;
+  TerrainRoughness roughness;
+  /// Material everywhere no region covers.
+  std::string default_material = "hard_floor";
+  /// Materials defined by the scenario in addition to the built-in ones.
+  std::vector<TerrainMaterial> materials;
+  std::vector<MaterialRegion> regions;
+
+  void Validate() const;
+};
+
+/// Height, normal and material of the ground at one point.
+struct GroundSample {
+  double height_m = 0.0;
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+  const TerrainMaterial* material = nullptr;
+};
+
+/// An immutable heightfield terrain. Queries outside the extent clamp to the edge.
+class Terrain {
+ public:
+  /// Builds the grid; `seed` drives the roughness noise. Throws OptionError on bad options.
+  Terrain(const TerrainOptions& options, std::uint64_t seed);
+
+  /// Height of the surface at (x, y) [m], on the triangulated surface.
+  double Height(double x, double y) const;
+  /// Height, upward unit normal and material at (x, y).
+  GroundSample Sample(double x, double y) const;
+  /// Material at (x, y) (of the grid cell containing the point).
+  const TerrainMaterial& MaterialAt(double x, double y) const;
+
+  int cols() const { return cols_; }  ///< Grid points along x.
+  int rows() const { return rows_; }  ///< Grid points along y.
+  double cell_size_m() const { return cell_; }
+  double x_min() const { return x0_; }
+  double y_min() const { return y0_; }
+  double x_max() const { return x0_ + cell_ * (cols_ - 1); }
+  double y_max() const { return y0_ + cell_ * (rows_ - 1); }
+  double min_height_m() const { return min_h_; }
+  double max_height_m() const { return max_h_; }
+  /// Grid heights, row-major (index = row * cols + col, x = x_min + col * cell).
+  const std::vector<double>& heights() const { return heights_; }
+  /// All materials the terrain uses or defines (built-ins first).
+  const std::vector<TerrainMaterial>& materials() const { return materials_; }
+  /// Material index per cell (row-major, (rows-1) x (cols-1)).
+  const std::vector<std::uint8_t>& cell_materials() const { return cell_material_; }
+
+ private:
+  void Locate(double x, double y, int* i, int* j, double* u, double* v) const;
+
+  double x0_, y0_, cell_;
+  int cols_, rows_;
+  double min_h_ = 0.0, max_h_ = 0.0;
+  std::vector<double> heights_;
+  std::vector<TerrainMaterial> materials_;
+  std::vector<std::uint8_t> cell_material_;
+};
+
+}  // namespace trackbed::sim

@@ -1,0 +1,79 @@
+// The Bullet world: gravity, a fixed physics step, the terrain heightfield and
+// static obstacles. Dynamic bodies (the robot's chassis) register themselves.
+//
+// Collision filtering: the terrain is in the world for ray tests (range sensor,
+// placement), but the chassis does not collide with it through Bullet; the
+// robot model computes track and hull contact with the ground itself (see
+// robot/tracked_vehicle.h), which is both cheaper than per-triangle GJK and
+// where the terramechanics lives. The chassis does collide with obstacles.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "trackbed/sim/static_object.h"
+#include "trackbed/sim/terrain.h"
+
+class btDiscreteDynamicsWorld;
+class btRigidBody;
+
+namespace trackbed::sim {
+
+/// Bullet collision groups used by trackbed.
+enum CollisionGroup : int {
+  kGroupTerrain = 1 << 6,
+  kGroupObstacle = 1 << 7,
+  kGroupChassis = 1 << 8,
+  kGroupOccluder = 1 << 9,
+};
+
+struct WorldOptions {
+  /// Fixed physics step [s], in (0, 0.01].
+  double physics_step_s = 0.001;
+  /// Gravitational acceleration [m/s²], along −z.
+  double gravity_mps2 = 9.81;
+
+  void Validate() const;
+};
+
+/// Result of a ray test.
+struct RayHit {
+  Eigen::Vector3d point_world;
+  Eigen::Vector3d normal_world;
+  double fraction = 1.0;  ///< Along the ray, in [0, 1].
+};
+
+/// Owns the Bullet dynamics world and the static scene. Not copyable.
+class World {
+ public:
+  World(const WorldOptions& options, Terrain terrain, std::vector<StaticObject> objects);
+  ~World();
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  /// Advances the physics by one fixed step.
+  void Step();
+
+  const WorldOptions& options() const { return options_; }
+  const Terrain& terrain() const { return terrain_; }
+  const std::vector<StaticObject>& objects() const { return objects_; }
+  /// The Bullet world, for bodies that add themselves (the robot's chassis).
+  btDiscreteDynamicsWorld& bullet();
+
+  /// Closest hit along the segment from `from` to `to` against the collision
+  /// groups in `mask`, if any.
+  std::optional<RayHit> CastRay(const Eigen::Vector3d& from, const Eigen::Vector3d& to,
+                                int mask = kGroupTerrain | kGroupObstacle) const;
+
+ private:
+  struct BulletParts;  // Bullet's objects, kept out of this header.
+  WorldOptions options_;
+  Terrain terrain_;
+  std::vector<StaticObject> objects_;
+  std::unique_ptr<BulletParts> bullet_;
+};
+
+}  // namespace trackbed::sim

@@ -1,0 +1,160 @@
+// The `trackbed` command line end to end: the shipped scenes, the run-folder
+// contract of design.md §3, determinism, and errors on bad input.
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int exit_code = -1;
+  std::string stdout_text, stderr_text;
+};
+
+std::string Slurp(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+fs::path TempDir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("trackbed_cli_test_" + name);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+// Runs `trackbed ARGS` from the source directory, capturing both streams.
+Result Trackbed(const std::string& args, const std::string& tag) {
+  const fs::path dir = TempDir("io_" + tag);
+  const std::string cmd = std::string("cd '") + TRACKBED_SOURCE_DIR + "' && '" + TRACKBED_BINARY +
+                          "' " + args + " >'" + (dir / "out").string() + "' 2>'" +
+                          (dir / "err").string() + "'";
+  const int status = std::system(cmd.c_str());
+  Result r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.stdout_text = Slurp(dir / "out");
+  r.stderr_text = Slurp(dir / "err");
+  return r;
+}
+
+nlohmann::json Metrics(const fs::path& run) {
+  return nlohmann::json::parse(Slurp(run / "metrics.json"));
+}
+
+double EncoderError(const nlohmann::json& m) {
+  const double d = m["distance_m"], e = m["encoder_distance_m"];
+  return std::abs(e - d) / d;
+}
+
+TEST(CliTest, CorridorRunWritesTheRunFolderAndEncodersMatchOnTheFloor) {
+  const fs::path out = TempDir("corridor");
+  const Result r = Trackbed("run scenes/corridor.yaml --out " + out.string(), "corridor");
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  for (const char* f : {"scenario.yaml", "ground_truth.tum", "encoders.csv", "slip.csv", "imu.csv",
+                        "tracks.csv", "metrics.json"}) {
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  }
+  EXPECT_EQ(Slurp(out / "encoders.csv").substr(0, 26), "t,left_ticks,right_ticks\n0");
+  EXPECT_EQ(Slurp(out / "slip.csv").rfind("t,left_true_mps,right_true_mps,", 0), 0u);
+  const nlohmann::json m = Metrics(out);
+  EXPECT_EQ(m["status"], "completed");
+  EXPECT_EQ(m["stop_reason"], "path finished");
+  for (const char* key :
+       {"sim_time_s", "wall_time_s", "real_time_factor", "distance_m", "encoder_distance_m"}) {
+    EXPECT_TRUE(m.contains(key)) << key;
+  }
+  EXPECT_NEAR(m["distance_m"].get<double>(), 40.0, 2.0);
+  EXPECT_LT(EncoderError(m), 0.01);
+  // The resolved scenario reproduces the run.
+  const fs::path again = TempDir("corridor_again");
+  const Result r2 = Trackbed("run " + (out / "scenario.yaml").string() + " --out " + again.string(),
+                             "corridor_again");
+  ASSERT_EQ(r2.exit_code, 0) << r2.stderr_text;
+  EXPECT_EQ(Slurp(out / "ground_truth.tum"), Slurp(again / "ground_truth.tum"));
+}
+
+TEST(CliTest, OutdoorEncodersOverEstimateFarMoreThanInTheCorridor) {
+  const fs::path corridor = TempDir("cmp_corridor"), outdoor = TempDir("cmp_outdoor");
+  ASSERT_EQ(Trackbed("run scenes/corridor.yaml --out " + corridor.string(), "c").exit_code, 0);
+  const Result r = Trackbed("run scenes/outdoor.yaml --out " + outdoor.string(), "o");
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  const nlohmann::json mc = Metrics(corridor), mo = Metrics(outdoor);
+  EXPECT_EQ(mo["status"], "completed");
+  EXPECT_GT(mo["distance_m"].get<double>(), 35.0);
+  EXPECT_GT(EncoderError(mo), 0.01);
+  EXPECT_GT(EncoderError(mo), 3.0 * EncoderError(mc));
+}
+
+TEST(CliTest, SameScenarioAndSeedGiveIdenticalRunFolders) {
+  const fs::path a = TempDir("det_a"), b = TempDir("det_b");
+  const std::string args = "run scenes/outdoor.yaml --set duration_s=15 --seed 5 --out ";
+  ASSERT_EQ(Trackbed(args + a.string(), "a").exit_code, 0);
+  ASSERT_EQ(Trackbed(args + b.string(), "b").exit_code, 0);
+  for (const auto& entry : fs::directory_iterator(a)) {
+    const std::string name = entry.path().filename().string();
+    if (name == "metrics.json") continue;
+    EXPECT_EQ(Slurp(entry.path()), Slurp(b / name)) << name << " differs";
+  }
+  nlohmann::json ma = Metrics(a), mb = Metrics(b);
+  for (nlohmann::json* m : {&ma, &mb}) {
+    m->erase("wall_time_s");
+    m->erase("real_time_factor");
+  }
+  EXPECT_EQ(ma.dump(), mb.dump());
+  // Another seed: another (rough) terrain, another trajectory.
+  const fs::path c = TempDir("det_c");
+  ASSERT_EQ(
+      Trackbed("run scenes/outdoor.yaml --set duration_s=15 --seed 6 --out " + c.string(), "c6")
+          .exit_code,
+      0);
+  EXPECT_NE(Slurp(a / "ground_truth.tum"), Slurp(c / "ground_truth.tum"));
+}
+
+TEST(CliTest, UnknownKeyFailsWithFileKeyAndReasonOnOneLine) {
+  const fs::path dir = TempDir("bad");
+  const fs::path bad = dir / "bad.yaml";
+  std::ofstream(bad) << "seed: 1\nrobot:\n  vehicle:\n    mass_kgg: 40\n";
+  const Result r = Trackbed("run " + bad.string() + " --out " + (dir / "run").string(), "bad");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(std::count(r.stderr_text.begin(), r.stderr_text.end(), '\n'), 1) << r.stderr_text;
+  EXPECT_NE(r.stderr_text.find(bad.string()), std::string::npos) << r.stderr_text;
+  EXPECT_NE(r.stderr_text.find("robot.vehicle.mass_kgg"), std::string::npos) << r.stderr_text;
+  EXPECT_FALSE(fs::exists(dir / "run" / "metrics.json"));
+}
+
+TEST(CliTest, OutOfRangeOverrideAndMissingFileFailClearly) {
+  const fs::path dir = TempDir("range");
+  Result r = Trackbed(
+      "run scenes/corridor.yaml --set robot.vehicle.mass_kg=-3 --out " + (dir / "run").string(),
+      "range");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.stderr_text.find("robot.vehicle.mass_kg"), std::string::npos) << r.stderr_text;
+  EXPECT_NE(r.stderr_text.find("must be > 0"), std::string::npos) << r.stderr_text;
+  EXPECT_FALSE(fs::exists(dir / "run" / "metrics.json"));
+
+  r = Trackbed("run scenes/no_such_scene.yaml --out " + (dir / "run2").string(), "missing");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.stderr_text.find("scenes/no_such_scene.yaml"), std::string::npos) << r.stderr_text;
+  EXPECT_EQ(std::count(r.stderr_text.begin(), r.stderr_text.end(), '\n'), 1) << r.stderr_text;
+}
+
+TEST(CliTest, HelpAndMissingArgumentsFollowTheExitContract) {
+  EXPECT_EQ(Trackbed("--help", "help").exit_code, 0);
+  EXPECT_EQ(Trackbed("run --help", "run_help").exit_code, 0);
+  EXPECT_NE(Trackbed("run scenes/corridor.yaml", "no_out").exit_code, 0);
+}
+
+}  // namespace

@@ -1,0 +1,427 @@
+// Scenario files: defaults, exact round trips, and errors that name the source
+// (file or --set override), the full dotted key and the reason.
+#include "trackbed/scenes/scenario_yaml.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace trackbed::scenes {
+namespace {
+
+// The smallest valid scenario: a path drive needs its waypoints.
+constexpr char kMinimal[] = "drive:\n  waypoints: [[0, 0], [5, 0]]\n";
+
+// The message ParseScenario throws for `text` (empty when it does not throw).
+std::string ErrorOf(const std::string& text, const std::vector<Override>& overrides = {}) {
+  try {
+    ParseScenario(text, "test.yaml", overrides);
+  } catch (const ScenarioError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string RoundTrip(const std::string& text) {
+  return ScenarioToYaml(ParseScenario(text, "round_trip.yaml"));
+}
+
+TEST(ScenarioYamlTest, MinimalFileTakesStructDefaults) {
+  const Scenario s = ParseScenario(kMinimal, "test.yaml");
+  const Scenario defaults;
+  EXPECT_EQ(s.seed, defaults.seed);
+  EXPECT_EQ(s.duration_s, defaults.duration_s);
+  EXPECT_EQ(s.scene.name, "unnamed");
+  EXPECT_EQ(s.scene.world.physics_step_s, 0.001);
+  EXPECT_EQ(s.scene.terrain.extent_m, defaults.scene.terrain.extent_m);
+  EXPECT_EQ(s.scene.terrain.default_material, "hard_floor");
+  EXPECT_TRUE(s.scene.objects.empty());
+  EXPECT_EQ(s.robot.vehicle.mass_kg, 40.0);
+  EXPECT_EQ(s.robot.vehicle.hull_size_m, defaults.robot.vehicle.hull_size_m);
+  EXPECT_EQ(s.robot.vehicle.motor.max_torque_nm, 20.0);
+  EXPECT_EQ(s.robot.encoders.ticks_per_rev, 4096);
+  EXPECT_EQ(s.robot.imu.gyro_noise_density, 1.6968e-4);
+  EXPECT_EQ(s.drive.mode, DriveSpec::Mode::kPath);
+  ASSERT_EQ(s.drive.waypoints.size(), 2u);
+  EXPECT_EQ(s.drive.waypoints[1], Eigen::Vector2d(5.0, 0.0));
+  EXPECT_EQ(s.drive.laps, 1);
+  EXPECT_EQ(s.drive.speed_mps, 0.4);
+  EXPECT_EQ(s.outputs.save_images, "none");
+}
+
+TEST(ScenarioYamlTest, WriterEmitsEveryKeyWithShortestDoubles) {
+  Scenario s = ParseScenario(kMinimal, "test.yaml");
+  s.duration_s = 1.0 / 3.0;
+  s.robot.imu.rate_hz = 1e3 / 7.0;
+  s.seed = 18446744073709551615u;
+  const std::string text = ScenarioToYaml(s);
+  EXPECT_NE(text.find("seed: 18446744073709551615\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("duration_s: 0.3333333333333333\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("    physics_step_s: 0.001\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("    gravity_mps2: 9.81\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("    extent_m: [-5, -5, 5, 5]\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("    gyro_noise_density: 0.00016968\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("    hull_contact_stiffness_npm: 200000\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("  waypoints: [[0, 0], [5, 0]]\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("  script: []\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("  save_images: none\n"), std::string::npos) << text;
+  const Scenario back = ParseScenario(text, "written.yaml");
+  EXPECT_EQ(ScenarioToYaml(back), text);
+  EXPECT_EQ(back.duration_s, s.duration_s);
+  EXPECT_EQ(back.robot.imu.rate_hz, s.robot.imu.rate_hz);
+  EXPECT_EQ(back.seed, s.seed);
+}
+
+TEST(ScenarioYamlTest, LongListsWrapAndRoundTrip) {
+  Scenario s = ParseScenario(kMinimal, "test.yaml");
+  for (int k = 0; k < 40; ++k) s.drive.waypoints.emplace_back(0.1 * k, std::sin(0.1 * k));
+  const std::string text = ScenarioToYaml(s);
+  EXPECT_NE(text.find("  waypoints:\n    [[0, 0], [5, 0], [0, 0], [0.1, 0.09983341664682815],"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("\n     [0."), std::string::npos) << text;
+  const Scenario back = ParseScenario(text, "written.yaml");
+  EXPECT_EQ(back.drive.waypoints, s.drive.waypoints);
+  EXPECT_EQ(ScenarioToYaml(back), text);
+}
+
+TEST(ScenarioYamlTest, RoundTripIsExact) {
+  const std::string text = R"(
+seed: 7
+duration_s: 120
+scene:
+  name: "corridor: east wing"
+  world: {physics_step_s: 1e-5, gravity_mps2: 9.81}
+  terrain:
+    extent_m: [-2.5, -1, 30, 4.2]
+    cell_size_m: 0.1
+    roughness: {undulation_amplitude_m: 0.3333333333333333, slope_x: -0.02}
+    default_material: paving
+    materials:
+      - {name: wet_clay, cohesion_pa: 4140, friction_angle_deg: 13, shear_modulus_m: 0.01,
+         bekker_kc: 12700, bekker_kphi: 1555950, bekker_n: 0.5, albedo: 0.35}
+    regions:
+      - {material: wet_clay, shape: circle, center: [3, 1], radius_m: 1.5}
+      - {material: grass, min: [10, -1], max: [12, 4.2]}
+  objects:
+    - {type: wall, from: [0, 2], to: [30, 2.7]}
+    - {type: bench, center: [4, -0.5], size_m: [1.5, 0.4, 0.45], yaw_deg: 12.5}
+    - {type: tree, center: [20, 3], radius_m: 0.15, height_m: 6, base_z_m: -0.1}
+    - {type: post, center: [1e-3, 0.1], radius_m: 0.05, height_m: 1}
+robot:
+  start: {x_m: 0.5, y_m: 0.1, yaw_deg: 90}
+  vehicle: {mass_kg: 42.5, motor: {max_torque_nm: 25}}
+drive:
+  mode: script
+  script:
+    - {t_s: 0, v_mps: 0.4, yaw_rate_radps: 0}
+    - {t_s: 5, left_mps: 0.2, right_mps: 0.4}
+outputs: {save_images: kitti}
+)";
+  const std::string first = RoundTrip(text);
+  const std::string second = RoundTrip(first);
+  const std::string third = RoundTrip(second);
+  EXPECT_EQ(first, second);
+  EXPECT_EQ(second, third);
+  EXPECT_NE(first.find("name: \"corridor: east wing\""), std::string::npos) << first;
+  EXPECT_NE(first.find("physics_step_s: 0.00001"), std::string::npos) << first;
+  EXPECT_NE(first.find("undulation_amplitude_m: 0.3333333333333333"), std::string::npos) << first;
+  EXPECT_NE(first.find("yaw_deg: 12.5"), std::string::npos) << first;
+  EXPECT_NE(first.find("center: [0.001, 0.1]"), std::string::npos) << first;
+  EXPECT_NE(first.find("base_z_m: -0.1"), std::string::npos) << first;
+  EXPECT_EQ(first.find("base_z_m: .nan"), std::string::npos) << first;
+  EXPECT_NE(first.find("- {t_s: 5, left_mps: 0.2, right_mps: 0.4}"), std::string::npos) << first;
+}
+
+TEST(ScenarioYamlTest, RepositoryScenesLoadAndRoundTrip) {
+  int scenes = 0;
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::string(TRACKBED_SOURCE_DIR) + "/scenes")) {
+    if (entry.path().extension() != ".yaml") continue;
+    ++scenes;
+    const std::string first = ScenarioToYaml(LoadScenario(entry.path().string()));
+    EXPECT_EQ(RoundTrip(first), first) << entry.path();
+  }
+  EXPECT_GT(scenes, 0);
+}
+
+TEST(ScenarioYamlTest, YawDegreesRoundTripExactlyForAnyRadians) {
+  std::mt19937_64 rng(42);
+  std::uniform_real_distribution<double> yaw(-4.0 * M_PI, 4.0 * M_PI);
+  for (int k = 0; k < 500; ++k) {
+    Scenario s = ParseScenario(kMinimal, "test.yaml");
+    s.scene.objects.resize(1);
+    s.scene.objects[0].yaw_rad = k == 0 ? M_PI / 2.0 : yaw(rng);
+    const std::string first = ScenarioToYaml(s);
+    const Scenario back = ParseScenario(first, "first.yaml");
+    // Within one double of the original, and the text is a fixed point from here on.
+    EXPECT_LE(std::abs(back.scene.objects[0].yaw_rad - s.scene.objects[0].yaw_rad),
+              2.0 * std::abs(std::nextafter(s.scene.objects[0].yaw_rad, 0.0) -
+                             s.scene.objects[0].yaw_rad));
+    ASSERT_EQ(ScenarioToYaml(back), first) << "yaw_rad " << s.scene.objects[0].yaw_rad;
+  }
+}
+
+TEST(ScenarioYamlTest, TypedDegreesAreWrittenAsTyped) {
+  std::string text = std::string(kMinimal) + "scene:\n  objects:\n";
+  std::vector<std::string> typed;
+  for (int tenths = -3600; tenths <= 3600; tenths += 7) {
+    typed.push_back(std::to_string(tenths / 10) + "." + std::to_string(std::abs(tenths) % 10));
+    if (tenths < 0 && tenths > -10) typed.back() = "-" + typed.back();
+    if (typed.back().substr(typed.back().size() - 2) == ".0")
+      typed.back().resize(typed.back().size() - 2);
+    text += "    - {type: box, yaw_deg: " + typed.back() + "}\n";
+  }
+  const std::string written = RoundTrip(text);
+  for (const std::string& deg : typed) {
+    EXPECT_NE(written.find("yaw_deg: " + deg + ", "), std::string::npos) << deg;
+  }
+}
+
+TEST(ScenarioYamlTest, UnknownKeyNamesFileAndDottedKey) {
+  EXPECT_EQ(ErrorOf(std::string(kMinimal) + "sede: 3\n"),
+            "test.yaml: sede: unknown key (allowed: seed, duration_s, scene, robot, drive, "
+            "outputs)");
+  const std::string nested = ErrorOf(std::string(kMinimal) + "robot:\n  vehicle:\n    mas_kg: 3\n");
+  EXPECT_EQ(nested.rfind("test.yaml: robot.vehicle.mas_kg: unknown key (allowed: mass_kg, ", 0), 0u)
+      << nested;
+  EXPECT_NE(nested.find("motor)"), std::string::npos) << nested;
+  EXPECT_EQ(ErrorOf(std::string(kMinimal) + "scene: {objects: [{type: post, size_m: [1, 1, 1]}]}"),
+            "test.yaml: scene.objects[0].size_m: unknown key (allowed: type, center, radius_m, "
+            "height_m, appearance, base_z_m)");
+}
+
+TEST(ScenarioYamlTest, RegionRejectsKeysOfTheOtherShape) {
+  const std::string error = ErrorOf(std::string(kMinimal) +
+                                    "scene:\n  terrain:\n    regions:\n"
+                                    "      - {material: clay, shape: circle, min: [0, 0]}\n");
+  EXPECT_EQ(error,
+            "test.yaml: scene.terrain.regions[0].min: unknown key (allowed: material, shape, "
+            "center, radius_m)");
+  EXPECT_EQ(ErrorOf(std::string(kMinimal) +
+                    "scene: {terrain: {regions: [{material: clay, shape: disc}]}}"),
+            "test.yaml: scene.terrain.regions[0].shape: must be one of rectangle, circle (got "
+            "'disc')");
+}
+
+TEST(ScenarioYamlTest, WrongTypeNamesKeyAndExpectation) {
+  const std::string m = kMinimal;
+  EXPECT_EQ(ErrorOf(m + "duration_s: fast\n"),
+            "test.yaml: duration_s: expected a number, got 'fast'");
+  EXPECT_EQ(ErrorOf(m + "duration_s: \"20\"\n"),
+            "test.yaml: duration_s: expected a number, got the quoted string \"20\"");
+  EXPECT_EQ(ErrorOf(m + "robot: {vehicle: {road_wheels_per_track: 6.5}}\n"),
+            "test.yaml: robot.vehicle.road_wheels_per_track: expected an integer, got '6.5'");
+  EXPECT_EQ(ErrorOf(m + "seed: -1\n"),
+            "test.yaml: seed: expected an integer in [0, 2^64), got '-1'");
+  EXPECT_EQ(ErrorOf("drive: {waypoints: [[0, 0], [5, 0]], closed: yes}\n"),
+            "test.yaml: drive.closed: expected true or false, got 'yes'");
+  EXPECT_EQ(ErrorOf(m + "scene: 5\n"), "test.yaml: scene: expected a map, got '5'");
+  EXPECT_EQ(ErrorOf(m + "robot: {vehicle: {hull_size_m: [1, 2]}}\n"),
+            "test.yaml: robot.vehicle.hull_size_m: expected a list of 3 numbers, got a list of 2");
+  EXPECT_EQ(ErrorOf(m + "scene: {objects: {type: box}}\n"),
+            "test.yaml: scene.objects: expected a list, got a map");
+  EXPECT_EQ(ErrorOf(m + "scene: {name: [a]}\n"),
+            "test.yaml: scene.name: expected a string, got a list of 1");
+  EXPECT_EQ(ErrorOf("- 1\n"), "test.yaml: expected a map of scenario keys, got a list of 1");
+  EXPECT_EQ(ErrorOf(m + "seed: 1\nseed: 2\n"), "test.yaml: seed: duplicate key");
+}
+
+TEST(ScenarioYamlTest, OutOfRangeValueReportsFullDottedKey) {
+  const std::string m = kMinimal;
+  EXPECT_EQ(ErrorOf(m + "robot:\n  vehicle:\n    mass_kg: -1\n"),
+            "test.yaml: robot.vehicle.mass_kg: must be > 0 (got -1)");
+  EXPECT_EQ(ErrorOf(m + "robot: {vehicle: {motor: {max_torque_nm: 0}}}\n"),
+            "test.yaml: robot.vehicle.motor.max_torque_nm: must be > 0 (got 0)");
+  EXPECT_EQ(ErrorOf(m + "duration_s: 0\n"), "test.yaml: duration_s: must be in (0, 1e6] (got 0)");
+  EXPECT_EQ(ErrorOf(m + "outputs: {save_images: png}\n"),
+            "test.yaml: outputs.save_images: must be none or kitti (got 'png')");
+  EXPECT_EQ(ErrorOf("drive: {waypoints: [[0, 0]]}\n"),
+            "test.yaml: drive.waypoints: mode path needs at least 2 waypoints (got 1)");
+  EXPECT_EQ(ErrorOf("drive: {mode: script}\n"),
+            "test.yaml: drive.script: mode script needs at least 1 command");
+  EXPECT_EQ(ErrorOf(m + "scene: {terrain: {regions: [{material: mud, min: [0, 0], max: [1, 1]}]}}"),
+            "test.yaml: scene.terrain.regions[0].material: unknown material 'mud' (known: "
+            "hard_floor, paving, lete_sand, dry_sand, sandy_loam, clay, grass)");
+}
+
+TEST(ScenarioYamlTest, ListIndexInKey) {
+  const std::string m = kMinimal;
+  EXPECT_EQ(ErrorOf(m + "scene:\n  objects:\n    - {type: box}\n"
+                        "    - {type: tree, radius_m: 0}\n"),
+            "test.yaml: scene.objects[1].radius_m: must be > 0 (got 0)");
+  EXPECT_EQ(ErrorOf("drive: {waypoints: [[0, 0], [5, x]]}\n"),
+            "test.yaml: drive.waypoints[1][1]: expected a number, got 'x'");
+  EXPECT_EQ(ErrorOf(m + "scene: {objects: [{type: box, center: [1, .inf]}]}\n"),
+            "test.yaml: scene.objects[0].center[1]: must be a finite number (got inf)");
+  EXPECT_EQ(ErrorOf("drive:\n  mode: script\n  script:\n    - {t_s: 2}\n    - {t_s: 1}\n"),
+            "test.yaml: drive.script[1].t_s: must not be earlier than the previous command's t_s");
+}
+
+TEST(ScenarioYamlTest, ScriptEntryUsesEitherTwistOrTrackSpeeds) {
+  const Scenario s = ParseScenario(
+      "drive:\n  mode: script\n  script:\n    - {t_s: 0, v_mps: 0.4}\n"
+      "    - {t_s: 5, left_mps: 0.2, right_mps: 0.3}\n",
+      "test.yaml");
+  ASSERT_EQ(s.drive.script.size(), 2u);
+  EXPECT_FALSE(s.drive.script[0].track_speeds);
+  EXPECT_EQ(s.drive.script[0].v_mps, 0.4);
+  EXPECT_TRUE(s.drive.script[1].track_speeds);
+  EXPECT_EQ(s.drive.script[1].right_mps, 0.3);
+  EXPECT_EQ(ErrorOf("drive: {mode: script, script: [{t_s: 0, v_mps: 1, left_mps: 1}]}\n"),
+            "test.yaml: drive.script[0]: use either v_mps, yaw_rate_radps or left_mps, right_mps, "
+            "not both");
+}
+
+TEST(ScenarioYamlTest, MissingFileSaysCannotRead) {
+  const std::string path = ::testing::TempDir() + "/no_such_scenario.yaml";
+  try {
+    LoadScenario(path);
+    FAIL() << "no exception";
+  } catch (const ScenarioError& e) {
+    EXPECT_EQ(std::string(e.what()), path + ": cannot read file: No such file or directory");
+    EXPECT_EQ(e.source(), path);
+  }
+}
+
+TEST(ScenarioYamlTest, LoadsFileAndNamesItInErrors) {
+  const std::string path = ::testing::TempDir() + "/scenario_yaml_test.yaml";
+  std::ofstream(path) << kMinimal << "duration_s: 12\nrobot: {imu: {rate_hz: 0}}\n";
+  try {
+    LoadScenario(path);
+    FAIL() << "no exception";
+  } catch (const ScenarioError& e) {
+    EXPECT_EQ(std::string(e.what()), path + ": robot.imu.rate_hz: must be in [1, 10000] (got 0)");
+    EXPECT_EQ(e.key(), "robot.imu.rate_hz");
+  }
+  const Scenario s = LoadScenario(path, {{"robot.imu.rate_hz", "400"}});
+  EXPECT_EQ(s.duration_s, 12.0);
+  EXPECT_EQ(s.robot.imu.rate_hz, 400.0);
+  std::remove(path.c_str());
+}
+
+TEST(ScenarioYamlTest, SyntaxErrorHasLineAndColumn) {
+  const std::string error = ErrorOf("seed: 1\nscene:\n  name: x\n  world: {physics_step_s: 1\n");
+  EXPECT_EQ(error.rfind("test.yaml: invalid YAML at line ", 0), 0u) << error;
+  EXPECT_NE(error.find("line 5, column 1: "), std::string::npos) << error;
+}
+
+TEST(ScenarioYamlTest, ParseOverrideSplitsAtFirstEquals) {
+  const Override o = ParseOverride("drive.waypoints=[[0,0],[5,0]]");
+  EXPECT_EQ(o.key, "drive.waypoints");
+  EXPECT_EQ(o.value, "[[0,0],[5,0]]");
+  EXPECT_EQ(ParseOverride("scene.name=a=b").value, "a=b");
+  EXPECT_EQ(ParseOverride("scene.objects[2].height_m=1").key, "scene.objects[2].height_m");
+  try {
+    ParseOverride("duration_s");
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), "--set: expected key=value, got 'duration_s'");
+  }
+  EXPECT_THROW(ParseOverride("=3"), std::invalid_argument);
+  EXPECT_THROW(ParseOverride("robot..mass_kg=3"), std::invalid_argument);
+  EXPECT_THROW(ParseOverride("scene.objects[x].height_m=3"), std::invalid_argument);
+}
+
+TEST(ScenarioYamlTest, OverrideSetsExistingKeys) {
+  const Scenario s = ParseScenario(
+      std::string(kMinimal) + "duration_s: 60\n", "test.yaml",
+      {ParseOverride("duration_s=20"), ParseOverride("drive.waypoints=[[0, 0], [5, 0], [5, 5]]"),
+       ParseOverride("robot.vehicle.hull_size_m=[1, 0.5, 0.3]")});
+  EXPECT_EQ(s.duration_s, 20.0);
+  EXPECT_EQ(s.drive.waypoints.size(), 3u);
+  EXPECT_EQ(s.robot.vehicle.hull_size_m, Eigen::Vector3d(1.0, 0.5, 0.3));
+}
+
+TEST(ScenarioYamlTest, OverrideCreatesMissingMapsWithDefaults) {
+  const Scenario s =
+      ParseScenario(kMinimal, "test.yaml", {ParseOverride("robot.vehicle.motor.max_torque_nm=30")});
+  EXPECT_EQ(s.robot.vehicle.motor.max_torque_nm, 30.0);
+  EXPECT_EQ(s.robot.vehicle.motor.max_speed_radps, 15.0);
+  EXPECT_EQ(s.robot.vehicle.mass_kg, 40.0);
+  const Scenario empty =
+      ParseScenario("", "empty.yaml", {ParseOverride("drive.waypoints=[[0,0],[1,0]]")});
+  EXPECT_EQ(empty.drive.waypoints.size(), 2u);
+}
+
+TEST(ScenarioYamlTest, OverrideIndexesListsInBothForms) {
+  const std::string text =
+      std::string(kMinimal) + "scene:\n  objects:\n    - {type: box}\n    - {type: post}\n";
+  for (const char* key : {"scene.objects.1.height_m", "scene.objects[1].height_m"}) {
+    const Scenario s = ParseScenario(text, "test.yaml", {{key, "3.5"}});
+    EXPECT_EQ(s.scene.objects[1].height_m, 3.5) << key;
+  }
+  EXPECT_EQ(ErrorOf(text, {{"scene.objects.5.height_m", "1"}}),
+            "--set scene.objects.5.height_m=1: scene.objects: index 5 is past the end (2 entries)");
+  EXPECT_EQ(ErrorOf(text, {{"scene.objects[0][1]", "1"}}),
+            "--set scene.objects[0][1]=1: scene.objects[0]: is not a list");
+}
+
+TEST(ScenarioYamlTest, BadOverrideIsAttributedToSet) {
+  const std::string m = kMinimal;
+  EXPECT_EQ(ErrorOf(m, {ParseOverride("robot.vehicle.mass_kg=-1")}),
+            "--set robot.vehicle.mass_kg=-1: robot.vehicle.mass_kg: must be > 0 (got -1)");
+  const std::string typo = ErrorOf(m, {ParseOverride("robot.vehicel.mass_kg=50")});
+  EXPECT_EQ(typo,
+            "--set robot.vehicel.mass_kg=50: robot.vehicel: unknown key (allowed: start, vehicle, "
+            "encoders, imu)");
+  EXPECT_EQ(ErrorOf(m, {ParseOverride("duration_s=soon")}),
+            "--set duration_s=soon: duration_s: expected a number, got 'soon'");
+  EXPECT_EQ(
+      ErrorOf(m, {ParseOverride("drive.waypoints=[[0,0]")})
+          .rfind("--set drive.waypoints=[[0,0]: drive.waypoints: cannot parse the value as YAML: ",
+                 0),
+      0u);
+  // A bad value the file brought stays the file's, whatever the overrides touch.
+  EXPECT_EQ(ErrorOf(m + "robot: {vehicle: {mass_kg: -1}}\n", {ParseOverride("duration_s=5")}),
+            "test.yaml: robot.vehicle.mass_kg: must be > 0 (got -1)");
+}
+
+TEST(ScenarioYamlTest, WallFromToBecomesRotatedBox) {
+  const Scenario s = ParseScenario(
+      std::string(kMinimal) + "scene:\n  objects:\n    - {type: wall, from: [1, 1], to: [4, 5]}\n",
+      "test.yaml");
+  ASSERT_EQ(s.scene.objects.size(), 1u);
+  const sim::StaticObject& wall = s.scene.objects[0];
+  EXPECT_EQ(wall.kind, "wall");
+  EXPECT_EQ(wall.shape, sim::StaticObject::Shape::kBox);
+  EXPECT_EQ(wall.appearance, "plain_paint");
+  EXPECT_EQ(wall.center_m, Eigen::Vector2d(2.5, 3.0));
+  EXPECT_DOUBLE_EQ(wall.yaw_rad, std::atan2(4.0, 3.0));
+  EXPECT_DOUBLE_EQ(wall.size_m.x(), 5.0);
+  EXPECT_EQ(wall.size_m.y(), 0.1);
+  EXPECT_EQ(wall.size_m.z(), 2.5);
+  EXPECT_TRUE(std::isnan(wall.base_z_m));
+  const std::string text = ScenarioToYaml(s);
+  EXPECT_NE(text.find("    - type: wall\n      center: [2.5, 3]\n      size_m: [5, 0.1, 2.5]\n"
+                      "      yaw_deg: 53.13010235415598\n      appearance: plain_paint\n"),
+            std::string::npos)
+      << text;
+  EXPECT_EQ(RoundTrip(text), text);
+  EXPECT_EQ(ErrorOf(std::string(kMinimal) + "scene: {objects: [{type: wall, from: [1, 1]}]}"),
+            "test.yaml: scene.objects[0].to: missing: a wall given by from/to needs both");
+}
+
+TEST(ScenarioYamlTest, ObjectTypesPickShapeAndAppearance) {
+  const Scenario s = ParseScenario(std::string(kMinimal) +
+                                       "scene:\n  objects:\n    - {type: bench}\n"
+                                       "    - {type: tree}\n    - {type: post, appearance: rust}\n",
+                                   "test.yaml");
+  ASSERT_EQ(s.scene.objects.size(), 3u);
+  EXPECT_EQ(s.scene.objects[0].shape, sim::StaticObject::Shape::kBox);
+  EXPECT_EQ(s.scene.objects[0].appearance, "wood");
+  EXPECT_EQ(s.scene.objects[1].shape, sim::StaticObject::Shape::kCylinder);
+  EXPECT_EQ(s.scene.objects[1].appearance, "bark");
+  EXPECT_EQ(s.scene.objects[2].appearance, "rust");
+  EXPECT_EQ(ErrorOf(std::string(kMinimal) + "scene: {objects: [{type: rock}]}"),
+            "test.yaml: scene.objects[0].type: must be one of wall, box, bench, cylinder, tree, "
+            "post (got 'rock')");
+}
+
+}  // namespace
+}  // namespace trackbed::scenes
