@@ -112,6 +112,8 @@ RunMetrics RunToFolder(const Scenario& scenario, const fs::path& dir) {
                    "left_contacts,right_contacts");
     LogFile imu(dir / "imu.csv",
                 "t,gyro_x_radps,gyro_y_radps,gyro_z_radps,accel_x_mps2,accel_y_mps2,accel_z_mps2");
+    LogFile twist(dir / "ground_truth_twist.csv",
+                  "t,v_x_mps,v_y_mps,v_z_mps,omega_x_radps,omega_y_radps,omega_z_radps");
     char line[512];
     RunObservers observers;
     observers.on_sample = [&](const RunSample& s) {
@@ -128,6 +130,13 @@ RunMetrics RunToFolder(const Scenario& scenario, const fs::path& dir) {
                     l.traction_n, r.traction_n, l.compaction_resistance_n,
                     r.compaction_resistance_n, l.stations_in_contact, r.stations_in_contact);
       tracks.Line(line);
+      // Body-frame twist: velocity of the body origin and angular velocity, in body axes.
+      const Eigen::Matrix3d R_body_world = s.chassis.T_world_body.linear().transpose();
+      const Eigen::Vector3d v = R_body_world * s.chassis.v_world;
+      const Eigen::Vector3d w = R_body_world * s.chassis.omega_world;
+      std::snprintf(line, sizeof(line), "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", s.t_s, v.x(), v.y(),
+                    v.z(), w.x(), w.y(), w.z());
+      twist.Line(line);
     };
     observers.on_imu = [&](const robot::ImuSample& s) {
       std::snprintf(line, sizeof(line), "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", s.t_s,
@@ -136,7 +145,7 @@ RunMetrics RunToFolder(const Scenario& scenario, const fs::path& dir) {
       imu.Line(line);
     };
     metrics = RunClosedLoop(scenario, observers);
-    for (LogFile* f : {&truth, &encoders, &slip, &tracks, &imu}) f->Close();
+    for (LogFile* f : {&truth, &twist, &encoders, &slip, &tracks, &imu}) f->Close();
   } catch (const std::exception& e) {
     metrics.completed = false;
     metrics.stop_reason = std::string("failed: ") + e.what();
