@@ -55,7 +55,8 @@ navigation::Pose2 Follow(navigation::PurePursuit& follower, navigation::Pose2 po
   for (*steps = 0; *steps < 20000; ++*steps) {
     const navigation::PurePursuitCommand c = follower.Update(pose);
     if (c.finished) break;
-    if (c.progress_m > 1.0) *max_cross_track = std::max(*max_cross_track, std::abs(c.cross_track_m));
+    if (c.progress_m > 1.0)
+      *max_cross_track = std::max(*max_cross_track, std::abs(c.cross_track_m));
     pose.x += c.twist.v_mps * std::cos(pose.yaw) * dt;
     pose.y += c.twist.v_mps * std::sin(pose.yaw) * dt;
     pose.yaw += c.twist.yaw_rate_radps * dt;
