@@ -10,6 +10,7 @@
 #include "trackbed/navigation/pure_pursuit.h"
 #include "trackbed/robot/encoder.h"
 #include "trackbed/robot/tracked_vehicle.h"
+#include "trackbed/sim/renderer.h"
 #include "trackbed/sim/sim_clock.h"
 #include "trackbed/sim/world.h"
 
@@ -77,6 +78,18 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers
                                 rs.start.yaw_deg * M_PI / 180.0);
   robot::Imu imu(rs.imu, scenario.scene.world.gravity_mps2, StreamSeed(scenario.seed, 1));
   Driver driver(scenario.drive, rs.vehicle.track_gauge_m);
+  std::optional<robot::StereoRig> rig;
+  std::unique_ptr<sim::Renderer> renderer;
+  if (rs.stereo.enabled) {
+    rig.emplace(rs.stereo);
+    renderer = std::make_unique<sim::Renderer>(
+        world, scenario.scene.appearance, scenario.scene.occluders, StreamSeed(scenario.seed, 2),
+        rs.stereo.width_px, rs.stereo.height_px, rs.stereo.near_m, rs.stereo.far_m);
+  }
+  sim::GrayImage left_image, right_image;
+  std::int64_t stereo_index = 0;
+  double render_wall_s = 0.0;
+  const std::uint64_t noise_seed = StreamSeed(scenario.seed, 3);
   MetricsAccumulator metrics(rs.vehicle.sprocket_radius_m, rs.vehicle.track_gauge_m,
                              rs.encoders.ticks_per_rev);
 
@@ -84,6 +97,7 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers
   const std::int64_t encoder_period = clock.StepsPerPeriod(rs.encoders.rate_hz);
   const std::int64_t imu_period = clock.StepsPerPeriod(rs.imu.rate_hz);
   const std::int64_t drive_period = clock.StepsPerPeriod(scenario.drive.rate_hz);
+  const std::int64_t camera_period = clock.StepsPerPeriod(rs.stereo.rate_hz);
   const auto end_step =
       static_cast<std::int64_t>(std::llround(scenario.duration_s / clock.step_s()));
   const double dt = clock.step_s();
@@ -120,6 +134,27 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers
       metrics.Add(s, g.height_m);
       if (observers.on_sample) observers.on_sample(s);
     }
+    if (renderer && clock.Fires(camera_period)) {
+      const auto render_start = std::chrono::steady_clock::now();
+      StereoFrame frame;
+      frame.index = stereo_index++;
+      frame.t_s = clock.now_s();
+      frame.T_world_left = truth.T_world_body * rig->T_body_left();
+      frame.T_world_right = truth.T_world_body * rig->T_body_right();
+      renderer->Render(rig->intrinsics(), frame.T_world_left, frame.t_s, &left_image, nullptr);
+      renderer->Render(rig->intrinsics(), frame.T_world_right, frame.t_s, &right_image, nullptr);
+      robot::ApplySensorModel(rs.stereo.exposure, rs.stereo.noise_std, noise_seed,
+                              static_cast<std::uint64_t>(frame.index), 0, &left_image);
+      robot::ApplySensorModel(rs.stereo.exposure, rs.stereo.noise_std, noise_seed,
+                              static_cast<std::uint64_t>(frame.index), 1, &right_image);
+      render_wall_s += std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                                     render_start)
+                           .count();
+      frame.left = &left_image;
+      frame.right = &right_image;
+      frame.rig = &*rig;
+      if (observers.on_stereo) observers.on_stereo(frame);
+    }
     if (clock.steps() > 0 && clock.Fires(imu_period)) {
       const Eigen::Vector3d accel = (truth.v_world - v_at_last_imu) / (imu_period * dt);
       v_at_last_imu = truth.v_world;
@@ -144,6 +179,8 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers
 
   RunMetrics m = metrics.Metrics();
   m.completed = !failed;
+  m.stereo_frames = stereo_index;
+  m.render_wall_s = render_wall_s;
   m.stop_reason = stop_reason;
   m.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

@@ -8,6 +8,9 @@
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+
+#include "trackbed/perception/kitti_sequence.h"
 
 #include "trackbed/estimation/trajectory.h"
 #include "trackbed/scenes/closed_loop_runner.h"
@@ -65,6 +68,32 @@ nlohmann::ordered_json SlipJson(const SlipStats& s) {
   return j;
 }
 
+// Intrinsics and extrinsics of the stereo rig, as used for rendering.
+std::string StereoCalibrationJson(const robot::StereoRig& rig) {
+  const sim::PinholeIntrinsics& K = rig.intrinsics();
+  auto pose = [](const Eigen::Isometry3d& T) {
+    nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+    for (int r = 0; r < 4; ++r) {
+      rows.push_back({T.matrix()(r, 0), T.matrix()(r, 1), T.matrix()(r, 2), T.matrix()(r, 3)});
+    }
+    return rows;
+  };
+  nlohmann::ordered_json j;
+  j["width_px"] = K.width_px;
+  j["height_px"] = K.height_px;
+  j["fx"] = K.fx;
+  j["fy"] = K.fy;
+  j["cx"] = K.cx;
+  j["cy"] = K.cy;
+  j["baseline_m"] = rig.options().baseline_m;
+  j["T_body_left"] = pose(rig.T_body_left());
+  j["T_body_right"] = pose(rig.T_body_right());
+  j["convention"] =
+      "OpenCV camera axes (x right, y down, z forward); pixel (0,0) is the centre of the top-left "
+      "pixel; T_body_cam maps camera coordinates to body coordinates";
+  return j.dump(2) + "\n";
+}
+
 }  // namespace
 
 std::string MetricsJson(const RunMetrics& m) {
@@ -89,7 +118,9 @@ std::string MetricsJson(const RunMetrics& m) {
   j["icr_expansion"] = {{"chi", m.icr.chi},
                         {"samples", m.icr.samples_used},
                         {"rms_residual_radps", m.icr.rms_residual_radps}};
+  j["stereo_frames"] = m.stereo_frames;
   j["estimators"] = nlohmann::ordered_json::object();
+  j["timing"] = {{"render_s", m.render_wall_s}};
   return j.dump(2) + "\n";
 }
 
@@ -116,6 +147,26 @@ RunMetrics RunToFolder(const Scenario& scenario, const fs::path& dir) {
                   "t,v_x_mps,v_y_mps,v_z_mps,omega_x_radps,omega_y_radps,omega_z_radps");
     char line[512];
     RunObservers observers;
+    std::unique_ptr<perception::KittiWriter> kitti;
+    Eigen::Isometry3d T_world_cam0 = Eigen::Isometry3d::Identity();
+    if (scenario.robot.stereo.enabled) {
+      const robot::StereoRig rig(scenario.robot.stereo);
+      WriteAtomically(dir / "stereo_calibration.json", StereoCalibrationJson(rig));
+      if (scenario.outputs.save_images == "kitti") {
+        const sim::PinholeIntrinsics& K = rig.intrinsics();
+        kitti = std::make_unique<perception::KittiWriter>(
+            dir / "images", perception::StereoCalibration::FromIntrinsics(
+                                K.fx, K.fy, K.cx, K.cy, scenario.robot.stereo.baseline_m));
+      }
+    }
+    observers.on_stereo = [&](const StereoFrame& f) {
+      if (!kitti) return;
+      if (f.index == 0) T_world_cam0 = f.T_world_left;
+      auto as_mat = [](const sim::GrayImage& g) {
+        return cv::Mat(g.height, g.width, CV_8UC1, const_cast<std::uint8_t*>(g.pixels.data()));
+      };
+      kitti->Add(f.t_s, as_mat(*f.left), as_mat(*f.right), T_world_cam0.inverse() * f.T_world_left);
+    };
     observers.on_sample = [&](const RunSample& s) {
       truth.Line(estimation::FormatTumLine({s.t_s, s.chassis.T_world_body}).c_str());
       std::snprintf(line, sizeof(line), "%.6f,%lld,%lld", s.t_s, s.ticks[0], s.ticks[1]);
@@ -146,6 +197,7 @@ RunMetrics RunToFolder(const Scenario& scenario, const fs::path& dir) {
     };
     metrics = RunClosedLoop(scenario, observers);
     for (LogFile* f : {&truth, &twist, &encoders, &slip, &tracks, &imu}) f->Close();
+    if (kitti) kitti->Close();
   } catch (const std::exception& e) {
     metrics.completed = false;
     metrics.stop_reason = std::string("failed: ") + e.what();

@@ -45,6 +45,10 @@ void SceneSpec::Validate() const {
   for (std::size_t k = 0; k < objects.size(); ++k) {
     option_check::Nested(Indexed("objects", k), objects[k]);
   }
+  option_check::Nested("appearance", appearance);
+  for (std::size_t k = 0; k < occluders.size(); ++k) {
+    option_check::Nested(Indexed("occluders", k), occluders[k]);
+  }
 }
 
 void RobotSpec::Validate() const {
@@ -54,6 +58,7 @@ void RobotSpec::Validate() const {
   option_check::Nested("vehicle", vehicle);
   option_check::Nested("encoders", encoders);
   option_check::Nested("imu", imu);
+  option_check::Nested("stereo", stereo);
 }
 
 void DriveSpec::Validate() const {
@@ -107,6 +112,9 @@ void Scenario::Validate() const {
   option_check::Nested("robot", robot);
   option_check::Nested("drive", drive);
   option_check::Nested("outputs", outputs);
+  if (outputs.save_images == "kitti" && !robot.stereo.enabled) {
+    throw OptionError("outputs.save_images", "kitti needs robot.stereo.enabled: true");
+  }
 }
 
 }  // namespace trackbed::scenes

@@ -238,11 +238,36 @@ void Visit(V& v, sim::TerrainOptions& o) {
 }
 
 template <class V>
+void Visit(V& v, sim::SceneAppearance& o) {
+  v("sun_azimuth_deg", o.sun_azimuth_deg);
+  v("sun_elevation_deg", o.sun_elevation_deg);
+  v("ambient", o.ambient);
+  v("diffuse", o.diffuse);
+  v("sky_gray", o.sky_gray);
+  v("ceiling_height_m", o.ceiling_height_m);
+  v("tree_crowns", o.tree_crowns);
+  v("texture_size_px", o.texture_size_px);
+}
+
+template <class V>
+void Visit(V& v, sim::OccluderSpec& o) {
+  v("waypoints", o.waypoints);
+  v("speed_mps", o.speed_mps);
+  v("start_s", o.start_s);
+  v("back_and_forth", o.back_and_forth);
+  v("height_m", o.height_m);
+  v("radius_m", o.radius_m);
+  v("appearance", o.appearance);
+}
+
+template <class V>
 void Visit(V& v, SceneSpec& o) {
   v("name", o.name);
   v("world", o.world);
   v("terrain", o.terrain);
   v("objects", o.objects);  // StaticObject: its own Read and Render (see below)
+  v("appearance", o.appearance);
+  v("occluders", o.occluders);
 }
 
 template <class V>
@@ -301,11 +326,28 @@ void Visit(V& v, robot::ImuOptions& o) {
 }
 
 template <class V>
+void Visit(V& v, robot::StereoRigOptions& o) {
+  v("enabled", o.enabled);
+  v("width_px", o.width_px);
+  v("height_px", o.height_px);
+  v("hfov_deg", o.hfov_deg);
+  v("baseline_m", o.baseline_m);
+  v("mount_m", o.mount_m);
+  v("pitch_down_deg", o.pitch_down_deg);
+  v("rate_hz", o.rate_hz);
+  v("near_m", o.near_m);
+  v("far_m", o.far_m);
+  v("exposure", o.exposure);
+  v("noise_std", o.noise_std);
+}
+
+template <class V>
 void Visit(V& v, RobotSpec& o) {
   v("start", o.start);
   v("vehicle", o.vehicle);
   v("encoders", o.encoders);
   v("imu", o.imu);
+  v("stereo", o.stereo);
 }
 
 template <class V>
@@ -362,7 +404,13 @@ constexpr ObjectType kObjectTypes[] = {
     {"cylinder", StaticObject::Shape::kCylinder, "plain_paint"},
     {"tree", StaticObject::Shape::kCylinder, "bark"},
     {"post", StaticObject::Shape::kCylinder, "metal"},
+    {"door", StaticObject::Shape::kBox, "door"},
+    {"poster", StaticObject::Shape::kBox, "poster"},
 };
+// Doors and posters are dressing flat on a wall: drawn, not simulated, unless
+// the file says `collides: true`.
+bool DefaultCollides(const std::string& kind) { return kind != "door" && kind != "poster"; }
+
 // A wall given by `from`/`to` without these keys.
 constexpr double kWallThicknessM = 0.1;
 constexpr double kWallHeightM = 2.5;
@@ -544,7 +592,8 @@ class Reader {
       return;
     }
     if (!n.IsSequence()) Fail(path, "expected a list, got " + Describe(n));
-    out.assign(n.size(), T());
+    out.clear();
+    out.resize(n.size());
     for (std::size_t i = 0; i < n.size(); ++i) Read(n[i], Indexed(path, i), out[i]);
   }
 
@@ -611,6 +660,8 @@ void Reader::Read(const YAML::Node& n, const std::string& path, StaticObject& ou
   }
   map("appearance", out.appearance);
   map("base_z_m", out.base_z_m);
+  out.collides = DefaultCollides(out.kind);
+  map("collides", out.collides);
   map.Finish();
 }
 
@@ -730,6 +781,7 @@ class Writer {
     }
     map("appearance", o.appearance);
     if (std::isfinite(o.base_z_m)) map("base_z_m", o.base_z_m);
+    if (o.collides != DefaultCollides(o.kind)) map("collides", o.collides);
     return map.Map();
   }
 

@@ -96,6 +96,7 @@ World::World(const WorldOptions& options, Terrain terrain, std::vector<StaticObj
   b.bodies.push_back(std::move(ground));
 
   for (const StaticObject& o : objects_) {
+    if (!o.collides) continue;
     std::unique_ptr<btCollisionShape> shape;
     double half_height;
     if (o.shape == StaticObject::Shape::kBox) {

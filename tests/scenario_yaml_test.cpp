@@ -116,6 +116,7 @@ scene:
 robot:
   start: {x_m: 0.5, y_m: 0.1, yaw_deg: 90}
   vehicle: {mass_kg: 42.5, motor: {max_torque_nm: 25}}
+  stereo: {enabled: true, baseline_m: 0.15}
 drive:
   mode: script
   script:
@@ -193,7 +194,7 @@ TEST(ScenarioYamlTest, UnknownKeyNamesFileAndDottedKey) {
   EXPECT_NE(nested.find("motor)"), std::string::npos) << nested;
   EXPECT_EQ(ErrorOf(std::string(kMinimal) + "scene: {objects: [{type: post, size_m: [1, 1, 1]}]}"),
             "test.yaml: scene.objects[0].size_m: unknown key (allowed: type, center, radius_m, "
-            "height_m, appearance, base_z_m)");
+            "height_m, appearance, base_z_m, collides)");
 }
 
 TEST(ScenarioYamlTest, RegionRejectsKeysOfTheOtherShape) {
@@ -369,7 +370,7 @@ TEST(ScenarioYamlTest, BadOverrideIsAttributedToSet) {
   const std::string typo = ErrorOf(m, {ParseOverride("robot.vehicel.mass_kg=50")});
   EXPECT_EQ(typo,
             "--set robot.vehicel.mass_kg=50: robot.vehicel: unknown key (allowed: start, vehicle, "
-            "encoders, imu)");
+            "encoders, imu, stereo)");
   EXPECT_EQ(ErrorOf(m, {ParseOverride("duration_s=soon")}),
             "--set duration_s=soon: duration_s: expected a number, got 'soon'");
   EXPECT_EQ(
@@ -420,7 +421,7 @@ TEST(ScenarioYamlTest, ObjectTypesPickShapeAndAppearance) {
   EXPECT_EQ(s.scene.objects[2].appearance, "rust");
   EXPECT_EQ(ErrorOf(std::string(kMinimal) + "scene: {objects: [{type: rock}]}"),
             "test.yaml: scene.objects[0].type: must be one of wall, box, bench, cylinder, tree, "
-            "post (got 'rock')");
+            "post, door, poster (got 'rock')");
 }
 
 }  // namespace

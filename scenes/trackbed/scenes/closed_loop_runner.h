@@ -7,13 +7,27 @@
 #include <memory>
 
 #include "trackbed/robot/imu.h"
+#include "trackbed/robot/stereo_rig.h"
 #include "trackbed/scenes/run_metrics.h"
 #include "trackbed/scenes/scenario.h"
 
 namespace trackbed::scenes {
 
+/// One stereo pair as the robot's cameras saw it.
+struct StereoFrame {
+  std::int64_t index = 0;  ///< 0, 1, 2, … at the camera rate.
+  double t_s = 0.0;
+  const sim::GrayImage* left = nullptr;
+  const sim::GrayImage* right = nullptr;
+  Eigen::Isometry3d T_world_left;   ///< Ground truth of the left camera (OpenCV axes).
+  Eigen::Isometry3d T_world_right;
+  const robot::StereoRig* rig = nullptr;
+};
+
 /// Observers of a run; any may be empty.
 struct RunObservers {
+  /// Every stereo pair (when robot.stereo.enabled).
+  std::function<void(const StereoFrame&)> on_stereo;
   /// Every encoder sample (ground truth alongside).
   std::function<void(const RunSample&)> on_sample;
   /// Every IMU sample.

@@ -49,6 +49,9 @@ struct RunMetrics {
   estimation::IcrFit icr;
   /// Lowest clearance of the centre of mass above the terrain [m].
   double min_com_height_m = 0.0;
+  /// Stereo pairs rendered, and the wall-clock time spent rendering them [s].
+  long long stereo_frames = 0;
+  double render_wall_s = 0.0;
 
   double real_time_factor() const { return wall_time_s > 0 ? sim_time_s / wall_time_s : 0.0; }
 };

@@ -12,7 +12,10 @@
 
 #include "trackbed/robot/encoder.h"
 #include "trackbed/robot/imu.h"
+#include "trackbed/robot/stereo_rig.h"
 #include "trackbed/robot/tracked_vehicle.h"
+#include "trackbed/sim/occluder.h"
+#include "trackbed/sim/renderer.h"
 #include "trackbed/sim/static_object.h"
 #include "trackbed/sim/terrain.h"
 #include "trackbed/sim/world.h"
@@ -26,6 +29,10 @@ struct SceneSpec {
   sim::WorldOptions world;
   sim::TerrainOptions terrain;
   std::vector<sim::StaticObject> objects;
+  /// Light and visual dressing for the cameras.
+  sim::SceneAppearance appearance;
+  /// People walking scripted paths (seen by the cameras).
+  std::vector<sim::OccluderSpec> occluders;
 
   void Validate() const;
 };
@@ -42,6 +49,7 @@ struct RobotSpec {
   robot::TrackedVehicleOptions vehicle;
   robot::EncoderOptions encoders;
   robot::ImuOptions imu;
+  robot::StereoRigOptions stereo;
 
   void Validate() const;
 };
@@ -82,7 +90,8 @@ struct DriveSpec {
 };
 
 struct OutputsSpec {
-  /// Camera images to save: none, or kitti (KITTI odometry layout).
+  /// Camera images to save: none, or kitti (KITTI odometry layout in images/;
+  /// needs robot.stereo.enabled).
   std::string save_images = "none";
 
   void Validate() const;

@@ -30,6 +30,9 @@ struct StaticObject {
   /// Cylinder radius [m] and height [m].
   double radius_m = 0.1;
   double height_m = 1.0;
+  /// Whether it is a physical obstacle; visual-only dressing (doors and posters
+  /// flat on a wall) is drawn but not simulated.
+  bool collides = true;
 
   void Validate() const;
 };

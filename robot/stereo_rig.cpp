@@ -1,0 +1,95 @@
+// Stereo rig geometry and sensor model (see stereo_rig.h).
+#include "trackbed/robot/stereo_rig.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "trackbed/common/option_error.h"
+
+namespace trackbed::robot {
+
+void StereoRigOptions::Validate() const {
+  if (width_px < 16 || width_px > 8192) throw OptionError("width_px", "must be in [16, 8192]");
+  if (height_px < 16 || height_px > 8192) throw OptionError("height_px", "must be in [16, 8192]");
+  option_check::InRange("hfov_deg", hfov_deg, 10.0, 170.0);
+  option_check::Positive("baseline_m", baseline_m);
+  option_check::Finite("mount_m[0]", mount_m.x());
+  option_check::Finite("mount_m[1]", mount_m.y());
+  option_check::Finite("mount_m[2]", mount_m.z());
+  option_check::InRange("pitch_down_deg", pitch_down_deg, -45.0, 60.0);
+  option_check::InRange("rate_hz", rate_hz, 0.1, 1000.0);
+  option_check::Positive("near_m", near_m);
+  if (!(far_m > near_m)) throw OptionError("far_m", "must exceed near_m");
+  option_check::Positive("exposure", exposure);
+  option_check::NonNegative("noise_std", noise_std);
+}
+
+StereoRig::StereoRig(const StereoRigOptions& options) : options_(options) {
+  options_.Validate();
+  intrinsics_ = sim::PinholeIntrinsics::FromFieldOfView(options_.width_px, options_.height_px,
+                                                        options_.hfov_deg * M_PI / 180.0);
+  // Camera axes in body axes for a level camera: z_cam = x_body, x_cam = −y_body,
+  // y_cam = −z_body; then tilt down about the camera's x axis.
+  Eigen::Matrix3d R_body_cam;
+  R_body_cam.col(0) = -Eigen::Vector3d::UnitY();
+  R_body_cam.col(1) = -Eigen::Vector3d::UnitZ();
+  R_body_cam.col(2) = Eigen::Vector3d::UnitX();
+  const double pitch = options_.pitch_down_deg * M_PI / 180.0;
+  R_body_cam = R_body_cam * Eigen::AngleAxisd(-pitch, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  const Eigen::Vector3d half_baseline = 0.5 * options_.baseline_m * R_body_cam.col(0);
+  T_body_left_.setIdentity();
+  T_body_left_.linear() = R_body_cam;
+  T_body_left_.translation() = options_.mount_m - half_baseline;
+  T_body_right_ = T_body_left_;
+  T_body_right_.translation() = options_.mount_m + half_baseline;
+}
+
+namespace {
+
+// SplitMix64 finaliser: a counter-based generator, one 64-bit value per index.
+std::uint64_t Mix(std::uint64_t z) {
+  z += 0x9e3779b97f4a7c15ULL;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+}  // namespace
+
+void ApplySensorModel(double exposure, double noise_std, std::uint64_t seed, std::uint64_t frame,
+                      int camera, sim::GrayImage* image) {
+  if (exposure == 1.0 && noise_std == 0.0) return;
+  // Noise values come from a table of 65536 samples of the Irwin–Hall sum of
+  // four uniforms (zero mean, unit variance: close to Gaussian), indexed by a
+  // xorshift64* stream keyed by (seed, frame, camera): 16 bits per pixel.
+  // Cheap enough for 640 × 480 at hundreds of frames per second.
+  constexpr int kTable = 1 << 16;
+  std::vector<float> table(kTable);
+  std::uint64_t state = Mix(seed ^ 0x5eed5eedULL);
+  const double norm = 1.0 / (65536.0 * std::sqrt(4.0 / 12.0));
+  for (float& t : table) {
+    state = Mix(state);
+    const double sum = static_cast<double>((state & 0xffff) + ((state >> 16) & 0xffff) +
+                                           ((state >> 32) & 0xffff) + (state >> 48));
+    t = static_cast<float>(noise_std * (sum - 2.0 * 65535.0) * norm);
+  }
+  std::uint64_t x = Mix(seed ^ Mix(frame * 2 + static_cast<std::uint64_t>(camera))) | 1;
+  std::uint64_t bits = 0;
+  const float gain = static_cast<float>(exposure);
+  std::vector<std::uint8_t>& px = image->pixels;
+  for (std::size_t i = 0; i < px.size(); ++i) {
+    if ((i & 3) == 0) {  // xorshift64*: four 16-bit indices per draw
+      x ^= x >> 12;
+      x ^= x << 25;
+      x ^= x >> 27;
+      bits = x * 0x2545f4914f6cdd1dULL;
+    }
+    const float noise = noise_std > 0.0 ? table[bits & 0xffff] : 0.0f;
+    bits >>= 16;
+    const float value = gain * px[i] + noise + 0.5f;
+    px[i] = static_cast<std::uint8_t>(value <= 0.0f ? 0.0f : (value >= 255.0f ? 255.0f : value));
+  }
+}
+
+}  // namespace trackbed::robot

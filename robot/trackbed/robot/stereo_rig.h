@@ -1,0 +1,68 @@
+// The stereo camera rig on the chassis: two identical pinhole cameras, the
+// right one displaced by the baseline along the left camera's x axis
+// (rectified pair), plus the camera's sensor model (exposure, noise).
+#pragma once
+
+#include <cstdint>
+
+#include <Eigen/Geometry>
+
+#include "trackbed/sim/image.h"
+#include "trackbed/sim/pinhole.h"
+
+namespace trackbed::robot {
+
+struct StereoRigOptions {
+  /// Whether the robot carries (and the run renders) the stereo camera.
+  bool enabled = false;
+  /// Image size [px].
+  int width_px = 640;
+  int height_px = 480;
+  /// Horizontal field of view [deg], in (10, 170).
+  double hfov_deg = 80.0;
+  /// Distance between the two optical centres [m], > 0.
+  double baseline_m = 0.12;
+  /// Midpoint between the optical centres in the body frame [m] (x forward, y
+  /// left, z up from the centre of mass, which is 0.20 m above flat ground: the
+  /// default puts the cameras 0.50 m above the ground).
+  Eigen::Vector3d mount_m{0.25, 0.0, 0.30};
+  /// Downward tilt of the optical axes [deg], in [-45, 60].
+  double pitch_down_deg = 5.0;
+  /// Frame rate [Hz], > 0.
+  double rate_hz = 10.0;
+  /// Rendering clip distances [m], 0 < near < far.
+  double near_m = 0.05;
+  double far_m = 120.0;
+  /// Exposure gain applied to the rendered radiance [-], > 0.
+  double exposure = 1.0;
+  /// Standard deviation of the sensor's additive noise [grey levels], >= 0.
+  double noise_std = 1.0;
+
+  void Validate() const;
+};
+
+/// Geometry of the rig; immutable.
+class StereoRig {
+ public:
+  explicit StereoRig(const StereoRigOptions& options);
+
+  const StereoRigOptions& options() const { return options_; }
+  /// Intrinsics of both cameras (rectified, identical).
+  const sim::PinholeIntrinsics& intrinsics() const { return intrinsics_; }
+  /// Left / right camera (OpenCV axes: x right, y down, z forward) in the body frame.
+  const Eigen::Isometry3d& T_body_left() const { return T_body_left_; }
+  const Eigen::Isometry3d& T_body_right() const { return T_body_right_; }
+
+ private:
+  StereoRigOptions options_;
+  sim::PinholeIntrinsics intrinsics_;
+  Eigen::Isometry3d T_body_left_, T_body_right_;
+};
+
+/// The camera's sensor: grey = clamp(round(exposure · radiance + noise)), noise
+/// near-Gaussian with `noise_std` grey levels, drawn from a generator keyed by
+/// (seed, frame, camera) so every image is reproducible on its own.
+void ApplySensorModel(double exposure, double noise_std, std::uint64_t seed, std::uint64_t frame,
+                      int camera, sim::GrayImage* image);
+
+}  // namespace trackbed::robot

@@ -1,0 +1,511 @@
+// OSMesa renderer (see renderer.h).
+//
+// Fixed-function OpenGL in the compatibility profile: display lists compiled
+// once (terrain in chunks per material, one per object), textures uploaded
+// once with a mip chain built here (box filter) so that the bytes do not depend
+// on the driver's mipmap generation. Each frame: cull chunks against the
+// view frustum, draw, glFinish, read the colour buffer back flipped to
+// top-down rows.
+#include "trackbed/sim/renderer.h"
+
+#include <GL/osmesa.h>
+#include <GL/gl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+#include "trackbed/common/option_error.h"
+#include "trackbed/sim/procedural_texture.h"
+
+namespace trackbed::sim {
+
+void SceneAppearance::Validate() const {
+  option_check::InRange("sun_elevation_deg", sun_elevation_deg, 1.0, 90.0);
+  option_check::Finite("sun_azimuth_deg", sun_azimuth_deg);
+  option_check::InRange("ambient", ambient, 0.0, 1.0);
+  option_check::InRange("diffuse", diffuse, 0.0, 1.0);
+  option_check::InRange("sky_gray", sky_gray, 0.0, 1.0);
+  option_check::NonNegative("ceiling_height_m", ceiling_height_m);
+  if (texture_size_px < 16 || texture_size_px > 2048 ||
+      (texture_size_px & (texture_size_px - 1)) != 0) {
+    throw OptionError("texture_size_px", "must be a power of two in [16, 2048] (got " +
+                                             std::to_string(texture_size_px) + ")");
+  }
+}
+
+namespace {
+
+constexpr int kChunkCells = 16;
+
+// FNV-1a: a stable hash of an appearance name, to derive its texture's seed.
+std::uint64_t HashName(const std::string& s) {
+  std::uint64_t h = 1469598103934665603ULL;
+  for (unsigned char c : s) h = (h ^ c) * 1099511628211ULL;
+  return h;
+}
+
+struct Drawable {
+  GLuint list = 0;
+  Eigen::AlignedBox3d box;  // world-frame bounds, for culling
+};
+
+// A texture as uploaded: GL name and world size of one repeat.
+struct GlTexture {
+  GLuint name = 0;
+  double meters_per_repeat = 1.0;
+};
+
+}  // namespace
+
+struct Renderer::Gl {
+  OSMesaContext context = nullptr;
+  int width = 0, height = 0;
+  double near_m = 0.05, far_m = 100.0;
+  SceneAppearance appearance;
+  std::uint64_t seed = 0;
+  const Terrain* terrain = nullptr;
+  std::vector<std::uint8_t> color;  // RGBA, bottom row first
+  std::vector<float> depth;
+  std::map<std::string, GlTexture> textures;
+  std::vector<Drawable> drawables;
+  std::vector<OccluderSpec> occluders;
+  std::vector<GLuint> occluder_lists;
+  std::vector<std::pair<double, GLuint>> draw_order;  // per frame, kept to avoid reallocation
+
+  ~Gl() {
+    if (context) OSMesaDestroyContext(context);
+  }
+
+  void MakeCurrent() {
+    if (!OSMesaMakeCurrent(context, color.data(), GL_UNSIGNED_BYTE, width, height)) {
+      throw std::runtime_error("Renderer: OSMesaMakeCurrent failed");
+    }
+  }
+
+  const GlTexture& Texture(const std::string& name, double fallback_albedo = 0.5) {
+    auto it = textures.find(name);
+    if (it != textures.end()) return it->second;
+    const std::uint64_t s = seed ^ HashName(name);
+    sim::Texture t = HasTexture(name) ? MakeTexture(name, s, appearance.texture_size_px)
+                                      : MakePlainTexture(fallback_albedo, s, 64);
+    GlTexture g;
+    g.meters_per_repeat = t.meters_per_repeat;
+    glGenTextures(1, &g.name);
+    glBindTexture(GL_TEXTURE_2D, g.name);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
+    // Mip chain by 2 x 2 box filtering, down to 1 x 1.
+    std::vector<std::uint8_t> level = t.texels;
+    int size = t.size_px;
+    for (int lod = 0;; ++lod) {
+      glTexImage2D(GL_TEXTURE_2D, lod, GL_LUMINANCE8, size, size, 0, GL_LUMINANCE,
+                   GL_UNSIGNED_BYTE, level.data());
+      if (size == 1) break;
+      const int half = size / 2;
+      std::vector<std::uint8_t> next(static_cast<std::size_t>(half) * half);
+      for (int y = 0; y < half; ++y) {
+        for (int x = 0; x < half; ++x) {
+          const auto at = [&](int xx, int yy) {
+            return static_cast<int>(level[static_cast<std::size_t>(yy) * size + xx]);
+          };
+          next[static_cast<std::size_t>(y) * half + x] = static_cast<std::uint8_t>(
+              (at(2 * x, 2 * y) + at(2 * x + 1, 2 * y) + at(2 * x, 2 * y + 1) +
+               at(2 * x + 1, 2 * y + 1) + 2) /
+              4);
+        }
+      }
+      level.swap(next);
+      size = half;
+    }
+    return textures.emplace(name, g).first->second;
+  }
+
+  void BuildTerrain() {
+    const Terrain& t = *terrain;
+    const int cols = t.cols(), rows = t.rows();
+    const double cell = t.cell_size_m();
+    const std::vector<double>& h = t.heights();
+    auto H = [&](int i, int j) {
+      i = std::clamp(i, 0, cols - 1);
+      j = std::clamp(j, 0, rows - 1);
+      return h[static_cast<std::size_t>(j) * cols + i];
+    };
+    // Smooth vertex normals from central differences.
+    auto vertex = [&](int i, int j, double m) {
+      const double nx = -(H(i + 1, j) - H(i - 1, j)) / (2 * cell);
+      const double ny = -(H(i, j + 1) - H(i, j - 1)) / (2 * cell);
+      const Eigen::Vector3d n = Eigen::Vector3d(nx, ny, 1.0).normalized();
+      const double x = t.x_min() + i * cell, y = t.y_min() + j * cell;
+      glNormal3d(n.x(), n.y(), n.z());
+      glTexCoord2d(x / m, y / m);
+      glVertex3d(x, y, H(i, j));
+    };
+    const std::vector<std::uint8_t>& cell_material = t.cell_materials();
+    for (int j0 = 0; j0 < rows - 1; j0 += kChunkCells) {
+      for (int i0 = 0; i0 < cols - 1; i0 += kChunkCells) {
+        const int i1 = std::min(i0 + kChunkCells, cols - 1), j1 = std::min(j0 + kChunkCells, rows - 1);
+        std::vector<bool> present(t.materials().size(), false);
+        double lo = 1e300, hi = -1e300;
+        for (int j = j0; j < j1; ++j) {
+          for (int i = i0; i < i1; ++i) {
+            present[cell_material[static_cast<std::size_t>(j) * (cols - 1) + i]] = true;
+          }
+        }
+        for (int j = j0; j <= j1; ++j) {
+          for (int i = i0; i <= i1; ++i) {
+            lo = std::min(lo, H(i, j));
+            hi = std::max(hi, H(i, j));
+          }
+        }
+        for (std::size_t m = 0; m < present.size(); ++m) {
+          if (!present[m]) continue;
+          const TerrainMaterial& material = t.materials()[m];
+          const GlTexture& tex = Texture(material.name, material.albedo);
+          Drawable d;
+          d.box = Eigen::AlignedBox3d(
+              Eigen::Vector3d(t.x_min() + i0 * cell, t.y_min() + j0 * cell, lo),
+              Eigen::Vector3d(t.x_min() + i1 * cell, t.y_min() + j1 * cell, hi));
+          d.list = glGenLists(1);
+          glNewList(d.list, GL_COMPILE);
+          glBindTexture(GL_TEXTURE_2D, tex.name);
+          glBegin(GL_TRIANGLES);
+          for (int j = j0; j < j1; ++j) {
+            for (int i = i0; i < i1; ++i) {
+              if (cell_material[static_cast<std::size_t>(j) * (cols - 1) + i] != m) continue;
+              // The diagonal (i, j)–(i+1, j+1), as Terrain and Bullet split the cell.
+              const double r = tex.meters_per_repeat;
+              vertex(i, j, r);
+              vertex(i + 1, j, r);
+              vertex(i + 1, j + 1, r);
+              vertex(i, j, r);
+              vertex(i + 1, j + 1, r);
+              vertex(i, j + 1, r);
+            }
+          }
+          glEnd();
+          glEndList();
+          drawables.push_back(d);
+        }
+      }
+    }
+  }
+
+  // A box of extents (lx, ly, lz) centred at the origin of the current frame,
+  // texture coordinates in metres of each face.
+  static void DrawBox(const Eigen::Vector3d& size, double m) {
+    const double hx = size.x() / 2, hy = size.y() / 2, hz = size.z() / 2;
+    struct Face {
+      Eigen::Vector3d n, u, v;  // normal, in-plane axes (half extents)
+      double su, sv;            // full extents along u and v
+    };
+    const Face faces[] = {
+        {{1, 0, 0}, {0, hy, 0}, {0, 0, hz}, size.y(), size.z()},
+        {{-1, 0, 0}, {0, -hy, 0}, {0, 0, hz}, size.y(), size.z()},
+        {{0, 1, 0}, {-hx, 0, 0}, {0, 0, hz}, size.x(), size.z()},
+        {{0, -1, 0}, {hx, 0, 0}, {0, 0, hz}, size.x(), size.z()},
+        {{0, 0, 1}, {hx, 0, 0}, {0, hy, 0}, size.x(), size.y()},
+        {{0, 0, -1}, {hx, 0, 0}, {0, -hy, 0}, size.x(), size.y()},
+    };
+    glBegin(GL_QUADS);
+    for (const Face& f : faces) {
+      const Eigen::Vector3d c(f.n.x() * hx, f.n.y() * hy, f.n.z() * hz);
+      glNormal3d(f.n.x(), f.n.y(), f.n.z());
+      const double cu[4] = {0, 1, 1, 0}, cv[4] = {0, 0, 1, 1};
+      for (int k = 0; k < 4; ++k) {
+        const Eigen::Vector3d p = c + (2 * cu[k] - 1) * f.u + (2 * cv[k] - 1) * f.v;
+        glTexCoord2d(cu[k] * f.su / m, cv[k] * f.sv / m);
+        glVertex3d(p.x(), p.y(), p.z());
+      }
+    }
+    glEnd();
+  }
+
+  // An upright cylinder from z = 0 to `height`, with a top cap.
+  static void DrawCylinder(double radius, double height, double m, int slices = 24) {
+    glBegin(GL_QUAD_STRIP);
+    for (int k = 0; k <= slices; ++k) {
+      const double a = 2 * M_PI * k / slices;
+      const double c = std::cos(a), s = std::sin(a);
+      glNormal3d(c, s, 0);
+      glTexCoord2d(a * radius / m, 0);
+      glVertex3d(radius * c, radius * s, 0);
+      glTexCoord2d(a * radius / m, height / m);
+      glVertex3d(radius * c, radius * s, height);
+    }
+    glEnd();
+    glBegin(GL_TRIANGLE_FAN);
+    glNormal3d(0, 0, 1);
+    glTexCoord2d(0, 0);
+    glVertex3d(0, 0, height);
+    for (int k = 0; k <= slices; ++k) {
+      const double a = 2 * M_PI * k / slices;
+      glTexCoord2d(radius * std::cos(a) / m, radius * std::sin(a) / m);
+      glVertex3d(radius * std::cos(a), radius * std::sin(a), height);
+    }
+    glEnd();
+  }
+
+  // A sphere of `radius` centred at the origin.
+  static void DrawSphere(double radius, double m, int slices = 16, int stacks = 10) {
+    for (int i = 0; i < stacks; ++i) {
+      const double a0 = M_PI * (-0.5 + static_cast<double>(i) / stacks);
+      const double a1 = M_PI * (-0.5 + static_cast<double>(i + 1) / stacks);
+      glBegin(GL_QUAD_STRIP);
+      for (int k = 0; k <= slices; ++k) {
+        const double b = 2 * M_PI * k / slices;
+        for (double a : {a1, a0}) {
+          const Eigen::Vector3d n(std::cos(a) * std::cos(b), std::cos(a) * std::sin(b), std::sin(a));
+          glNormal3d(n.x(), n.y(), n.z());
+          glTexCoord2d(b * radius / m, a * radius / m);
+          glVertex3d(radius * n.x(), radius * n.y(), radius * n.z());
+        }
+      }
+      glEnd();
+    }
+  }
+
+  void BuildObjects(const World& world) {
+    for (const StaticObject& o : world.objects()) {
+      const GlTexture& tex = Texture(o.appearance);
+      Drawable d;
+      d.list = glGenLists(1);
+      glNewList(d.list, GL_COMPILE);
+      glBindTexture(GL_TEXTURE_2D, tex.name);
+      glPushMatrix();
+      glTranslated(o.center_m.x(), o.center_m.y(), o.base_z_m);
+      if (o.shape == StaticObject::Shape::kBox) {
+        glRotated(o.yaw_rad * 180.0 / M_PI, 0, 0, 1);
+        glTranslated(0, 0, o.size_m.z() / 2);
+        DrawBox(o.size_m, tex.meters_per_repeat);
+        const double r = 0.5 * o.size_m.head<2>().norm();
+        d.box = Eigen::AlignedBox3d(
+            Eigen::Vector3d(o.center_m.x() - r, o.center_m.y() - r, o.base_z_m),
+            Eigen::Vector3d(o.center_m.x() + r, o.center_m.y() + r, o.base_z_m + o.size_m.z()));
+      } else {
+        DrawCylinder(o.radius_m, o.height_m, tex.meters_per_repeat);
+        double top = o.height_m, reach = o.radius_m;
+        if (o.kind == "tree" && appearance.tree_crowns) {
+          // Visual-only foliage: a crown a third of the trunk's height across.
+          const double crown = std::max(0.6, o.height_m / 3.0);
+          const GlTexture& leaves = Texture("leaves");
+          glBindTexture(GL_TEXTURE_2D, leaves.name);
+          glTranslated(0, 0, o.height_m);
+          DrawSphere(crown, leaves.meters_per_repeat);
+          top += crown;
+          reach = std::max(reach, crown);
+        }
+        d.box = Eigen::AlignedBox3d(
+            Eigen::Vector3d(o.center_m.x() - reach, o.center_m.y() - reach, o.base_z_m),
+            Eigen::Vector3d(o.center_m.x() + reach, o.center_m.y() + reach, o.base_z_m + top));
+      }
+      glPopMatrix();
+      glEndList();
+      drawables.push_back(d);
+    }
+    if (appearance.ceiling_height_m > 0.0) {
+      const Terrain& t = *terrain;
+      const GlTexture& tex = Texture("ceiling");
+      const double z = appearance.ceiling_height_m, m = tex.meters_per_repeat;
+      Drawable d;
+      d.box = Eigen::AlignedBox3d(Eigen::Vector3d(t.x_min(), t.y_min(), z),
+                                  Eigen::Vector3d(t.x_max(), t.y_max(), z));
+      d.list = glGenLists(1);
+      glNewList(d.list, GL_COMPILE);
+      glBindTexture(GL_TEXTURE_2D, tex.name);
+      glBegin(GL_QUADS);
+      glNormal3d(0, 0, -1);
+      for (const auto& [x, y] : {std::pair{t.x_min(), t.y_min()}, std::pair{t.x_max(), t.y_min()},
+                                 std::pair{t.x_max(), t.y_max()}, std::pair{t.x_min(), t.y_max()}}) {
+        glTexCoord2d(x / m, y / m);
+        glVertex3d(x, y, z);
+      }
+      glEnd();
+      glEndList();
+      drawables.push_back(d);
+    }
+    for (const OccluderSpec& o : occluders) {
+      // A person: body cylinder to shoulder height, a head above it.
+      const GlTexture& tex = Texture(o.appearance);
+      const GLuint list = glGenLists(1);
+      glNewList(list, GL_COMPILE);
+      glBindTexture(GL_TEXTURE_2D, tex.name);
+      const double head = std::min(0.12, 0.07 * o.height_m);
+      DrawCylinder(o.radius_m, o.height_m - 2 * head, tex.meters_per_repeat);
+      glTranslated(0, 0, o.height_m - head);
+      DrawSphere(head, tex.meters_per_repeat);
+      glEndList();
+      occluder_lists.push_back(list);
+    }
+  }
+};
+
+Renderer::Renderer(const World& world, const SceneAppearance& appearance,
+                   std::vector<OccluderSpec> occluders, std::uint64_t seed, int width_px,
+                   int height_px, double near_m, double far_m)
+    : gl_(std::make_unique<Gl>()) {
+  appearance.Validate();
+  for (std::size_t k = 0; k < occluders.size(); ++k) {
+    option_check::Nested("occluders[" + std::to_string(k) + "]", occluders[k]);
+  }
+  if (width_px < 16 || height_px < 16 || width_px > 8192 || height_px > 8192) {
+    throw std::invalid_argument("Renderer: image size must be in [16, 8192] pixels");
+  }
+  if (!(near_m > 0 && far_m > near_m)) {
+    throw std::invalid_argument("Renderer: need 0 < near_m < far_m");
+  }
+  Gl& g = *gl_;
+  g.width = width_px;
+  g.height = height_px;
+  g.near_m = near_m;
+  g.far_m = far_m;
+  g.appearance = appearance;
+  g.seed = seed;
+  g.terrain = &world.terrain();
+  g.occluders = std::move(occluders);
+  g.color.assign(static_cast<std::size_t>(width_px) * height_px * 4, 0);
+  g.depth.resize(static_cast<std::size_t>(width_px) * height_px);
+  g.context = OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr);
+  if (!g.context) throw std::runtime_error("Renderer: OSMesaCreateContextExt failed");
+  g.MakeCurrent();
+
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glEnable(GL_TEXTURE_2D);
+  glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE);
+  glShadeModel(GL_SMOOTH);
+  glEnable(GL_LIGHTING);
+  glEnable(GL_LIGHT0);
+  glLightModeli(GL_LIGHT_MODEL_TWO_SIDE, GL_TRUE);
+  const float ambient[] = {static_cast<float>(appearance.ambient),
+                           static_cast<float>(appearance.ambient),
+                           static_cast<float>(appearance.ambient), 1.0f};
+  const float diffuse[] = {static_cast<float>(appearance.diffuse),
+                           static_cast<float>(appearance.diffuse),
+                           static_cast<float>(appearance.diffuse), 1.0f};
+  const float black[] = {0, 0, 0, 1}, white[] = {1, 1, 1, 1};
+  glLightModelfv(GL_LIGHT_MODEL_AMBIENT, ambient);
+  glLightfv(GL_LIGHT0, GL_AMBIENT, black);
+  glLightfv(GL_LIGHT0, GL_DIFFUSE, diffuse);
+  glLightfv(GL_LIGHT0, GL_SPECULAR, black);
+  glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT_AND_DIFFUSE, white);
+  glMaterialfv(GL_FRONT_AND_BACK, GL_SPECULAR, black);
+  const float sky = static_cast<float>(appearance.sky_gray);
+  glClearColor(sky, sky, sky, 1.0f);
+
+  g.BuildTerrain();
+  g.BuildObjects(world);
+  if (glGetError() != GL_NO_ERROR) throw std::runtime_error("Renderer: OpenGL error while building");
+}
+
+Renderer::~Renderer() = default;
+
+std::string Renderer::gl_description() const {
+  gl_->MakeCurrent();
+  const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  const auto* version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
+  return std::string(renderer ? renderer : "?") + " / " + (version ? version : "?");
+}
+
+void Renderer::Render(const PinholeIntrinsics& K, const Eigen::Isometry3d& T_world_camera,
+                      double t_s, GrayImage* gray, DepthImage* depth) {
+  Gl& g = *gl_;
+  if (K.width_px != g.width || K.height_px != g.height) {
+    throw std::invalid_argument("Renderer::Render: intrinsics are for " +
+                                std::to_string(K.width_px) + "x" + std::to_string(K.height_px) +
+                                ", the renderer draws " + std::to_string(g.width) + "x" +
+                                std::to_string(g.height));
+  }
+  g.MakeCurrent();
+  glViewport(0, 0, g.width, g.height);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+
+  const Eigen::Matrix4d P = OpenGlProjection(K, g.near_m, g.far_m);
+  glMatrixMode(GL_PROJECTION);
+  glLoadMatrixd(P.data());
+  // OpenGL eye axes from OpenCV camera axes: flip y and z.
+  Eigen::Matrix4d view = Eigen::Matrix4d::Identity();
+  view.row(1) *= -1.0;
+  view.row(2) *= -1.0;
+  const Eigen::Isometry3d T_camera_world = T_world_camera.inverse();
+  view = view * T_camera_world.matrix();
+  glMatrixMode(GL_MODELVIEW);
+  glLoadMatrixd(view.data());
+  const double az = g.appearance.sun_azimuth_deg * M_PI / 180.0;
+  const double el = g.appearance.sun_elevation_deg * M_PI / 180.0;
+  const float sun[] = {static_cast<float>(std::cos(el) * std::cos(az)),
+                       static_cast<float>(std::cos(el) * std::sin(az)),
+                       static_cast<float>(std::sin(el)), 0.0f};
+  glLightfv(GL_LIGHT0, GL_POSITION, sun);
+
+  // Frustum culling in camera coordinates: a box is skipped when all its
+  // corners are outside one of the six planes.
+  const Eigen::Matrix3d R = T_camera_world.linear();
+  const Eigen::Vector3d tr = T_camera_world.translation();
+  const double w = g.width, h = g.height;
+  auto visible = [&](const Eigen::AlignedBox3d& box) {
+    int outside[6] = {0, 0, 0, 0, 0, 0};
+    for (int c = 0; c < 8; ++c) {
+      const Eigen::Vector3d p = R * box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c)) + tr;
+      const double X = p.x(), Y = p.y(), Z = p.z();
+      outside[0] += (K.fx * X + (K.cx + 0.5) * Z < 0);
+      outside[1] += (-K.fx * X + (w - 0.5 - K.cx) * Z < 0);
+      outside[2] += (K.fy * Y + (K.cy + 0.5) * Z < 0);
+      outside[3] += (-K.fy * Y + (h - 0.5 - K.cy) * Z < 0);
+      outside[4] += (Z < g.near_m);
+      outside[5] += (Z > g.far_m);
+    }
+    return std::none_of(std::begin(outside), std::end(outside), [](int n) { return n == 8; });
+  };
+  // Near to far, so that llvmpipe's early depth test rejects hidden fragments
+  // before they are textured.
+  std::vector<std::pair<double, GLuint>>& order = g.draw_order;
+  order.clear();
+  for (const Drawable& d : g.drawables) {
+    if (visible(d.box)) order.emplace_back((R * d.box.center() + tr).squaredNorm(), d.list);
+  }
+  std::sort(order.begin(), order.end());
+  for (const auto& [distance, list] : order) glCallList(list);
+  for (std::size_t k = 0; k < g.occluders.size(); ++k) {
+    const OccluderPose pose = OccluderPoseAt(g.occluders[k], t_s);
+    glPushMatrix();
+    glTranslated(pose.position_m.x(), pose.position_m.y(),
+                 g.terrain->Height(pose.position_m.x(), pose.position_m.y()));
+    glRotated(pose.yaw_rad * 180.0 / M_PI, 0, 0, 1);
+    glCallList(g.occluder_lists[k]);
+    glPopMatrix();
+  }
+  glFinish();
+
+  const int W = g.width, H = g.height;
+  if (gray) {
+    gray->width = W;
+    gray->height = H;
+    gray->pixels.resize(static_cast<std::size_t>(W) * H);
+    for (int v = 0; v < H; ++v) {
+      const std::uint8_t* src = &g.color[static_cast<std::size_t>(H - 1 - v) * W * 4];
+      std::uint8_t* dst = &gray->pixels[static_cast<std::size_t>(v) * W];
+      for (int u = 0; u < W; ++u) dst[u] = src[4 * u];  // grey scene: R = G = B
+    }
+  }
+  if (depth) {
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadPixels(0, 0, W, H, GL_DEPTH_COMPONENT, GL_FLOAT, g.depth.data());
+    depth->width = W;
+    depth->height = H;
+    depth->depth_m.resize(static_cast<std::size_t>(W) * H);
+    for (int v = 0; v < H; ++v) {
+      const float* src = &g.depth[static_cast<std::size_t>(H - 1 - v) * W];
+      float* dst = &depth->depth_m[static_cast<std::size_t>(v) * W];
+      for (int u = 0; u < W; ++u) {
+        dst[u] = static_cast<float>(DepthFromBuffer(src[u], g.near_m, g.far_m));
+      }
+    }
+  }
+}
+
+}  // namespace trackbed::sim

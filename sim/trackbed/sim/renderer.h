@@ -1,0 +1,72 @@
+// Headless rendering of the world on OSMesa (Mesa's llvmpipe, no display, no
+// GPU): the same geometry the physics uses — the terrain triangulation,
+// walls, boxes, cylinders — plus visual-only dressing (tree crowns, a
+// ceiling, doors and posters), textured procedurally from the seed and lit by
+// a directional light plus ambient. One OpenGL context per renderer, reused
+// for every frame.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "trackbed/sim/image.h"
+#include "trackbed/sim/occluder.h"
+#include "trackbed/sim/pinhole.h"
+#include "trackbed/sim/world.h"
+
+namespace trackbed::sim {
+
+/// Light and dressing of a scene.
+struct SceneAppearance {
+  /// Direction the sunlight comes from: azimuth counter-clockwise from +x [deg].
+  double sun_azimuth_deg = 135.0;
+  /// Elevation of the sun above the horizon [deg], in (0, 90].
+  double sun_elevation_deg = 50.0;
+  /// Ambient light level [0, 1].
+  double ambient = 0.45;
+  /// Directional light level [0, 1].
+  double diffuse = 0.6;
+  /// Grey level of the background (sky) [0, 1].
+  double sky_gray = 0.85;
+  /// Height of a ceiling over the whole terrain [m]; 0 for none (outdoors).
+  double ceiling_height_m = 0.0;
+  /// Foliage crowns on objects of kind "tree" (visual only).
+  bool tree_crowns = true;
+  /// Side of the square procedural textures [px], a power of two in [16, 2048].
+  int texture_size_px = 256;
+
+  void Validate() const;
+};
+
+/// Renders grayscale and depth images of a World. Not copyable.
+class Renderer {
+ public:
+  /// Builds the context, the textures and the geometry for images of
+  /// `width_px` × `height_px`, depth clipped to [near_m, far_m]. Throws
+  /// std::runtime_error when OSMesa cannot make a context.
+  Renderer(const World& world, const SceneAppearance& appearance,
+           std::vector<OccluderSpec> occluders, std::uint64_t seed, int width_px, int height_px,
+           double near_m, double far_m);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  /// Renders the view of a camera with intrinsics `K` (its size must be the
+  /// renderer's) at pose `T_world_camera` (OpenCV camera axes) at simulation
+  /// time `t_s` (for the occluders). Either output may be null.
+  void Render(const PinholeIntrinsics& K, const Eigen::Isometry3d& T_world_camera, double t_s,
+              GrayImage* gray, DepthImage* depth);
+
+  /// OpenGL renderer and version strings, e.g. "llvmpipe (LLVM 15.0.6, 256 bits) / 4.5 (Compatibility Profile) Mesa 22.3.6".
+  std::string gl_description() const;
+
+ private:
+  struct Gl;
+  std::unique_ptr<Gl> gl_;
+};
+
+}  // namespace trackbed::sim

@@ -1,0 +1,181 @@
+// The OSMesa renderer: geometry agrees with the pinhole model to sub-pixel,
+// depth is metric, stereo disparity is f·b/Z, images are reproducible.
+#include "trackbed/sim/renderer.h"
+
+#include <cstdio>
+#include <cstdlib>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "trackbed/robot/stereo_rig.h"
+
+namespace trackbed::sim {
+namespace {
+
+// A flat floor under a black sky, lit by ambient light only (flat shading).
+World MakeWorld(std::vector<StaticObject> objects) {
+  TerrainOptions t;
+  t.extent_m = {-2, -6, 12, 6};
+  t.cell_size_m = 0.5;
+  return World(WorldOptions{}, Terrain(t, 1), std::move(objects));
+}
+
+SceneAppearance Flat() {
+  SceneAppearance a;
+  a.ambient = 1.0;
+  a.diffuse = 0.0;
+  a.sky_gray = 0.0;
+  a.tree_crowns = false;
+  return a;
+}
+
+// A thin square plate facing −x (towards the cameras), its front face centred
+// at `c`, of side `side` (1 mm thick, so no other face shows).
+StaticObject Marker(const Eigen::Vector3d& c, double side, const std::string& appearance) {
+  StaticObject o;
+  o.kind = "box";
+  o.appearance = appearance;
+  o.center_m = c.head<2>() + Eigen::Vector2d(0.0005, 0);  // front face at x = c.x
+  o.base_z_m = c.z() - side / 2;
+  o.size_m = {0.001, side, side};
+  o.collides = false;
+  return o;
+}
+
+// The rig on a body at (0, 0, 0.7) looking along +x, level.
+robot::StereoRig LevelRig() {
+  robot::StereoRigOptions o;
+  o.pitch_down_deg = 0.0;
+  o.mount_m = {0.0, 0.0, 0.3};
+  return robot::StereoRig(o);
+}
+
+Eigen::Isometry3d Body() {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = Eigen::Vector3d(0, 0, 0.7);
+  return T;
+}
+
+TEST(RendererTest, MarkerAppearsWherePinholeModelPredictsInBothCameras) {
+  const Eigen::Vector3d marker(5.0, 0.4, 1.35);
+  World world = MakeWorld({Marker(marker, 0.2, "ceiling")});
+  const robot::StereoRig rig = LevelRig();
+  Renderer renderer(world, Flat(), {}, 3, 640, 480, 0.05, 120.0);
+  for (const Eigen::Isometry3d& T_body_cam : {rig.T_body_left(), rig.T_body_right()}) {
+    const Eigen::Isometry3d T_world_cam = Body() * T_body_cam;
+    GrayImage img;
+    renderer.Render(rig.intrinsics(), T_world_cam, 0.0, &img, nullptr);
+    const Eigen::Vector2d predicted = rig.intrinsics().Project(T_world_cam.inverse() * marker);
+    double su = 0, sv = 0, n = 0;
+    for (int v = 0; v < 236; ++v) {  // above the horizon: the floor is below it
+      for (int u = 0; u < img.width; ++u) {
+        if (img.at(u, v) > 100) {
+          su += u;
+          sv += v;
+          n += 1;
+        }
+      }
+    }
+    ASSERT_GT(n, 100);  // the 0.2 m square is about 15 px across at 5 m
+    std::printf("marker centroid - pinhole prediction: (%+.3f, %+.3f) px\n", su / n - predicted.x(),
+                sv / n - predicted.y());
+    EXPECT_NEAR(su / n, predicted.x(), 0.5);
+    EXPECT_NEAR(sv / n, predicted.y(), 0.5);
+  }
+}
+
+TEST(RendererTest, DepthImageIsMetricDepthAlongTheOpticalAxis) {
+  // A large wall whose front face is 5 m ahead of the left camera.
+  const robot::StereoRig rig = LevelRig();
+  const Eigen::Isometry3d T_world_cam = Body() * rig.T_body_left();
+  const double wall_x = T_world_cam.translation().x() + 5.0;
+  StaticObject wall = Marker({wall_x, 0.0, 1.5}, 4.0, "brick");
+  World world = MakeWorld({wall});
+  Renderer renderer(world, Flat(), {}, 3, 640, 480, 0.05, 120.0);
+  DepthImage depth;
+  renderer.Render(rig.intrinsics(), T_world_cam, 0.0, nullptr, &depth);
+  int checked = 0;
+  double worst = 0.0;
+  for (int v = 150; v < 310; ++v) {  // rows whose rays meet the wall, not the floor
+    for (int u = 200; u < 440; ++u) {
+      worst = std::max(worst, std::abs(depth.at(u, v) - 5.0));
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 160 * 240);
+  std::printf("depth of a plane 5 m ahead: worst error %.5f m over %d px\n", worst, checked);
+  EXPECT_LT(worst, 0.01);
+  EXPECT_TRUE(std::isinf(depth.at(320, 5)) || depth.at(320, 5) > 5.0);  // sky or far
+}
+
+TEST(RendererTest, StereoDisparityOfATexturedPlaneIsFocalTimesBaselineOverDepth) {
+  const robot::StereoRig rig = LevelRig();
+  const Eigen::Isometry3d T_world_left = Body() * rig.T_body_left();
+  const double z = 4.0;
+  World world = MakeWorld({Marker({T_world_left.translation().x() + z, 0.0, 1.0}, 4.0, "brick")});
+  SceneAppearance lit;
+  lit.sky_gray = 0.0;
+  Renderer renderer(world, lit, {}, 3, 640, 480, 0.05, 120.0);
+  GrayImage left, right;
+  renderer.Render(rig.intrinsics(), T_world_left, 0.0, &left, nullptr);
+  renderer.Render(rig.intrinsics(), Body() * rig.T_body_right(), 0.0, &right, nullptr);
+  const cv::Rect roi(224, 176, 128, 128);
+  cv::Mat l, r;
+  cv::Mat(480, 640, CV_8UC1, left.pixels.data())(roi).convertTo(l, CV_64F);
+  cv::Mat(480, 640, CV_8UC1, right.pixels.data())(roi).convertTo(r, CV_64F);
+  const cv::Point2d shift = cv::phaseCorrelate(r, l);  // left = right shifted by +d
+  const double expected = rig.intrinsics().fx * rig.options().baseline_m / z;
+  std::printf("disparity at 4 m: measured %.3f px, f b / Z = %.3f px\n", shift.x, expected);
+  EXPECT_NEAR(shift.x, expected, 0.5) << "expected disparity " << expected;
+  EXPECT_NEAR(shift.y, 0.0, 0.5);
+}
+
+TEST(RendererTest, SameSceneAndSeedGiveIdenticalBytesWithoutADisplay) {
+  unsetenv("DISPLAY");
+  World world = MakeWorld({Marker({5.0, 0.0, 1.0}, 1.0, "brick")});
+  const robot::StereoRig rig = LevelRig();
+  GrayImage a, b, c;
+  {
+    Renderer r1(world, SceneAppearance{}, {}, 11, 640, 480, 0.05, 120.0);
+    r1.Render(rig.intrinsics(), Body() * rig.T_body_left(), 0.0, &a, nullptr);
+    r1.Render(rig.intrinsics(), Body() * rig.T_body_left(), 0.0, &c, nullptr);
+  }
+  Renderer r2(world, SceneAppearance{}, {}, 11, 640, 480, 0.05, 120.0);
+  r2.Render(rig.intrinsics(), Body() * rig.T_body_left(), 0.0, &b, nullptr);
+  EXPECT_EQ(a.pixels, b.pixels);
+  EXPECT_EQ(a.pixels, c.pixels);
+  EXPECT_NE(r2.gl_description().find("llvmpipe"), std::string::npos) << r2.gl_description();
+}
+
+TEST(RendererTest, WalkingOccluderMovesThroughTheView) {
+  World world = MakeWorld({});
+  OccluderSpec person;
+  person.waypoints = {{4.0, -3.0}, {4.0, 3.0}};
+  person.speed_mps = 1.0;
+  const robot::StereoRig rig = LevelRig();
+  Renderer renderer(world, Flat(), {person}, 5, 640, 480, 0.05, 120.0);
+  // Where is the person in the image at t = 0 (off to the right), 3 s (centre), 6 s (left)?
+  std::vector<double> columns;
+  for (double t : {1.0, 3.0, 5.0}) {
+    GrayImage img;
+    renderer.Render(rig.intrinsics(), Body() * rig.T_body_left(), t, &img, nullptr);
+    double su = 0, n = 0;
+    for (int v = 0; v < 200; ++v) {  // above the horizon: only the person is lit there
+      for (int u = 0; u < img.width; ++u) {
+        if (img.at(u, v) > 20) {
+          su += u;
+          n += 1;
+        }
+      }
+    }
+    ASSERT_GT(n, 50) << "t = " << t;
+    columns.push_back(su / n);
+  }
+  EXPECT_GT(columns[0], columns[1] + 50);  // walking from the right (−y) to the left (+y)
+  EXPECT_GT(columns[1], columns[2] + 50);
+  EXPECT_NEAR(columns[1], 319.5, 20);
+}
+
+}  // namespace
+}  // namespace trackbed::sim

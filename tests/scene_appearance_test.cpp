@@ -1,0 +1,74 @@
+// The shipped scenes look as Ham et al.'s experiment needs: the corridor has
+// few trackable corners, the outdoor park many — counted with one Harris
+// detector setting (absolute threshold) on views along each scene's route.
+#include <cmath>
+#include <cstdio>
+
+#include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+
+#include "trackbed/perception/harris_corners.h"
+#include "trackbed/robot/stereo_rig.h"
+#include "trackbed/scenes/scenario_yaml.h"
+#include "trackbed/sim/renderer.h"
+
+namespace trackbed {
+namespace {
+
+// Mean Harris corners per left image over `views` poses spread along the scene's route.
+double MeanCornersAlongRoute(const std::string& file, int views, double min_response) {
+  const scenes::Scenario s =
+      scenes::LoadScenario(std::string(TRACKBED_SOURCE_DIR) + "/scenes/" + file);
+  const sim::World world(s.scene.world, sim::Terrain(s.scene.terrain, s.seed), s.scene.objects);
+  const robot::StereoRig rig(s.robot.stereo);
+  sim::Renderer renderer(world, s.scene.appearance, s.scene.occluders, s.seed,
+                         s.robot.stereo.width_px, s.robot.stereo.height_px, s.robot.stereo.near_m,
+                         s.robot.stereo.far_m);
+  const std::vector<Eigen::Vector2d>& w = s.drive.waypoints;
+  std::vector<double> cumulative{0.0};
+  for (std::size_t k = 1; k < w.size(); ++k) {
+    cumulative.push_back(cumulative.back() + (w[k] - w[k - 1]).norm());
+  }
+  perception::HarrisOptions harris;  // one setting for every scene
+  harris.min_response = min_response;
+  double total = 0.0;
+  for (int i = 0; i < views; ++i) {
+    const double along = (i + 0.5) / views * cumulative.back();
+    std::size_t k = 1;
+    while (k + 1 < w.size() && cumulative[k] < along) ++k;
+    const Eigen::Vector2d dir = (w[k] - w[k - 1]).normalized();
+    const Eigen::Vector2d p = w[k - 1] + (along - cumulative[k - 1]) * dir;
+    Eigen::Isometry3d T_world_body = Eigen::Isometry3d::Identity();
+    T_world_body.linear() =
+        Eigen::AngleAxisd(std::atan2(dir.y(), dir.x()), Eigen::Vector3d::UnitZ())
+            .toRotationMatrix();
+    T_world_body.translation() =
+        Eigen::Vector3d(p.x(), p.y(), world.terrain().Height(p.x(), p.y()) + 0.2);
+    sim::GrayImage image;
+    renderer.Render(rig.intrinsics(), T_world_body * rig.T_body_left(), 0.0, &image, nullptr);
+    robot::ApplySensorModel(s.robot.stereo.exposure, s.robot.stereo.noise_std, s.seed,
+                            static_cast<std::uint64_t>(i), 0, &image);
+    const cv::Mat mat(image.height, image.width, CV_8UC1, image.pixels.data());
+    total += static_cast<double>(perception::DetectHarrisCorners(mat, harris).size());
+  }
+  return total / views;
+}
+
+TEST(SceneAppearanceTest, OutdoorViewsHaveAtLeastFiveTimesTheCornersOfCorridorViews) {
+  // One absolute threshold for both scenes: R > 1e-6 keeps sharp corners of
+  // contrast above about 0.11 (see harris_corners.h for the scale of R).
+  const double min_response = 1e-6;
+  const double corridor = MeanCornersAlongRoute("corridor.yaml", 12, min_response);
+  const double outdoor = MeanCornersAlongRoute("outdoor.yaml", 12, min_response);
+  std::printf(
+      "Harris corners per 640x480 left image (min_response %g): corridor %.1f, "
+      "outdoor %.1f, ratio %.1f\n",
+      min_response, corridor, outdoor, outdoor / std::max(corridor, 1e-9));
+  RecordProperty("corridor_corners", std::to_string(corridor));
+  RecordProperty("outdoor_corners", std::to_string(outdoor));
+  EXPECT_GT(corridor, 5.0);  // not blank: VO has a little to work with
+  EXPECT_GE(outdoor, 5.0 * corridor);
+}
+
+}  // namespace
+}  // namespace trackbed
