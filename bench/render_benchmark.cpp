@@ -27,7 +27,8 @@ int main(int argc, char** argv) {
     }
   }
   if (files.empty()) {
-    files = {TRACKBED_SOURCE_DIR "/scenes/corridor.yaml", TRACKBED_SOURCE_DIR "/scenes/outdoor.yaml"};
+    files = {TRACKBED_SOURCE_DIR "/scenes/corridor.yaml",
+             TRACKBED_SOURCE_DIR "/scenes/outdoor.yaml"};
   }
   try {
     for (const std::string& f : files) {
@@ -40,8 +41,7 @@ int main(int argc, char** argv) {
         right.push_back(frame.T_world_right);
       };
       const scenes::RunMetrics loop = scenes::RunClosedLoop(s, record);
-      const sim::World world(s.scene.world, sim::Terrain(s.scene.terrain, s.seed),
-                             s.scene.objects);
+      const sim::World world(s.scene.world, sim::Terrain(s.scene.terrain, s.seed), s.scene.objects);
       const robot::StereoRig rig(s.robot.stereo);
       sim::Renderer renderer(world, s.scene.appearance, s.scene.occluders, s.seed,
                              s.robot.stereo.width_px, s.robot.stereo.height_px,

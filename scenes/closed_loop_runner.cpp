@@ -147,9 +147,8 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers
                               static_cast<std::uint64_t>(frame.index), 0, &left_image);
       robot::ApplySensorModel(rs.stereo.exposure, rs.stereo.noise_std, noise_seed,
                               static_cast<std::uint64_t>(frame.index), 1, &right_image);
-      render_wall_s += std::chrono::duration<double>(std::chrono::steady_clock::now() -
-                                                     render_start)
-                           .count();
+      render_wall_s +=
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - render_start).count();
       frame.left = &left_image;
       frame.right = &right_image;
       frame.rig = &*rig;

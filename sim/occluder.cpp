@@ -45,7 +45,8 @@ OccluderPose OccluderPoseAt(const OccluderSpec& spec, double t_s) {
     if (s <= seg || k + 1 == w.size()) {
       const double a = seg > 0 ? std::min(s / seg, 1.0) : 0.0;
       pose.position_m = w[k - 1] + a * (w[k] - w[k - 1]);
-      const Eigen::Vector2d d = backwards ? Eigen::Vector2d(w[k - 1] - w[k]) : Eigen::Vector2d(w[k] - w[k - 1]);
+      const Eigen::Vector2d d =
+          backwards ? Eigen::Vector2d(w[k - 1] - w[k]) : Eigen::Vector2d(w[k] - w[k - 1]);
       pose.yaw_rad = std::atan2(d.y(), d.x());
       return pose;
     }

@@ -15,8 +15,7 @@
 
 namespace trackbed::sim {
 
-PinholeIntrinsics PinholeIntrinsics::FromFieldOfView(int width_px, int height_px,
-                                                     double hfov_rad) {
+PinholeIntrinsics PinholeIntrinsics::FromFieldOfView(int width_px, int height_px, double hfov_rad) {
   PinholeIntrinsics K;
   K.width_px = width_px;
   K.height_px = height_px;

@@ -8,8 +8,8 @@
 // top-down rows.
 #include "trackbed/sim/renderer.h"
 
-#include <GL/osmesa.h>
 #include <GL/gl.h>
+#include <GL/osmesa.h>
 
 #include <algorithm>
 #include <cmath>
@@ -103,8 +103,8 @@ struct Renderer::Gl {
     std::vector<std::uint8_t> level = t.texels;
     int size = t.size_px;
     for (int lod = 0;; ++lod) {
-      glTexImage2D(GL_TEXTURE_2D, lod, GL_LUMINANCE8, size, size, 0, GL_LUMINANCE,
-                   GL_UNSIGNED_BYTE, level.data());
+      glTexImage2D(GL_TEXTURE_2D, lod, GL_LUMINANCE8, size, size, 0, GL_LUMINANCE, GL_UNSIGNED_BYTE,
+                   level.data());
       if (size == 1) break;
       const int half = size / 2;
       std::vector<std::uint8_t> next(static_cast<std::size_t>(half) * half);
@@ -113,10 +113,10 @@ struct Renderer::Gl {
           const auto at = [&](int xx, int yy) {
             return static_cast<int>(level[static_cast<std::size_t>(yy) * size + xx]);
           };
-          next[static_cast<std::size_t>(y) * half + x] = static_cast<std::uint8_t>(
-              (at(2 * x, 2 * y) + at(2 * x + 1, 2 * y) + at(2 * x, 2 * y + 1) +
-               at(2 * x + 1, 2 * y + 1) + 2) /
-              4);
+          next[static_cast<std::size_t>(y) * half + x] =
+              static_cast<std::uint8_t>((at(2 * x, 2 * y) + at(2 * x + 1, 2 * y) +
+                                         at(2 * x, 2 * y + 1) + at(2 * x + 1, 2 * y + 1) + 2) /
+                                        4);
         }
       }
       level.swap(next);
@@ -148,7 +148,8 @@ struct Renderer::Gl {
     const std::vector<std::uint8_t>& cell_material = t.cell_materials();
     for (int j0 = 0; j0 < rows - 1; j0 += kChunkCells) {
       for (int i0 = 0; i0 < cols - 1; i0 += kChunkCells) {
-        const int i1 = std::min(i0 + kChunkCells, cols - 1), j1 = std::min(j0 + kChunkCells, rows - 1);
+        const int i1 = std::min(i0 + kChunkCells, cols - 1),
+                  j1 = std::min(j0 + kChunkCells, rows - 1);
         std::vector<bool> present(t.materials().size(), false);
         double lo = 1e300, hi = -1e300;
         for (int j = j0; j < j1; ++j) {
@@ -259,7 +260,8 @@ struct Renderer::Gl {
       for (int k = 0; k <= slices; ++k) {
         const double b = 2 * M_PI * k / slices;
         for (double a : {a1, a0}) {
-          const Eigen::Vector3d n(std::cos(a) * std::cos(b), std::cos(a) * std::sin(b), std::sin(a));
+          const Eigen::Vector3d n(std::cos(a) * std::cos(b), std::cos(a) * std::sin(b),
+                                  std::sin(a));
           glNormal3d(n.x(), n.y(), n.z());
           glTexCoord2d(b * radius / m, a * radius / m);
           glVertex3d(radius * n.x(), radius * n.y(), radius * n.z());
@@ -319,8 +321,9 @@ struct Renderer::Gl {
       glBindTexture(GL_TEXTURE_2D, tex.name);
       glBegin(GL_QUADS);
       glNormal3d(0, 0, -1);
-      for (const auto& [x, y] : {std::pair{t.x_min(), t.y_min()}, std::pair{t.x_max(), t.y_min()},
-                                 std::pair{t.x_max(), t.y_max()}, std::pair{t.x_min(), t.y_max()}}) {
+      for (const auto& [x, y] :
+           {std::pair{t.x_min(), t.y_min()}, std::pair{t.x_max(), t.y_min()},
+            std::pair{t.x_max(), t.y_max()}, std::pair{t.x_min(), t.y_max()}}) {
         glTexCoord2d(x / m, y / m);
         glVertex3d(x, y, z);
       }
@@ -399,7 +402,8 @@ Renderer::Renderer(const World& world, const SceneAppearance& appearance,
 
   g.BuildTerrain();
   g.BuildObjects(world);
-  if (glGetError() != GL_NO_ERROR) throw std::runtime_error("Renderer: OpenGL error while building");
+  if (glGetError() != GL_NO_ERROR)
+    throw std::runtime_error("Renderer: OpenGL error while building");
 }
 
 Renderer::~Renderer() = default;
@@ -450,7 +454,8 @@ void Renderer::Render(const PinholeIntrinsics& K, const Eigen::Isometry3d& T_wor
   auto visible = [&](const Eigen::AlignedBox3d& box) {
     int outside[6] = {0, 0, 0, 0, 0, 0};
     for (int c = 0; c < 8; ++c) {
-      const Eigen::Vector3d p = R * box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c)) + tr;
+      const Eigen::Vector3d p =
+          R * box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c)) + tr;
       const double X = p.x(), Y = p.y(), Z = p.z();
       outside[0] += (K.fx * X + (K.cx + 0.5) * Z < 0);
       outside[1] += (-K.fx * X + (w - 0.5 - K.cx) * Z < 0);

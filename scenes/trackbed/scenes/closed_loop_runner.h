@@ -19,7 +19,7 @@ struct StereoFrame {
   double t_s = 0.0;
   const sim::GrayImage* left = nullptr;
   const sim::GrayImage* right = nullptr;
-  Eigen::Isometry3d T_world_left;   ///< Ground truth of the left camera (OpenCV axes).
+  Eigen::Isometry3d T_world_left;  ///< Ground truth of the left camera (OpenCV axes).
   Eigen::Isometry3d T_world_right;
   const robot::StereoRig* rig = nullptr;
 };

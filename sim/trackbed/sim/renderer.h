@@ -61,7 +61,8 @@ class Renderer {
   void Render(const PinholeIntrinsics& K, const Eigen::Isometry3d& T_world_camera, double t_s,
               GrayImage* gray, DepthImage* depth);
 
-  /// OpenGL renderer and version strings, e.g. "llvmpipe (LLVM 15.0.6, 256 bits) / 4.5 (Compatibility Profile) Mesa 22.3.6".
+  /// OpenGL renderer and version strings, e.g. "llvmpipe (LLVM 15.0.6, 256 bits) / 4.5
+  /// (Compatibility Profile) Mesa 22.3.6".
   std::string gl_description() const;
 
  private:
