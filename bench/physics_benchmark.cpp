@@ -1,5 +1,5 @@
 // Physics-only real-time factor of the shipped scenes: the closed loop with
-// the ground-truth driver, no rendering, no vision, no file output.
+// the ground-truth driver, the cameras switched off, no vision, no file output.
 //
 //   physics_benchmark [--seconds S] [SCENARIO.yaml ...]
 //
@@ -31,7 +31,7 @@ int main(int argc, char** argv) {
   }
   try {
     for (const std::string& f : files) {
-      std::vector<trackbed::scenes::Override> overrides;
+      std::vector<trackbed::scenes::Override> overrides = {{"robot.stereo.enabled", "false"}};
       if (seconds > 0) overrides.push_back({"duration_s", std::to_string(seconds)});
       const trackbed::scenes::Scenario s = trackbed::scenes::LoadScenario(f, overrides);
       const trackbed::scenes::RunMetrics m = trackbed::scenes::RunClosedLoop(s);

@@ -320,10 +320,12 @@ struct Renderer::Gl {
       glNewList(d.list, GL_COMPILE);
       glBindTexture(GL_TEXTURE_2D, tex.name);
       glBegin(GL_QUADS);
+      // Clockwise seen from above: the front face, and its normal, look down,
+      // so the sun above does not light the underside.
       glNormal3d(0, 0, -1);
       for (const auto& [x, y] :
-           {std::pair{t.x_min(), t.y_min()}, std::pair{t.x_max(), t.y_min()},
-            std::pair{t.x_max(), t.y_max()}, std::pair{t.x_min(), t.y_max()}}) {
+           {std::pair{t.x_min(), t.y_min()}, std::pair{t.x_min(), t.y_max()},
+            std::pair{t.x_max(), t.y_max()}, std::pair{t.x_max(), t.y_min()}}) {
         glTexCoord2d(x / m, y / m);
         glVertex3d(x, y, z);
       }

@@ -66,7 +66,7 @@ TEST(SceneAppearanceTest, OutdoorViewsHaveAtLeastFiveTimesTheCornersOfCorridorVi
       min_response, corridor, outdoor, outdoor / std::max(corridor, 1e-9));
   RecordProperty("corridor_corners", std::to_string(corridor));
   RecordProperty("outdoor_corners", std::to_string(outdoor));
-  EXPECT_GT(corridor, 5.0);  // not blank: VO has a little to work with
+  EXPECT_GT(corridor, 1.0);  // not blank: doors and posters give a few
   EXPECT_GE(outdoor, 5.0 * corridor);
 }
 
