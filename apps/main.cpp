@@ -11,6 +11,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "eval_command.h"
 #include "trackbed/scenes/run_folder.h"
 #include "trackbed/scenes/scenario_yaml.h"
 
@@ -56,6 +57,8 @@ int main(int argc, char** argv) {
   run->add_option("--out", out_dir, "Run folder to write")->required();
   run->add_option("--seed", seed, "Seed (overrides the scenario's `seed`)");
   run->add_option("--set", sets, "Override a scenario key: --set dotted.key=value (repeatable)");
+
+  trackbed::apps::AddEvalCommand(app);
 
   try {
     app.parse(argc, argv);

@@ -87,6 +87,29 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers
         rs.stereo.width_px, rs.stereo.height_px, rs.stereo.near_m, rs.stereo.far_m);
   }
   sim::GrayImage left_image, right_image;
+  // The robot software: the localization stack on the robot's own sensors.
+  std::unique_ptr<estimation::LocalizationStack> stack;
+  EstimatorScoring estimates;
+  double estimation_wall_s = 0.0;
+  if (scenario.estimation.enabled) {
+    estimation::LocalizationOptions lo;
+    lo.wheel.sprocket_radius_m = rs.vehicle.sprocket_radius_m;
+    lo.wheel.track_gauge_m = rs.vehicle.track_gauge_m;
+    lo.wheel.icr_expansion = scenario.estimation.icr_expansion;
+    lo.wheel.icr_offset_m = scenario.estimation.icr_offset_m;
+    lo.wheel.ticks_per_rev = rs.encoders.ticks_per_rev;
+    lo.wheel.slip_decay_time_s = scenario.estimation.slip_decay_time_s;
+    lo.fusion_rules_file = scenario.estimation.fusion_rules;
+    std::optional<perception::StereoCalibration> calibration;
+    if (rig) {
+      const sim::PinholeIntrinsics& K = rig->intrinsics();
+      calibration = perception::StereoCalibration::FromIntrinsics(K.fx, K.fy, K.cx, K.cy,
+                                                                  rs.stereo.baseline_m);
+    }
+    stack = std::make_unique<estimation::LocalizationStack>(
+        lo, calibration ? &*calibration : nullptr,
+        rig ? rig->T_body_left() : Eigen::Isometry3d::Identity(), vehicle.chassis().T_world_body);
+  }
   std::int64_t stereo_index = 0;
   double render_wall_s = 0.0;
   const std::uint64_t noise_seed = StreamSeed(scenario.seed, 3);
@@ -132,6 +155,21 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers
         break;
       }
       metrics.Add(s, g.height_m);
+      EstimateSample e;
+      if (stack) {
+        const auto start = std::chrono::steady_clock::now();
+        stack->AddEncoderSample(s.t_s, s.ticks[0], s.ticks[1]);
+        e.t_s = s.t_s;
+        e.wheel_odometry = stack->wheel_odometry();
+        e.wheel_odometry_noslip = stack->wheel_odometry_noslip();
+        e.fused = stack->fused();
+        e.has_camera = rig.has_value();
+        e.slip = stack->slip();
+        estimation_wall_s +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        estimates.Add(s, e);
+        s.estimate = &e;
+      }
       if (observers.on_sample) observers.on_sample(s);
     }
     if (renderer && clock.Fires(camera_period)) {
@@ -153,6 +191,20 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers
       frame.right = &right_image;
       frame.rig = &*rig;
       if (observers.on_stereo) observers.on_stereo(frame);
+      if (stack) {
+        const auto as_mat = [](const sim::GrayImage& g) {
+          return cv::Mat(g.height, g.width, CV_8UC1, const_cast<std::uint8_t*>(g.pixels.data()));
+        };
+        const auto start = std::chrono::steady_clock::now();
+        LocalizationFrame lf;
+        lf.t_s = frame.t_s;
+        lf.report = stack->AddStereoFrame(frame.t_s, as_mat(left_image), as_mat(right_image));
+        lf.visual_odometry = stack->visual_odometry();
+        estimation_wall_s +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        estimates.AddFrame(truth.T_world_body, lf);
+        if (observers.on_localization_frame) observers.on_localization_frame(lf);
+      }
     }
     if (clock.steps() > 0 && clock.Fires(imu_period)) {
       const Eigen::Vector3d accel = (truth.v_world - v_at_last_imu) / (imu_period * dt);
@@ -180,6 +232,9 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers
   m.completed = !failed;
   m.stereo_frames = stereo_index;
   m.render_wall_s = render_wall_s;
+  m.estimation_wall_s = estimation_wall_s;
+  m.estimators = estimates.Metrics(m.distance_m);
+  m.localization = estimates.Summary();
   m.stop_reason = stop_reason;
   m.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

@@ -119,8 +119,21 @@ std::string MetricsJson(const RunMetrics& m) {
                         {"samples", m.icr.samples_used},
                         {"rms_residual_radps", m.icr.rms_residual_radps}};
   j["stereo_frames"] = m.stereo_frames;
-  j["estimators"] = nlohmann::ordered_json::object();
-  j["timing"] = {{"render_s", m.render_wall_s}};
+  nlohmann::ordered_json estimators = nlohmann::ordered_json::object();
+  for (const auto& [name, e] : m.estimators) {
+    estimators[name] = {
+        {"ate_rmse_m", e.ate_rmse_m},       {"ate3d_se3_rmse_m", e.ate3d_se3_rmse_m},
+        {"final_error_m", e.final_error_m}, {"final_error_pct", e.final_error_pct},
+        {"rpe_trans_pct", e.rpe_trans_pct}, {"samples", e.samples}};
+  }
+  j["estimators"] = estimators;
+  const LocalizationSummary& loc = m.localization;
+  j["localization"] = {{"vo_frames", loc.vo_frames},
+                       {"vo_failures", loc.vo_failures},
+                       {"mean_inliers", loc.mean_inliers},
+                       {"mean_fusion_w", loc.mean_fusion_w},
+                       {"slip_estimate_rmse_mps", loc.slip_estimate_rmse_mps}};
+  j["timing"] = {{"render_s", m.render_wall_s}, {"estimation_s", m.estimation_wall_s}};
   return j.dump(2) + "\n";
 }
 
@@ -136,7 +149,19 @@ RunMetrics RunToFolder(const Scenario& scenario, const fs::path& dir) {
     LogFile encoders(dir / "encoders.csv", "t,left_ticks,right_ticks");
     LogFile slip(dir / "slip.csv",
                  "t,left_true_mps,right_true_mps,left_track_mps,right_track_mps,"
-                 "left_ground_mps,right_ground_mps,material");
+                 "left_ground_mps,right_ground_mps,material,left_est_mps,right_est_mps");
+    // One TUM file per estimator (design.md §3), opened when estimation is on.
+    std::unique_ptr<LogFile> wheel_tum, noslip_tum, fused_tum, vo_tum, fusion_csv;
+    if (scenario.estimation.enabled) {
+      wheel_tum = std::make_unique<LogFile>(dir / "wheel_odometry.tum", "");
+      noslip_tum = std::make_unique<LogFile>(dir / "wheel_odometry_noslip.tum", "");
+      if (scenario.robot.stereo.enabled) {
+        fused_tum = std::make_unique<LogFile>(dir / "fused.tum", "");
+        vo_tum = std::make_unique<LogFile>(dir / "visual_odometry.tum", "");
+        fusion_csv = std::make_unique<LogFile>(
+            dir / "fusion.csv", "t,slip_velocity_mps,features,w,vo_status,vo_tracked");
+      }
+    }
     LogFile tracks(dir / "tracks.csv",
                    "t,left_torque_nm,right_torque_nm,left_load_n,right_load_n,"
                    "left_traction_n,right_traction_n,left_compaction_n,right_compaction_n,"
@@ -189,6 +214,14 @@ RunMetrics RunToFolder(const Scenario& scenario, const fs::path& dir) {
                     v.z(), w.x(), w.y(), w.z());
       twist.Line(line);
     };
+    observers.on_localization_frame = [&](const LocalizationFrame& f) {
+      if (!vo_tum) return;
+      vo_tum->Line(estimation::FormatTumLine({f.t_s, f.visual_odometry}).c_str());
+      std::snprintf(line, sizeof(line), "%.6f,%.9g,%.0f,%.6f,%s,%d", f.t_s,
+                    f.report.slip_velocity_mps, f.report.features, f.report.w,
+                    estimation::ToString(f.report.vo.status), f.report.vo.tracked);
+      fusion_csv->Line(line);
+    };
     observers.on_imu = [&](const robot::ImuSample& s) {
       std::snprintf(line, sizeof(line), "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", s.t_s,
                     s.gyro_radps.x(), s.gyro_radps.y(), s.gyro_radps.z(), s.accel_mps2.x(),
@@ -198,6 +231,9 @@ RunMetrics RunToFolder(const Scenario& scenario, const fs::path& dir) {
     metrics = RunClosedLoop(scenario, observers);
     for (LogFile* f : {&truth, &twist, &encoders, &slip, &tracks, &imu}) f->Close();
     if (kitti) kitti->Close();
+    for (auto* f : {&wheel_tum, &noslip_tum, &fused_tum, &vo_tum, &fusion_csv}) {
+      if (*f) (*f)->Close();
+    }
   } catch (const std::exception& e) {
     metrics.completed = false;
     metrics.stop_reason = std::string("failed: ") + e.what();

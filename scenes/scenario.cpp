@@ -97,6 +97,12 @@ void DriveSpec::Validate() const {
   }
 }
 
+void EstimationSpec::Validate() const {
+  option_check::InRange("icr_expansion", icr_expansion, 0.2, 5.0);
+  option_check::Finite("icr_offset_m", icr_offset_m);
+  option_check::Positive("slip_decay_time_s", slip_decay_time_s);
+}
+
 void OutputsSpec::Validate() const {
   if (save_images != "none" && save_images != "kitti") {
     throw OptionError("save_images", "must be none or kitti (got '" + save_images + "')");
@@ -111,6 +117,7 @@ void Scenario::Validate() const {
   option_check::Nested("scene", scene);
   option_check::Nested("robot", robot);
   option_check::Nested("drive", drive);
+  option_check::Nested("estimation", estimation);
   option_check::Nested("outputs", outputs);
   if (outputs.save_images == "kitti" && !robot.stereo.enabled) {
     throw OptionError("outputs.save_images", "kitti needs robot.stereo.enabled: true");

@@ -377,6 +377,15 @@ void Visit(V& v, DriveSpec& o) {
 }
 
 template <class V>
+void Visit(V& v, EstimationSpec& o) {
+  v("enabled", o.enabled);
+  v("icr_expansion", o.icr_expansion);
+  v("icr_offset_m", o.icr_offset_m);
+  v("slip_decay_time_s", o.slip_decay_time_s);
+  v("fusion_rules", o.fusion_rules);
+}
+
+template <class V>
 void Visit(V& v, OutputsSpec& o) {
   v("save_images", o.save_images);
 }
@@ -388,6 +397,7 @@ void Visit(V& v, Scenario& o) {
   v("scene", o.scene);
   v("robot", o.robot);
   v("drive", o.drive);
+  v("estimation", o.estimation);
   v("outputs", o.outputs);
 }
 

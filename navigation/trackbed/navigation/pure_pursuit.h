@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include "trackbed/estimation/pose2.h"
 #include "trackbed/estimation/skid_steer.h"
 
 namespace trackbed::navigation {
@@ -27,9 +28,7 @@ struct PurePursuitOptions {
 };
 
 /// Planar pose of the robot: position [m] and heading [rad].
-struct Pose2 {
-  double x = 0.0, y = 0.0, yaw = 0.0;
-};
+using Pose2 = estimation::Pose2;
 
 /// Output of one control step.
 struct PurePursuitCommand {

@@ -6,6 +6,7 @@
 #include <functional>
 #include <memory>
 
+#include "trackbed/estimation/localization.h"
 #include "trackbed/robot/imu.h"
 #include "trackbed/robot/stereo_rig.h"
 #include "trackbed/scenes/run_metrics.h"
@@ -24,11 +25,28 @@ struct StereoFrame {
   const robot::StereoRig* rig = nullptr;
 };
 
+/// The localization stack's estimates at one encoder sample (all T_world_body).
+struct EstimateSample {
+  double t_s = 0.0;
+  Eigen::Isometry3d wheel_odometry, wheel_odometry_noslip, fused;
+  bool has_camera = false;  ///< fused (and visual odometry) exist
+  estimation::TrackSlip slip;
+};
+
+/// The stack's work on one stereo frame.
+struct LocalizationFrame {
+  double t_s = 0.0;
+  estimation::LocalizationFrameReport report;
+  Eigen::Isometry3d visual_odometry;  ///< T_world_body after this frame
+};
+
 /// Observers of a run; any may be empty.
 struct RunObservers {
+  /// Every stereo frame's visual odometry and fusion (when the camera is on).
+  std::function<void(const LocalizationFrame&)> on_localization_frame;
   /// Every stereo pair (when robot.stereo.enabled).
   std::function<void(const StereoFrame&)> on_stereo;
-  /// Every encoder sample (ground truth alongside).
+  /// Every encoder sample (ground truth and, when estimation.enabled, the estimates alongside).
   std::function<void(const RunSample&)> on_sample;
   /// Every IMU sample.
   std::function<void(const robot::ImuSample&)> on_imu;

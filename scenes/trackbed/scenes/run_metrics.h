@@ -9,8 +9,11 @@
 
 #include "trackbed/estimation/icr_calibration.h"
 #include "trackbed/robot/tracked_vehicle.h"
+#include "trackbed/scenes/estimator_scoring.h"
 
 namespace trackbed::scenes {
+
+struct EstimateSample;
 
 /// What the runner records at the encoder rate.
 struct RunSample {
@@ -19,6 +22,8 @@ struct RunSample {
   robot::TrackState tracks[2];            ///< Ground truth per track (left, right).
   long long ticks[2] = {0, 0};            ///< Encoder counts (left, right).
   const std::string* material = nullptr;  ///< Material under the centre of mass.
+  /// The localization stack's estimates at this sample (null when estimation is off).
+  const EstimateSample* estimate = nullptr;
 };
 
 /// Slip statistics of the samples where a track moved (|track speed| > 0.05 m/s).
@@ -52,6 +57,11 @@ struct RunMetrics {
   /// Stereo pairs rendered, and the wall-clock time spent rendering them [s].
   long long stereo_frames = 0;
   double render_wall_s = 0.0;
+  /// Wall-clock time spent in the localization stack [s].
+  double estimation_wall_s = 0.0;
+  /// Per estimator (wheel_odometry, wheel_odometry_noslip, visual_odometry, fused).
+  std::map<std::string, EstimatorMetrics> estimators;
+  LocalizationSummary localization;
 
   double real_time_factor() const { return wall_time_s > 0 ? sim_time_s / wall_time_s : 0.0; }
 };

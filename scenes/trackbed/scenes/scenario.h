@@ -89,6 +89,23 @@ struct DriveSpec {
   void Validate() const;
 };
 
+/// The localization stack run on the robot's sensors (Ham et al. 2012).
+struct EstimationSpec {
+  /// Run the estimators (wheel odometry always; VO and fusion when the stereo camera is on).
+  bool enabled = true;
+  /// ICR expansion factor χ for the effective gauge B_eff = χ·B. Default: the value the
+  /// calibration run scenes/calibration/icr_turns.yaml fits on the hard floor (1.179).
+  double icr_expansion = 1.179;
+  /// Longitudinal ICR offset d [m] (Ham et al. eqs. 3–4).
+  double icr_offset_m = 0.0;
+  /// Decay time constant of a held slip estimate [s], > 0.
+  double slip_decay_time_s = 3.0;
+  /// FLL file with the fusion rule base; empty: the built-in Table 1.
+  std::string fusion_rules;
+
+  void Validate() const;
+};
+
 struct OutputsSpec {
   /// Camera images to save: none, or kitti (KITTI odometry layout in images/;
   /// needs robot.stereo.enabled).
@@ -104,6 +121,7 @@ struct Scenario {
   SceneSpec scene;
   RobotSpec robot;
   DriveSpec drive;
+  EstimationSpec estimation;
   OutputsSpec outputs;
 
   void Validate() const;

@@ -1,0 +1,27 @@
+// `trackbed vo KITTI_DIR --out DIR [--poses FILE]` (design.md §3): stereo visual
+// odometry on a real sequence in KITTI layout.
+//
+// Writes, in DIR (created if needed):
+//   visual_odometry.tum        `t x y z qx qy qz qw`, t from times.txt: the left camera's
+//                              pose in the first left camera's frame;
+//   visual_odometry.kitti.txt  the same poses as KITTI 3×4 lines (one per frame);
+//   vo_frames.csv              `t,status,tracked,inliers,ms` per frame (ms: wall time of
+//                              StereoVisualOdometry::Process).
+// Prints the number of frames, frames per second (wall clock of Process only, images
+// are read outside it), and, when ground truth exists (poses.txt in the folder or
+// --poses), the end-point error [m, % of the ground-truth path length] and the ATE RMSE
+// after SE(3) alignment of the positions (Horn).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace trackbed::apps {
+
+/// Registers the `vo` subcommand on `app`. The command runs in the subcommand's
+/// callback, i.e. inside app.parse(), and ends parsing by throwing: CLI::Success on
+/// success (exit status 0) or, after printing a one-line reason to stderr,
+/// CLI::RuntimeError(2) — so `catch (const CLI::ParseError& e) { return app.exit(e); }`
+/// around parse() gives the right exit status.
+void AddVoCommand(CLI::App& app);
+
+}  // namespace trackbed::apps

@@ -1,0 +1,101 @@
+// The localization stack (see localization.h).
+#include "trackbed/estimation/localization.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "trackbed/common/option_error.h"
+
+namespace trackbed::estimation {
+namespace {
+
+WheelOdometryOptions WithSlip(WheelOdometryOptions o, bool estimate) {
+  o.estimate_slip = estimate;
+  return o;
+}
+
+FuzzyFusionWeight MakeFuzzy(const std::string& file) {
+  return file.empty() ? FuzzyFusionWeight() : FuzzyFusionWeight::FromFile(file);
+}
+
+}  // namespace
+
+void LocalizationOptions::Validate() const {
+  option_check::Nested("wheel", wheel);
+  option_check::Nested("vo", vo);
+}
+
+LocalizationStack::LocalizationStack(const LocalizationOptions& options,
+                                     const perception::StereoCalibration* calibration,
+                                     const Eigen::Isometry3d& T_body_left,
+                                     const Eigen::Isometry3d& T_world_body0)
+    : options_(options),
+      T_body_left_(T_body_left),
+      z0_(T_world_body0.translation().z()),
+      wheel_(WithSlip(options.wheel, true), PlanarPose(T_world_body0)),
+      wheel_noslip_(WithSlip(options.wheel, false), PlanarPose(T_world_body0)),
+      vo_(calibration ? std::make_unique<StereoVisualOdometry>(*calibration, options.vo) : nullptr),
+      fuzzy_(MakeFuzzy(options.fusion_rules_file)),
+      fused_(PlanarPose(T_world_body0)),
+      T_world_body_vo_(T_world_body0),
+      wheel_at_frame_(PlanarPose(T_world_body0)) {
+  options_.Validate();
+}
+
+LocalizationStack::~LocalizationStack() = default;
+
+void LocalizationStack::AddEncoderSample(double t_s, std::int64_t left_ticks,
+                                         std::int64_t right_ticks) {
+  wheel_.AddEncoderSample(t_s, left_ticks, right_ticks);
+  wheel_noslip_.AddEncoderSample(t_s, left_ticks, right_ticks);
+}
+
+LocalizationFrameReport LocalizationStack::AddStereoFrame(double t_s, const cv::Mat& left,
+                                                          const cv::Mat& right) {
+  LocalizationFrameReport report;
+  if (!vo_) throw std::logic_error("LocalizationStack: stereo frame without a camera calibration");
+  report.vo = vo_->Process(left, right, t_s);
+  report.vo_valid = report.vo.status == VoStatus::kOk;
+  std::optional<Pose2> vo_increment;
+  if (report.vo_valid) {
+    // The left camera's motion, expressed as the body's motion.
+    const Eigen::Isometry3d T_body_motion =
+        T_body_left_ * report.vo.T_prev_curr * T_body_left_.inverse();
+    T_world_body_vo_ = T_world_body_vo_ * T_body_motion;
+    vo_increment = PlanarPose(T_body_motion);
+    if (has_frame_ && t_s > t_frame_) {
+      // Slip from the independent (visual) velocity over the frame interval.
+      const double dt = t_s - t_frame_;
+      wheel_.AddMeasuredVelocity(t_frame_, t_s, vo_increment->x / dt, vo_increment->yaw / dt);
+    }
+  }
+  report.slip = wheel_.slip();
+  report.slip_velocity_mps = report.slip.max_abs_mps();
+  report.features = report.vo.inliers;
+  if (has_frame_) {
+    const Pose2 wheel_increment = Between(wheel_at_frame_, wheel_.pose());
+    report.w = report.vo_valid ? fuzzy_.Weight(report.slip_velocity_mps, report.features) : 1.0;
+    fused_.Add(wheel_increment, vo_increment, report.w);
+  }
+  wheel_at_frame_ = wheel_.pose();
+  t_frame_ = t_s;
+  has_frame_ = true;
+  return report;
+}
+
+Eigen::Isometry3d LocalizationStack::wheel_odometry() const {
+  return ToIsometry(wheel_.pose(), z0_);
+}
+
+Eigen::Isometry3d LocalizationStack::wheel_odometry_noslip() const {
+  return ToIsometry(wheel_noslip_.pose(), z0_);
+}
+
+Eigen::Isometry3d LocalizationStack::visual_odometry() const { return T_world_body_vo_; }
+
+Eigen::Isometry3d LocalizationStack::fused() const {
+  // The fused pose at the last frame, carried forward by the wheels since.
+  return ToIsometry(Compose(fused_.pose(), Between(wheel_at_frame_, wheel_.pose())), z0_);
+}
+
+}  // namespace trackbed::estimation

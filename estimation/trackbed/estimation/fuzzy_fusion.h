@@ -1,0 +1,72 @@
+// Fuzzy fusion of wheel and visual odometry (Ham et al. 2012, §4).
+//
+// The weight w of wheel odometry comes from a fuzzylite engine whose rule base
+// (the paper's Table 1) and membership functions live in an FLL file — by
+// default estimation/rules/ham2012_fusion.fll, built into the binary; users
+// may load their own. The fused estimate composes per-step motion
+// increments, ΔX = w·ΔX_WO + (1 − w)·ΔX_VO (eq. 9 applied to increments), so
+// whichever estimator drifted earlier does not drag the fused pose back.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "trackbed/estimation/pose2.h"
+
+namespace fl {
+class Engine;
+class InputVariable;
+class OutputVariable;
+}  // namespace fl
+
+namespace trackbed::estimation {
+
+/// The fuzzy decision w(slip velocity, number of features). Not copyable.
+class FuzzyFusionWeight {
+ public:
+  /// From FLL text; `source` names it in errors. The engine needs inputs
+  /// `slip_velocity` [m/s] and `features` [count] and output `w` in [0, 1];
+  /// throws std::invalid_argument naming `source` otherwise.
+  FuzzyFusionWeight(const std::string& fll_text, const std::string& source);
+  /// The shipped rule base (Ham et al. Table 1).
+  FuzzyFusionWeight();
+  /// Reads an FLL file; throws std::runtime_error naming it when unreadable.
+  static FuzzyFusionWeight FromFile(const std::filesystem::path& path);
+  ~FuzzyFusionWeight();
+  FuzzyFusionWeight(FuzzyFusionWeight&&) noexcept;
+  FuzzyFusionWeight& operator=(FuzzyFusionWeight&&) noexcept;
+
+  /// w for the larger track |slip velocity| [m/s] and the VO inlier count;
+  /// inputs beyond the variables' ranges are clamped to them.
+  double Weight(double slip_velocity_mps, double features);
+
+  /// The shipped FLL text.
+  static const char* DefaultRules();
+
+ private:
+  std::unique_ptr<fl::Engine> engine_;
+  fl::InputVariable* slip_ = nullptr;
+  fl::InputVariable* features_ = nullptr;
+  fl::OutputVariable* w_ = nullptr;
+};
+
+/// Composes fused motion increments into a planar pose.
+class FusedOdometry {
+ public:
+  explicit FusedOdometry(const Pose2& initial_pose) : pose_(initial_pose) {}
+
+  /// One fusion step over a camera interval: the wheel-odometry increment and,
+  /// when visual odometry produced a motion, its increment, blended with the
+  /// wheel weight `w`. Without a VO increment the wheel increment is taken
+  /// whole (a failed VO frame has no motion to weigh).
+  void Add(const Pose2& wheel_increment, const std::optional<Pose2>& vo_increment, double w);
+
+  const Pose2& pose() const { return pose_; }
+
+ private:
+  Pose2 pose_;
+};
+
+}  // namespace trackbed::estimation

@@ -1,0 +1,83 @@
+// The localization stack of Ham et al. 2012 on one robot's sensor streams:
+// slip-aware wheel odometry, the no-slip baseline, stereo visual odometry and
+// their fuzzy fusion. It sees encoder counts, stereo images and the camera's
+// calibration and mounting — never the simulator — so it runs unchanged on
+// logged real data.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <Eigen/Geometry>
+#include <opencv2/core.hpp>
+
+#include "trackbed/estimation/fuzzy_fusion.h"
+#include "trackbed/estimation/pose2.h"
+#include "trackbed/estimation/stereo_visual_odometry.h"
+#include "trackbed/estimation/wheel_odometry.h"
+#include "trackbed/perception/kitti_sequence.h"
+
+namespace trackbed::estimation {
+
+struct LocalizationOptions {
+  /// Wheel odometry (its `estimate_slip` is set per estimator).
+  WheelOdometryOptions wheel;
+  /// Stereo visual odometry.
+  StereoVisualOdometryOptions vo;
+  /// FLL rule file for the fusion weight; empty: the built-in Ham et al. Table 1.
+  std::string fusion_rules_file;
+
+  void Validate() const;
+};
+
+/// What one stereo frame did to the estimates.
+struct LocalizationFrameReport {
+  VoFrameResult vo;
+  bool vo_valid = false;           ///< VO produced a motion (enough inliers).
+  double slip_velocity_mps = 0.0;  ///< Fusion input: larger track |slip| estimate.
+  double features = 0.0;           ///< Fusion input: VO inliers.
+  double w = 1.0;                  ///< Weight of wheel odometry in this step.
+  TrackSlip slip;                  ///< Estimated slip of both tracks.
+};
+
+/// Runs the estimators side by side. Every estimator starts at the robot's
+/// true initial pose (design.md §3), planar ones at its height. Not copyable.
+class LocalizationStack {
+ public:
+  /// `T_body_left`: the left camera (OpenCV axes) in the body frame.
+  /// `calibration` null: no camera, wheel odometry only.
+  LocalizationStack(const LocalizationOptions& options,
+                    const perception::StereoCalibration* calibration,
+                    const Eigen::Isometry3d& T_body_left, const Eigen::Isometry3d& T_world_body0);
+  ~LocalizationStack();
+  LocalizationStack(const LocalizationStack&) = delete;
+  LocalizationStack& operator=(const LocalizationStack&) = delete;
+
+  void AddEncoderSample(double t_s, std::int64_t left_ticks, std::int64_t right_ticks);
+  LocalizationFrameReport AddStereoFrame(double t_s, const cv::Mat& left, const cv::Mat& right);
+
+  /// Current estimates of T_world_body.
+  Eigen::Isometry3d wheel_odometry() const;
+  Eigen::Isometry3d wheel_odometry_noslip() const;
+  Eigen::Isometry3d visual_odometry() const;
+  Eigen::Isometry3d fused() const;
+  const TrackSlip& slip() const { return wheel_.slip(); }
+
+ private:
+  LocalizationOptions options_;
+  Eigen::Isometry3d T_body_left_;
+  double z0_;
+  WheelOdometry wheel_, wheel_noslip_;
+  std::unique_ptr<StereoVisualOdometry> vo_;
+  FuzzyFusionWeight fuzzy_;
+  FusedOdometry fused_;
+  Eigen::Isometry3d T_world_body_vo_;
+  // Wheel pose and time at the last stereo frame: the fusion step's interval.
+  // (Declared after the estimators: initialised from the initial pose.)
+  Pose2 wheel_at_frame_;
+  double t_frame_ = 0.0;
+  bool has_frame_ = false;
+};
+
+}  // namespace trackbed::estimation

@@ -1,0 +1,272 @@
+// Sparse ZNCC block matching along rectified rows (see stereo_matcher.h).
+#include "trackbed/perception/stereo_matcher.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "trackbed/common/option_error.h"
+
+namespace trackbed::perception {
+namespace {
+
+/// Bilinear weights of one fractional offset, shared by every sample of a patch whose
+/// samples lie at integer steps from one sub-pixel point.
+struct Bilinear {
+  float w00, w01, w10, w11;  // (row, col): (y0, x0), (y0, x0+1), (y0+1, x0), (y0+1, x0+1)
+  Bilinear(float fx, float fy)
+      : w00((1.0f - fx) * (1.0f - fy)),
+        w01(fx * (1.0f - fy)),
+        w10((1.0f - fx) * fy),
+        w11(fx * fy) {}
+};
+
+/// Samples `rows` x `cols` values of `image` starting at integer (x0, y0) with the
+/// bilinear weights `b` (offsets in [0, 1) to the right and down) into `out`
+/// (row-major). Reads column x0 + cols and row y0 + rows only through their weight,
+/// clamped to the image, so a zero fraction at the last column is safe.
+void SamplePatch(const cv::Mat& image, int x0, int y0, int cols, int rows, const Bilinear& b,
+                 float* out) {
+  const int last_row = image.rows - 1;
+  const int last_col = image.cols - 1;
+  for (int j = 0; j < rows; ++j) {
+    const unsigned char* r0 = image.ptr<unsigned char>(std::min(y0 + j, last_row));
+    const unsigned char* r1 = image.ptr<unsigned char>(std::min(y0 + j + 1, last_row));
+    float* o = out + static_cast<std::ptrdiff_t>(j) * cols;
+    const int safe_cols = std::min(cols, last_col - x0);  // x + 1 <= last_col
+    int i = 0;
+    for (; i < safe_cols; ++i) {
+      const int x = x0 + i;
+      o[i] = b.w00 * r0[x] + b.w01 * r0[x + 1] + b.w10 * r1[x] + b.w11 * r1[x + 1];
+    }
+    for (; i < cols; ++i) {
+      const int x = std::min(x0 + i, last_col);
+      const int x1 = std::min(x + 1, last_col);
+      o[i] = b.w00 * r0[x] + b.w01 * r0[x1] + b.w10 * r1[x] + b.w11 * r1[x1];
+    }
+  }
+}
+
+void CheckPair(const cv::Mat& left, const cv::Mat& right) {
+  if (left.empty() || right.empty() || left.type() != CV_8UC1 || right.type() != CV_8UC1 ||
+      left.size() != right.size()) {
+    throw std::invalid_argument(
+        "StereoMatcher::Match: needs two non-empty CV_8UC1 images of one size");
+  }
+}
+
+}  // namespace
+
+void StereoMatcherOptions::Validate() const {
+  if (window_px < 3 || window_px % 2 == 0) {
+    throw OptionError("window_px", "must be odd and >= 3 (got " + std::to_string(window_px) + ")");
+  }
+  if (min_disparity_px < 0) {
+    throw OptionError("min_disparity_px",
+                      "must be >= 0 (got " + std::to_string(min_disparity_px) + ")");
+  }
+  if (max_disparity_px < min_disparity_px + 2) {
+    throw OptionError("max_disparity_px", "must be >= min_disparity_px + 2 (got " +
+                                              std::to_string(max_disparity_px) + ")");
+  }
+  option_check::InRange("min_zncc", min_zncc, -1.0, 1.0);
+  option_check::NonNegative("uniqueness_ratio", uniqueness_ratio);
+  option_check::NonNegative("max_left_right_px", max_left_right_px);
+  option_check::NonNegative("min_texture", min_texture);
+}
+
+const char* ToString(StereoMatchStatus status) {
+  switch (status) {
+    case StereoMatchStatus::kMatched:
+      return "matched";
+    case StereoMatchStatus::kOutOfImage:
+      return "out_of_image";
+    case StereoMatchStatus::kLowTexture:
+      return "low_texture";
+    case StereoMatchStatus::kWeak:
+      return "weak";
+    case StereoMatchStatus::kAtRangeLimit:
+      return "at_range_limit";
+    case StereoMatchStatus::kAmbiguous:
+      return "ambiguous";
+    case StereoMatchStatus::kLeftRightMismatch:
+      return "left_right_mismatch";
+  }
+  return "unknown";
+}
+
+StereoMatcher::StereoMatcher(const StereoMatcherOptions& options) : options_(options) {
+  options_.Validate();
+}
+
+StereoMatcher::Search StereoMatcher::SearchRow(const cv::Mat& ref, const cv::Mat& other, float u,
+                                               float v, int sign) {
+  Search result;
+  const int w = options_.window_px;
+  const int h = w / 2;
+  const int n = w * w;
+  const float last_x = static_cast<float>(ref.cols - 1);
+  const float last_y = static_cast<float>(ref.rows - 1);
+  if (!(u - static_cast<float>(h) >= 0.0f && u + static_cast<float>(h) <= last_x &&
+        v - static_cast<float>(h) >= 0.0f && v + static_cast<float>(h) <= last_y)) {
+    return result;  // kOutOfImage
+  }
+  const float ux = std::floor(u), vy = std::floor(v);
+  const int x0 = static_cast<int>(ux) - h;  // first column of the reference window
+  const int y0 = static_cast<int>(vy) - h;
+  const Bilinear b(u - ux, v - vy);
+
+  // Disparities whose window lies inside `other`: columns x0 + sign·d … x0 + sign·d + w−1
+  // (+1 for the bilinear neighbour when the fraction is non-zero).
+  const int extra = (u > ux) ? 1 : 0;
+  int d_lo = options_.min_disparity_px, d_hi = options_.max_disparity_px;
+  if (sign < 0) {
+    d_hi = std::min(d_hi, x0);                                     // x0 − d >= 0
+    d_lo = std::max(d_lo, x0 + w - 1 + extra - (other.cols - 1));  // right end inside
+  } else {
+    d_hi = std::min(d_hi, other.cols - 1 - (x0 + w - 1 + extra));  // right end inside
+    d_lo = std::max(d_lo, -x0);                                    // x0 + d >= 0
+  }
+  const int nd = d_hi - d_lo + 1;
+  if (nd < 3) return result;  // kOutOfImage
+
+  // Reference patch, zero mean; its norm and the texture test.
+  patch_.resize(static_cast<std::size_t>(n));
+  SamplePatch(ref, x0, y0, w, w, b, patch_.data());
+  double mean = 0.0;
+  for (float p : patch_) mean += p;
+  mean /= n;
+  double ss = 0.0;
+  for (float& p : patch_) {
+    p = static_cast<float>(p - mean);
+    ss += static_cast<double>(p) * p;
+  }
+  if (!(std::sqrt(ss / n) >= options_.min_texture) || ss <= 0.0) {
+    result.status = StereoMatchStatus::kLowTexture;
+    return result;
+  }
+  const double patch_norm = std::sqrt(ss);
+
+  // Strip of `other`: w rows, nd − 1 + w columns; candidate k's window starts at strip
+  // column k. For sign < 0 (left → right) column k is disparity d_hi − k, for sign > 0
+  // (right → left) d_lo + k.
+  const int strip_cols = nd - 1 + w;
+  const int strip_x0 = sign < 0 ? x0 - d_hi : x0 + d_lo;
+  strip_.resize(static_cast<std::size_t>(strip_cols) * static_cast<std::size_t>(w));
+  SamplePatch(other, strip_x0, y0, strip_cols, w, b, strip_.data());
+
+  // Cross-correlation with the zero-mean patch: Σ P̃·S = Σ P̃·(S − mean S).
+  scores_.assign(static_cast<std::size_t>(nd), 0.0f);
+  float* acc = scores_.data();
+  for (int j = 0; j < w; ++j) {
+    const float* srow = strip_.data() + static_cast<std::ptrdiff_t>(j) * strip_cols;
+    const float* prow = patch_.data() + static_cast<std::ptrdiff_t>(j) * w;
+    for (int i = 0; i < w; ++i) {
+      const float weight = prow[i];
+      const float* s = srow + i;
+      for (int k = 0; k < nd; ++k) acc[k] += weight * s[k];
+    }
+  }
+  // Window sums of S and S² from column sums, sliding along the strip.
+  col_sum_.assign(static_cast<std::size_t>(strip_cols), 0.0f);
+  col_sum_sq_.assign(static_cast<std::size_t>(strip_cols), 0.0f);
+  for (int j = 0; j < w; ++j) {
+    const float* srow = strip_.data() + static_cast<std::ptrdiff_t>(j) * strip_cols;
+    for (int t = 0; t < strip_cols; ++t) {
+      col_sum_[static_cast<std::size_t>(t)] += srow[t];
+      col_sum_sq_[static_cast<std::size_t>(t)] += srow[t] * srow[t];
+    }
+  }
+  double sum = 0.0, sum_sq = 0.0;
+  for (int t = 0; t < w; ++t) {
+    sum += col_sum_[static_cast<std::size_t>(t)];
+    sum_sq += col_sum_sq_[static_cast<std::size_t>(t)];
+  }
+  for (int k = 0; k < nd; ++k) {
+    if (k > 0) {
+      sum +=
+          col_sum_[static_cast<std::size_t>(k + w - 1)] - col_sum_[static_cast<std::size_t>(k - 1)];
+      sum_sq += col_sum_sq_[static_cast<std::size_t>(k + w - 1)] -
+                col_sum_sq_[static_cast<std::size_t>(k - 1)];
+    }
+    const double var = sum_sq - sum * sum / n;  // n × variance of the candidate window
+    acc[k] = var > 1e-6 ? static_cast<float>(acc[k] / (patch_norm * std::sqrt(var))) : -1.0f;
+  }
+
+  // Best candidate; then the best other local maximum (not the peak's neighbours).
+  int best = 0;
+  for (int k = 1; k < nd; ++k) {
+    if (acc[k] > acc[best]) best = k;
+  }
+  result.zncc = acc[best];
+  if (!(acc[best] >= options_.min_zncc)) {
+    result.status = StereoMatchStatus::kWeak;
+    return result;
+  }
+  if (best == 0 || best == nd - 1) {
+    result.status = StereoMatchStatus::kAtRangeLimit;
+    return result;
+  }
+  float second = -1.0f;
+  for (int k = 0; k < nd; ++k) {
+    if (k >= best - 1 && k <= best + 1) continue;
+    const bool left_ok = k == 0 || acc[k] >= acc[k - 1];
+    const bool right_ok = k == nd - 1 || acc[k] >= acc[k + 1];
+    if (left_ok && right_ok) second = std::max(second, acc[k]);
+  }
+  const double cost_best = 1.0 - acc[best];
+  const double cost_second = 1.0 - second;
+  if (cost_second < (1.0 + options_.uniqueness_ratio) * cost_best) {
+    result.status = StereoMatchStatus::kAmbiguous;
+    return result;
+  }
+  // Parabola through the scores at best−1, best, best+1.
+  const float a = acc[best - 1], c = acc[best + 1], peak = acc[best];
+  const float curvature = a - 2.0f * peak + c;
+  const float offset =
+      curvature < 0.0f ? std::clamp(0.5f * (a - c) / curvature, -0.5f, 0.5f) : 0.0f;
+  const float k_sub = static_cast<float>(best) + offset;
+  result.disparity = sign < 0 ? static_cast<float>(d_hi) - k_sub : static_cast<float>(d_lo) + k_sub;
+  result.status = StereoMatchStatus::kMatched;
+  return result;
+}
+
+StereoMatch StereoMatcher::MatchOne(const cv::Mat& left, const cv::Mat& right,
+                                    const cv::Point2f& point) {
+  StereoMatch match;
+  const Search forward = SearchRow(left, right, point.x, point.y, -1);
+  match.zncc = forward.zncc;
+  match.status = forward.status;
+  if (forward.status != StereoMatchStatus::kMatched) return match;
+  match.disparity_px = forward.disparity;
+  if (options_.max_left_right_px > 0.0) {
+    const Search backward = SearchRow(right, left, point.x - forward.disparity, point.y, +1);
+    if (backward.status != StereoMatchStatus::kMatched ||
+        !(std::abs(backward.disparity - forward.disparity) <= options_.max_left_right_px)) {
+      match.status = StereoMatchStatus::kLeftRightMismatch;
+    }
+  }
+  return match;
+}
+
+int StereoMatcher::Match(const cv::Mat& left, const cv::Mat& right,
+                         const std::vector<cv::Point2f>& points,
+                         std::vector<StereoMatch>* matches) {
+  CheckPair(left, right);
+  matches->resize(points.size());
+  int valid = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    (*matches)[i] = MatchOne(left, right, points[i]);
+    if ((*matches)[i].valid()) ++valid;
+  }
+  return valid;
+}
+
+StereoMatch StereoMatcher::Match(const cv::Mat& left, const cv::Mat& right,
+                                 const cv::Point2f& point) {
+  CheckPair(left, right);
+  return MatchOne(left, right, point);
+}
+
+}  // namespace trackbed::perception

@@ -1,0 +1,126 @@
+// Wheel odometry with slip (Ham et al. eqs. 1–6) and the fuzzy fusion weight (Table 1).
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "trackbed/estimation/fuzzy_fusion.h"
+#include "trackbed/estimation/wheel_odometry.h"
+
+namespace trackbed::estimation {
+namespace {
+
+// Ticks of a sprocket turning at `omega` rad/s for `t` s (4096 per rev).
+std::int64_t Ticks(double omega, double t) {
+  return static_cast<std::int64_t>(std::floor(omega * t / (2 * M_PI) * 4096));
+}
+
+TEST(WheelOdometryTest, StraightLineWithoutSlipIsPlainOdometry) {
+  WheelOdometry odo({}, {});
+  for (int k = 0; k <= 1000; ++k)
+    odo.AddEncoderSample(0.01 * k, Ticks(4.0, 0.01 * k), Ticks(4.0, 0.01 * k));
+  EXPECT_NEAR(odo.pose().x, 4.0, 1e-3);  // 0.4 m/s for 10 s
+  EXPECT_NEAR(odo.pose().y, 0.0, 1e-9);
+  EXPECT_NEAR(odo.forward_mps(), 0.4, 1e-2);
+}
+
+TEST(WheelOdometryTest, TurnInPlaceUsesTheEffectiveGauge) {
+  WheelOdometryOptions o;
+  o.icr_expansion = 1.25;
+  WheelOdometry odo(o, {});
+  for (int k = 0; k <= 500; ++k)
+    odo.AddEncoderSample(0.01 * k, Ticks(-2.0, 0.01 * k), Ticks(2.0, 0.01 * k));
+  // Track speeds ±0.2 m/s, B_eff = 0.625 m: 0.64 rad/s for 5 s.
+  EXPECT_NEAR(odo.pose().yaw, WrapAngle(3.2), 2e-3);
+}
+
+TEST(WheelOdometryTest, MeasuredVelocityRevealsSlipAndCorrectsTheOdometry) {
+  // The tracks turn at 0.4 m/s but the robot makes 0.36 m/s: slip −0.04 m/s on both.
+  WheelOdometry with_slip({}, {});
+  WheelOdometryOptions plain_options;
+  plain_options.estimate_slip = false;
+  WheelOdometry plain(plain_options, {});
+  for (int k = 0; k <= 1000; ++k) {
+    const double t = 0.01 * k;
+    for (WheelOdometry* o : {&with_slip, &plain})
+      o->AddEncoderSample(t, Ticks(4.0, t), Ticks(4.0, t));
+    if (k > 0 && k % 10 == 0) {
+      with_slip.AddMeasuredVelocity(t - 0.1, t, 0.36, 0.0);
+      plain.AddMeasuredVelocity(t - 0.1, t, 0.36, 0.0);
+    }
+  }
+  EXPECT_NEAR(with_slip.slip().left_mps, -0.04, 2e-3);
+  EXPECT_NEAR(with_slip.slip().right_mps, -0.04, 2e-3);
+  EXPECT_NEAR(with_slip.pose().x, 3.6, 0.02);  // corrected (the first 0.1 s had no estimate)
+  EXPECT_NEAR(plain.pose().x, 4.0, 1e-3);      // the baseline cannot see slip
+  EXPECT_EQ(plain.slip().max_abs_mps(), 0.0);
+}
+
+TEST(WheelOdometryTest, HeldSlipDecaysWithoutMeasurements) {
+  WheelOdometry odo({}, {});
+  for (int k = 0; k <= 100; ++k)
+    odo.AddEncoderSample(0.01 * k, Ticks(4.0, 0.01 * k), Ticks(4.0, 0.01 * k));
+  odo.AddMeasuredVelocity(0.9, 1.0, 0.30, 0.0);
+  const double held = odo.slip().left_mps;
+  EXPECT_NEAR(held, -0.10, 2e-3);
+  for (int k = 101; k <= 400; ++k)
+    odo.AddEncoderSample(0.01 * k, Ticks(4.0, 0.01 * k), Ticks(4.0, 0.01 * k));
+  EXPECT_NEAR(odo.slip().left_mps, held * std::exp(-3.0 / 3.0), 1e-3);  // 3 s at τ = 3 s
+}
+
+TEST(FuzzyFusionTest, TableOneCornersAndMonotonicity) {
+  FuzzyFusionWeight fuzzy;
+  // Few features and little slip: trust the wheels (excellent); many features and
+  // much slip: trust vision (poor).
+  const double few_small = fuzzy.Weight(0.0, 0.0);
+  const double many_large = fuzzy.Weight(0.3, 1000.0);
+  EXPECT_GT(few_small, 0.8);
+  EXPECT_LT(many_large, 0.2);
+  // Table 1's other corners: very less features + very large slip = fair;
+  // very plenty + very small = fair.
+  EXPECT_NEAR(fuzzy.Weight(0.3, 0.0), fuzzy.Weight(0.0, 1000.0), 1e-6);
+  EXPECT_GT(fuzzy.Weight(0.3, 0.0), many_large);
+  EXPECT_LT(fuzzy.Weight(0.3, 0.0), few_small);
+  // More slip → lower w; more features → lower w. A Mamdani centroid is not
+  // strictly monotone where one clipped set moves its own centroid (by < 0.01
+  // here), so each sweep may rise by that much but must fall overall.
+  for (double features : {0.0, 30.0, 100.0, 500.0}) {
+    double last = 2.0;
+    for (double slip = 0.0; slip <= 0.3; slip += 0.01) {
+      const double w = fuzzy.Weight(slip, features);
+      EXPECT_LE(w, last + 0.01) << "slip " << slip << " features " << features;
+      last = w;
+    }
+    EXPECT_GT(fuzzy.Weight(0.0, features) - fuzzy.Weight(0.3, features), 0.1) << features;
+  }
+  for (double slip : {0.0, 0.03, 0.08, 0.2}) {
+    double last = 2.0;
+    for (double features = 0.0; features <= 400.0; features += 5.0) {
+      const double w = fuzzy.Weight(slip, features);
+      EXPECT_LE(w, last + 0.01) << "slip " << slip << " features " << features;
+      last = w;
+    }
+    EXPECT_GT(fuzzy.Weight(slip, 0.0) - fuzzy.Weight(slip, 400.0), 0.1) << slip;
+  }
+}
+
+TEST(FuzzyFusionTest, BadRuleFilesAreRejectedWithTheirName) {
+  EXPECT_THROW(FuzzyFusionWeight("Engine: x\nInputVariable: a\n  range: 0 1\n", "mine.fll"),
+               std::invalid_argument);
+  try {
+    FuzzyFusionWeight::FromFile("/nonexistent/rules.fll");
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/rules.fll"), std::string::npos);
+  }
+}
+
+TEST(FusedOdometryTest, BlendsIncrementsAndFallsBackToWheelsWithoutVision) {
+  FusedOdometry fused({});
+  fused.Add({0.10, 0.0, 0.0}, Pose2{0.06, 0.0, 0.0}, 0.25);  // 0.25·0.10 + 0.75·0.06
+  EXPECT_NEAR(fused.pose().x, 0.07, 1e-12);
+  fused.Add({0.10, 0.0, 0.0}, std::nullopt, 0.25);
+  EXPECT_NEAR(fused.pose().x, 0.17, 1e-12);
+}
+
+}  // namespace
+}  // namespace trackbed::estimation
