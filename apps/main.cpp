@@ -14,6 +14,7 @@
 #include "eval_command.h"
 #include "trackbed/scenes/run_folder.h"
 #include "trackbed/scenes/scenario_yaml.h"
+#include "vo_command.h"
 
 namespace {
 
@@ -59,6 +60,7 @@ int main(int argc, char** argv) {
   run->add_option("--set", sets, "Override a scenario key: --set dotted.key=value (repeatable)");
 
   trackbed::apps::AddEvalCommand(app);
+  trackbed::apps::AddVoCommand(app);
 
   try {
     app.parse(argc, argv);

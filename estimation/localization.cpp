@@ -23,6 +23,7 @@ FuzzyFusionWeight MakeFuzzy(const std::string& file) {
 void LocalizationOptions::Validate() const {
   option_check::Nested("wheel", wheel);
   option_check::Nested("vo", vo);
+  if (min_inliers_for_slip < 0) throw OptionError("min_inliers_for_slip", "must be >= 0");
 }
 
 LocalizationStack::LocalizationStack(const LocalizationOptions& options,
@@ -63,7 +64,7 @@ LocalizationFrameReport LocalizationStack::AddStereoFrame(double t_s, const cv::
         T_body_left_ * report.vo.T_prev_curr * T_body_left_.inverse();
     T_world_body_vo_ = T_world_body_vo_ * T_body_motion;
     vo_increment = PlanarPose(T_body_motion);
-    if (has_frame_ && t_s > t_frame_) {
+    if (has_frame_ && t_s > t_frame_ && report.vo.inliers >= options_.min_inliers_for_slip) {
       // Slip from the independent (visual) velocity over the frame interval.
       const double dt = t_s - t_frame_;
       wheel_.AddMeasuredVelocity(t_frame_, t_s, vo_increment->x / dt, vo_increment->yaw / dt);

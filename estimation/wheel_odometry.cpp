@@ -15,6 +15,8 @@ void WheelOdometryOptions::Validate() const {
   if (ticks_per_rev < 1) throw OptionError("ticks_per_rev", "must be >= 1");
   option_check::Finite("icr_offset_m", icr_offset_m);
   option_check::Positive("slip_decay_time_s", slip_decay_time_s);
+  option_check::NonNegative("slip_filter_time_s", slip_filter_time_s);
+  option_check::NonNegative("slip_hold_s", slip_hold_s);
 }
 
 double TrackSlip::max_abs_mps() const { return std::max(std::abs(left_mps), std::abs(right_mps)); }
@@ -47,7 +49,7 @@ void WheelOdometry::AddEncoderSample(double t_s, std::int64_t left_ticks,
   const double r = options_.sprocket_radius_m;
   const double gauge = options_.icr_expansion * options_.track_gauge_m;  // B_eff
   const double w_l = (left - last_left_) / dt, w_r = (right - last_right_) / dt;
-  if (options_.estimate_slip) {
+  if (options_.estimate_slip && t_s - last_measurement_t_ > options_.slip_hold_s) {
     // Held slip decays toward zero while no new measurement arrives.
     const double decay = std::exp(-dt / options_.slip_decay_time_s);
     slip_.left_mps *= decay;
@@ -100,9 +102,14 @@ void WheelOdometry::AddMeasuredVelocity(double t0_s, double t1_s, double forward
   const double dt = t1_s - t0_s, r = options_.sprocket_radius_m;
   const double gauge = options_.icr_expansion * options_.track_gauge_m;
   // Ham et al. eqs. 1–2 with the body-frame forward speed cosθ·v_x + sinθ·v_y
-  // measured by visual odometry.
-  slip_.left_mps = forward_mps - gauge * yaw_rate_radps / 2.0 - r * (l1 - l0) / dt;
-  slip_.right_mps = forward_mps + gauge * yaw_rate_radps / 2.0 - r * (r1 - r0) / dt;
+  // measured by visual odometry, low-pass filtered over the measurement interval.
+  const double left = forward_mps - gauge * yaw_rate_radps / 2.0 - r * (l1 - l0) / dt;
+  const double right = forward_mps + gauge * yaw_rate_radps / 2.0 - r * (r1 - r0) / dt;
+  const double gain =
+      options_.slip_filter_time_s > 0.0 ? 1.0 - std::exp(-dt / options_.slip_filter_time_s) : 1.0;
+  slip_.left_mps += gain * (left - slip_.left_mps);
+  slip_.right_mps += gain * (right - slip_.right_mps);
+  last_measurement_t_ = t1_s;
 }
 
 }  // namespace trackbed::estimation

@@ -6,6 +6,9 @@
 #include <stdexcept>
 #include <string>
 
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+
 #include "trackbed/common/option_error.h"
 
 namespace trackbed::perception {
@@ -74,6 +77,10 @@ void StereoMatcherOptions::Validate() const {
   option_check::NonNegative("uniqueness_ratio", uniqueness_ratio);
   option_check::NonNegative("max_left_right_px", max_left_right_px);
   option_check::NonNegative("min_texture", min_texture);
+  if (refinement_iterations < 0) {
+    throw OptionError("refinement_iterations",
+                      "must be >= 0 (got " + std::to_string(refinement_iterations) + ")");
+  }
 }
 
 const char* ToString(StereoMatchStatus status) {
@@ -204,10 +211,6 @@ StereoMatcher::Search StereoMatcher::SearchRow(const cv::Mat& ref, const cv::Mat
     result.status = StereoMatchStatus::kWeak;
     return result;
   }
-  if (best == 0 || best == nd - 1) {
-    result.status = StereoMatchStatus::kAtRangeLimit;
-    return result;
-  }
   float second = -1.0f;
   for (int k = 0; k < nd; ++k) {
     if (k >= best - 1 && k <= best + 1) continue;
@@ -221,6 +224,10 @@ StereoMatcher::Search StereoMatcher::SearchRow(const cv::Mat& ref, const cv::Mat
     result.status = StereoMatchStatus::kAmbiguous;
     return result;
   }
+  if (best == 0 || best == nd - 1) {
+    result.status = StereoMatchStatus::kAtRangeLimit;
+    return result;
+  }
   // Parabola through the scores at best−1, best, best+1.
   const float a = acc[best - 1], c = acc[best + 1], peak = acc[best];
   const float curvature = a - 2.0f * peak + c;
@@ -229,7 +236,70 @@ StereoMatcher::Search StereoMatcher::SearchRow(const cv::Mat& ref, const cv::Mat
   const float k_sub = static_cast<float>(best) + offset;
   result.disparity = sign < 0 ? static_cast<float>(d_hi) - k_sub : static_cast<float>(d_lo) + k_sub;
   result.status = StereoMatchStatus::kMatched;
+  if (options_.refinement_iterations > 0) {
+    result.disparity = RefineDisparity(other, u, v, sign, result.disparity);
+  }
   return result;
+}
+
+float StereoMatcher::RefineDisparity(const cv::Mat& other, float u, float v, int sign, float d0) {
+  // Gauss–Newton on e_i = a·O(u + sign·d + i, v + j) + b − P_i over (d, a, b), with P the
+  // zero-mean reference patch in patch_ and O the other image sampled bilinearly; the
+  // gradient O_x by central differences of the samples. Lucas & Kanade (1981) in one
+  // dimension, with gain and offset as in ZNCC.
+  const int w = options_.window_px;
+  const int h = w / 2;
+  const int n = w * w;
+  const int cols = w + 2;  // one extra column each side for the gradient
+  double d = d0, a = 1.0, b = 0.0;
+  grad_strip_.resize(static_cast<std::size_t>(cols) * static_cast<std::size_t>(w));
+  for (int iteration = 0; iteration < options_.refinement_iterations; ++iteration) {
+    const double x_first = u + sign * d - h - 1;  // sample column of index 0
+    const double y_first = static_cast<double>(v) - h;
+    const double fx = std::floor(x_first), fy = std::floor(y_first);
+    const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
+    if (x0 < 0 || y0 < 0 || x0 + cols > other.cols - 1 || y0 + w > other.rows - 1) return d0;
+    SamplePatch(other, x0, y0, cols, w,
+                Bilinear(static_cast<float>(x_first - fx), static_cast<float>(y_first - fy)),
+                grad_strip_.data());
+    if (iteration == 0) {
+      // Gain and offset start at the least-squares fit of the values.
+      double so = 0.0, soo = 0.0, sop = 0.0;
+      for (int j = 0; j < w; ++j) {
+        for (int i = 0; i < w; ++i) {
+          const double o = grad_strip_[static_cast<std::size_t>(j * cols + i + 1)];
+          so += o;
+          soo += o * o;
+          sop += o * patch_[static_cast<std::size_t>(j * w + i)];
+        }
+      }
+      const double var = soo - so * so / n;
+      if (!(var > 1e-6)) return d0;
+      a = sop / var;  // Σ P = 0
+      b = -a * so / n;
+    }
+    Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d g = Eigen::Vector3d::Zero();
+    for (int j = 0; j < w; ++j) {
+      const float* row = grad_strip_.data() + static_cast<std::ptrdiff_t>(j) * cols;
+      for (int i = 0; i < w; ++i) {
+        const double o = row[i + 1];
+        const double ox = 0.5 * (row[i + 2] - row[i]);
+        const double e = a * o + b - patch_[static_cast<std::size_t>(j * w + i)];
+        const Eigen::Vector3d J(a * sign * ox, o, 1.0);
+        H.noalias() += J * J.transpose();
+        g.noalias() += J * e;
+      }
+    }
+    const Eigen::Vector3d step = H.ldlt().solve(-g);
+    if (!step.allFinite()) return d0;
+    d += step(0);
+    a += step(1);
+    b += step(2);
+    if (!(std::abs(d - d0) <= 1.0)) return d0;  // wandered off the peak: keep the parabola
+    if (std::abs(step(0)) < 1e-3) break;
+  }
+  return static_cast<float>(d);
 }
 
 StereoMatch StereoMatcher::MatchOne(const cv::Mat& left, const cv::Mat& right,

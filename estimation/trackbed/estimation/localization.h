@@ -27,6 +27,9 @@ struct LocalizationOptions {
   StereoVisualOdometryOptions vo;
   /// FLL rule file for the fusion weight; empty: the built-in Ham et al. Table 1.
   std::string fusion_rules_file;
+  /// Inliers a VO frame needs before its velocity updates the slip estimate (design.md
+  /// §1.1 "whenever VO is valid (enough inliers)"), >= the VO's own minimum.
+  int min_inliers_for_slip = 30;
 
   void Validate() const;
 };

@@ -38,8 +38,15 @@ struct WheelOdometryOptions {
   double icr_offset_m = 0.0;
   /// Estimate slip from measured velocities (Ham et al.); false: the no-slip baseline.
   bool estimate_slip = true;
-  /// Time constant with which a held slip estimate decays toward zero [s], > 0.
+  /// Time constant with which a held slip estimate decays toward zero [s], > 0, once
+  /// no measurement has come for `slip_hold_s`.
   double slip_decay_time_s = 3.0;
+  /// How long a slip measurement stays fresh [s] (a few camera periods), >= 0.
+  double slip_hold_s = 0.3;
+  /// Time constant of the low-pass filter on slip measurements [s], >= 0 (0: take each
+  /// measurement whole). One visual-odometry interval is short and noisy; slip changes
+  /// with the ground and the manoeuvre, over seconds.
+  double slip_filter_time_s = 0.5;
 
   void Validate() const;
 };
@@ -83,6 +90,7 @@ class WheelOdometry {
   Pose2 pose_;
   TrackSlip slip_;
   double forward_mps_ = 0.0, yaw_rate_radps_ = 0.0;
+  double last_measurement_t_ = -1e300;
   bool has_sample_ = false;
   double last_t_ = 0.0, last_left_ = 0.0, last_right_ = 0.0;
   // A short history of (t, left, right) sprocket angles for AddMeasuredVelocity.

@@ -21,15 +21,16 @@ namespace trackbed::perception {
 
 /// Options of the Lucas–Kanade tracker. Sizes in pixels of the full-resolution image.
 struct FeatureTrackerOptions {
-  /// Side of the square LK integration window [px], odd, >= 5.
-  int window_px = 21;
+  /// Side of the square LK integration window [px], odd, >= 5. (OpenCV's default is
+  /// 21; 15 tracks as well on KITTI and 640×480 images at half the cost.)
+  int window_px = 15;
   /// Pyramid levels above the full-resolution image (OpenCV's maxLevel), in [0, 8]. Each
   /// level doubles the capture range (about window_px/2 · 2^levels px).
   int pyramid_levels = 3;
   /// Gauss–Newton iterations per pyramid level, >= 1.
-  int max_iterations = 30;
+  int max_iterations = 20;
   /// Stop iterating when the update is smaller than this [px], > 0.
-  double epsilon_px = 0.01;
+  double epsilon_px = 0.03;
   /// Minimum eigenvalue of the window's spatial gradient matrix divided by the window
   /// area (OpenCV's minEigThreshold, image scaled to [0, 1]), >= 0: flatter windows are
   /// lost rather than tracked.

@@ -6,8 +6,9 @@
 // to the gain and offset differences of two cameras) of a window_px × window_px patch
 // over the integer disparities [min_disparity_px, max_disparity_px]. Patches are
 // sampled bilinearly at the point's sub-pixel position, so the integer disparity grid
-// is exact for sub-pixel points. The peak is refined by a parabola through the scores
-// at d−1, d, d+1. A match is accepted when
+// is exact for sub-pixel points. The peak is located by a parabola through the scores
+// at d−1, d, d+1 and then refined by a few Gauss–Newton steps of 1-D Lucas–Kanade with
+// gain and offset (the photometric model ZNCC is invariant to). A match is accepted when
 //   - the left patch has texture (standard deviation >= min_texture, gray levels),
 //   - the peak score is >= min_zncc and the peak is not at either end of the range,
 //   - it is unique: the best other local maximum has a cost (1 − ZNCC) at least
@@ -42,6 +43,10 @@ struct StereoMatcherOptions {
   double max_left_right_px = 1.0;
   /// Minimum standard deviation of the left patch [gray levels of 0..255], >= 0.
   double min_texture = 2.0;
+  /// Gauss–Newton iterations of the sub-pixel refinement after the parabola (1-D
+  /// Lucas–Kanade with gain and offset), >= 0; 0 keeps the parabola's estimate, which is
+  /// biased towards integers ("pixel locking", up to a few hundredths of a pixel).
+  int refinement_iterations = 5;
 
   /// Throws OptionError naming the first invalid field.
   void Validate() const;
@@ -99,10 +104,12 @@ class StereoMatcher {
   /// Searches `other` for the patch of `ref` at (u, v) at columns u + sign·d.
   Search SearchRow(const cv::Mat& ref, const cv::Mat& other, float u, float v, int sign);
   StereoMatch MatchOne(const cv::Mat& left, const cv::Mat& right, const cv::Point2f& point);
+  /// Sub-pixel refinement of disparity d0 of the patch in patch_ (zero mean).
+  float RefineDisparity(const cv::Mat& other, float u, float v, int sign, float d0);
 
   StereoMatcherOptions options_;
   // Scratch, reused between calls.
-  std::vector<float> patch_, strip_, scores_, col_sum_, col_sum_sq_;
+  std::vector<float> patch_, strip_, scores_, col_sum_, col_sum_sq_, grad_strip_;
 };
 
 }  // namespace trackbed::perception

@@ -1,0 +1,533 @@
+// Stereo visual odometry: the camera model and the reprojection Jacobian (against
+// numeric differences), RANSAC with Horn on correspondences with 50 % outliers, the
+// reprojection refinement from a perturbed start, the whole pipeline on a synthetic
+// rendered scene (accuracy, a blank frame and recovery, determinism), and on the real
+// KITTI 06 frames (end-point error, ATE, speed).
+#include "trackbed/estimation/stereo_visual_odometry.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "trackbed/common/option_error.h"
+#include "trackbed/estimation/absolute_orientation.h"
+#include "trackbed/perception/kitti_sequence.h"
+
+namespace trackbed::estimation {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDegPerRad = 180.0 / kPi;
+
+StereoCamera TestCamera() {
+  StereoCamera c;
+  c.fx = 500.0;
+  c.fy = 505.0;
+  c.cx = 319.5;
+  c.cy = 239.5;
+  c.baseline_m = 0.12;
+  return c;
+}
+
+Eigen::Isometry3d Pose(const Eigen::Vector3d& axis_angle, const Eigen::Vector3d& t) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  const double angle = axis_angle.norm();
+  if (angle > 0.0) T.linear() = Eigen::AngleAxisd(angle, axis_angle / angle).toRotationMatrix();
+  T.translation() = t;
+  return T;
+}
+
+double RotationErrorDeg(const Eigen::Isometry3d& A, const Eigen::Isometry3d& B) {
+  return Eigen::AngleAxisd(A.linear().transpose() * B.linear()).angle() * kDegPerRad;
+}
+
+double TranslationError(const Eigen::Isometry3d& A, const Eigen::Isometry3d& B) {
+  return (A.translation() - B.translation()).norm();
+}
+
+/// Points in front of the camera, visible in both images, 2–40 m away.
+std::vector<Eigen::Vector3d> RandomPoints(int n, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(40.0, 600.0), v(20.0, 460.0), z(2.0, 40.0);
+  const StereoCamera c = TestCamera();
+  std::vector<Eigen::Vector3d> points;
+  for (int i = 0; i < n; ++i) {
+    const double Z = z(rng);
+    points.emplace_back((u(rng) - c.cx) * Z / c.fx, (v(rng) - c.cy) * Z / c.fy, Z);
+  }
+  return points;
+}
+
+// ---------------------------------------------------------------------------------------
+// Camera model and Jacobian.
+
+TEST(StereoCameraTest, TriangulateInvertsProject) {
+  const StereoCamera c = TestCamera();
+  std::mt19937_64 rng(1);
+  for (const Eigen::Vector3d& p : RandomPoints(50, rng)) {
+    const Eigen::Vector3d z = c.Project(p);
+    EXPECT_NEAR(z.x() - z.z(), c.fx * c.baseline_m / p.z(), 1e-9);  // disparity = fx·b/Z
+    const Eigen::Vector3d back = c.Triangulate(z.x(), z.y(), z.x() - z.z());
+    EXPECT_LT((back - p).norm(), 1e-9 * p.norm());
+  }
+}
+
+TEST(StereoCameraTest, FromCalibrationReadsKittiMatrices) {
+  const perception::StereoCalibration k =
+      perception::StereoCalibration::FromIntrinsics(707.0912, 707.0912, 601.8873, 183.1104, 0.537);
+  const StereoCamera c = StereoCamera::FromCalibration(k);
+  EXPECT_DOUBLE_EQ(c.fx, 707.0912);
+  EXPECT_DOUBLE_EQ(c.cx, 601.8873);
+  EXPECT_DOUBLE_EQ(c.cy, 183.1104);
+  EXPECT_NEAR(c.baseline_m, 0.537, 1e-12);
+  EXPECT_THROW(StereoCamera::FromCalibration(perception::StereoCalibration{}),
+               std::invalid_argument);
+}
+
+TEST(StereoReprojectionTest, AnalyticJacobianMatchesCentralDifferences) {
+  const StereoCamera c = TestCamera();
+  std::mt19937_64 rng(2);
+  std::normal_distribution<double> n(0.0, 1.0);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Eigen::Isometry3d T = Pose(0.05 * Eigen::Vector3d(n(rng), n(rng), n(rng)),
+                                     Eigen::Vector3d(n(rng), n(rng), n(rng)) * 0.3);
+    MotionCorrespondence m;
+    m.p_prev = RandomPoints(1, rng)[0];
+    m.z_curr = c.Project(T * m.p_prev) + Eigen::Vector3d(n(rng), n(rng), n(rng));
+    Eigen::Matrix<double, 3, 6> J;
+    StereoReprojectionResidual(c, T, m, &J);
+    Eigen::Matrix<double, 3, 6> numeric;
+    const double h = 1e-6;
+    for (int k = 0; k < 6; ++k) {
+      MotionIncrement d = MotionIncrement::Zero();
+      d(k) = h;
+      const Eigen::Vector3d plus = StereoReprojectionResidual(c, ApplyIncrement(d, T), m);
+      d(k) = -h;
+      const Eigen::Vector3d minus = StereoReprojectionResidual(c, ApplyIncrement(d, T), m);
+      numeric.col(k) = (plus - minus) / (2.0 * h);
+    }
+    EXPECT_LT((J - numeric).norm(), 1e-5 * (1.0 + J.norm())) << "trial " << trial << "\n"
+                                                             << J << "\n"
+                                                             << numeric;
+  }
+}
+
+TEST(StereoReprojectionTest, IncrementRoundTrips) {
+  const Eigen::Isometry3d T = Pose({0.1, -0.2, 0.3}, {1.0, 2.0, 3.0});
+  const Eigen::Isometry3d same = ApplyIncrement(MotionIncrement::Zero(), T);
+  EXPECT_TRUE(same.matrix().isApprox(T.matrix(), 1e-15));
+  MotionIncrement d;
+  d << 0.01, -0.02, 0.03, 0.004, -0.005, 0.006;
+  const Eigen::Isometry3d forth = ApplyIncrement(d, T);
+  // Undoing: Exp(−φ) applied to (R', t' − ρ).
+  Eigen::Isometry3d shifted = forth;
+  shifted.translation() -= d.head<3>();
+  MotionIncrement rotate_back = MotionIncrement::Zero();
+  rotate_back.tail<3>() = -d.tail<3>();
+  EXPECT_TRUE(ApplyIncrement(rotate_back, shifted).matrix().isApprox(T.matrix(), 1e-12));
+  EXPECT_NEAR(RotationErrorDeg(forth, T), d.tail<3>().norm() * kDegPerRad, 1e-9);
+}
+
+// ---------------------------------------------------------------------------------------
+// RANSAC and refinement on exact correspondences.
+
+struct Synthetic {
+  std::vector<MotionCorrespondence> correspondences;
+  std::vector<bool> inlier;
+};
+
+/// `n` correspondences under T_curr_prev; a fraction `outliers` of them paired with an
+/// unrelated point (both its 3-D point and its observation).
+Synthetic MakeCorrespondences(const Eigen::Isometry3d& T_curr_prev, int n, double outliers,
+                              std::mt19937_64& rng) {
+  const StereoCamera c = TestCamera();
+  Synthetic s;
+  const std::vector<Eigen::Vector3d> prev = RandomPoints(n, rng);
+  std::uniform_real_distribution<double> coin(0.0, 1.0);
+  for (int i = 0; i < n; ++i) {
+    MotionCorrespondence m;
+    m.p_prev = prev[static_cast<std::size_t>(i)];
+    const bool inlier = coin(rng) >= outliers;
+    m.p_curr = inlier ? T_curr_prev * m.p_prev : RandomPoints(1, rng)[0];
+    m.z_curr = c.Project(m.p_curr);
+    s.correspondences.push_back(m);
+    s.inlier.push_back(inlier);
+  }
+  return s;
+}
+
+TEST(MotionRansacTest, RecoversSixDofMotionWithHalfOutliers) {
+  std::mt19937_64 data_rng(3);
+  const Eigen::Isometry3d truth = Pose({0.02, -0.08, 0.01}, {0.15, -0.04, 0.9});
+  const Synthetic s = MakeCorrespondences(truth, 200, 0.5, data_rng);
+  int true_inliers = 0;
+  for (bool b : s.inlier) true_inliers += b ? 1 : 0;
+  ASSERT_GT(true_inliers, 80);
+  ASSERT_LT(true_inliers, 120);
+
+  std::mt19937_64 rng(42);
+  MotionRansacResult result;
+  EstimateMotionRansac(s.correspondences, TestCamera(), MotionRansacOptions{}, rng, &result);
+  ASSERT_TRUE(result.success);
+  EXPECT_LT(RotationErrorDeg(result.T_curr_prev, truth), 0.1);
+  EXPECT_LT(TranslationError(result.T_curr_prev, truth), 1e-3);
+  EXPECT_EQ(result.inliers, true_inliers);
+  for (std::size_t i = 0; i < s.inlier.size(); ++i) {
+    EXPECT_EQ(result.inlier_mask[i] != 0, s.inlier[i]) << "correspondence " << i;
+  }
+  EXPECT_LT(result.iterations, MotionRansacOptions{}.max_iterations);  // stopped early
+
+  // The same seed gives the same answer.
+  std::mt19937_64 again(42);
+  MotionRansacResult second;
+  EstimateMotionRansac(s.correspondences, TestCamera(), MotionRansacOptions{}, again, &second);
+  EXPECT_EQ(second.iterations, result.iterations);
+  EXPECT_TRUE(second.T_curr_prev.matrix() == result.T_curr_prev.matrix());
+}
+
+TEST(MotionRansacTest, TooFewOrDegenerateCorrespondencesFail) {
+  std::mt19937_64 rng(5);
+  MotionRansacResult result;
+  std::vector<MotionCorrespondence> two(2);
+  EstimateMotionRansac(two, TestCamera(), MotionRansacOptions{}, rng, &result);
+  EXPECT_FALSE(result.success);
+  EXPECT_EQ(result.inliers, 0);
+  // All points on one line: every sample is degenerate for Horn.
+  std::vector<MotionCorrespondence> collinear;
+  for (int i = 0; i < 10; ++i) {
+    MotionCorrespondence m;
+    m.p_prev = Eigen::Vector3d(0.1 * i, 0.0, 5.0 + i);
+    m.p_curr = m.p_prev;
+    m.z_curr = TestCamera().Project(m.p_curr);
+    collinear.push_back(m);
+  }
+  EstimateMotionRansac(collinear, TestCamera(), MotionRansacOptions{}, rng, &result);
+  EXPECT_FALSE(result.success);
+  EXPECT_TRUE(result.T_curr_prev.matrix().isIdentity());
+}
+
+TEST(MotionRefinementTest, ConvergesToTheTrueMotionFromAPerturbedStart) {
+  std::mt19937_64 rng(6);
+  const Eigen::Isometry3d truth = Pose({-0.03, 0.05, 0.02}, {0.2, 0.05, 1.1});
+  const Synthetic s = MakeCorrespondences(truth, 80, 0.0, rng);
+  // 2° and 15 cm off.
+  const Eigen::Isometry3d start = Pose({0.0, 2.0 / kDegPerRad, 0.0}, {0.1, -0.05, 0.0}) * truth;
+  ASSERT_GT(RotationErrorDeg(start, truth), 1.9);
+  const MotionRefinementResult r = RefineMotionReprojection(s.correspondences, {}, TestCamera(),
+                                                            start, MotionRefinementOptions{});
+  EXPECT_TRUE(r.converged);
+  EXPECT_LT(RotationErrorDeg(r.T_curr_prev, truth), 1e-6);
+  EXPECT_LT(TranslationError(r.T_curr_prev, truth), 1e-7);
+  EXPECT_GT(r.initial_rms_px, 1.0);
+  EXPECT_LT(r.final_rms_px, 1e-6);
+  EXPECT_LE(r.iterations, MotionRefinementOptions{}.max_iterations);
+}
+
+TEST(MotionRefinementTest, ReducesTheErrorOfHornOnNoisyStereo) {
+  // With pixel noise, Horn on triangulated points is dominated by far points' depth
+  // noise; the reprojection refinement is what the measurements constrain.
+  const StereoCamera c = TestCamera();
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> noise(0.0, 0.3);
+  const Eigen::Isometry3d truth = Pose({0.01, 0.03, 0.0}, {0.05, 0.0, 0.5});
+  double horn_error = 0.0, refined_error = 0.0;
+  for (int trial = 0; trial < 10; ++trial) {
+    std::vector<MotionCorrespondence> cs;
+    std::vector<Eigen::Vector3d> src, dst;
+    for (const Eigen::Vector3d& p : RandomPoints(150, rng)) {
+      const Eigen::Vector3d z0 = c.Project(p) + Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+      const Eigen::Vector3d z1 =
+          c.Project(truth * p) + Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+      if (z0.x() - z0.z() < 1.0 || z1.x() - z1.z() < 1.0) continue;
+      MotionCorrespondence m;
+      m.p_prev = c.Triangulate(z0.x(), z0.y(), z0.x() - z0.z());
+      m.p_curr = c.Triangulate(z1.x(), z1.y(), z1.x() - z1.z());
+      m.z_curr = z1;
+      cs.push_back(m);
+      src.push_back(m.p_prev);
+      dst.push_back(m.p_curr);
+    }
+    const Eigen::Isometry3d horn = HornAbsoluteOrientation(src, dst)->Rigid();
+    const MotionRefinementResult r =
+        RefineMotionReprojection(cs, {}, c, horn, MotionRefinementOptions{});
+    horn_error += TranslationError(horn, truth);
+    refined_error += TranslationError(r.T_curr_prev, truth);
+  }
+  EXPECT_LT(refined_error, 0.5 * horn_error);
+  std::printf("mean translation error: Horn %.1f mm, refined %.1f mm\n", 100.0 * horn_error,
+              100.0 * refined_error);
+}
+
+TEST(MotionRefinementTest, MaskOfTheWrongSizeThrows) {
+  std::vector<MotionCorrespondence> cs(4);
+  EXPECT_THROW(RefineMotionReprojection(cs, std::vector<unsigned char>(3, 1), TestCamera(),
+                                        Eigen::Isometry3d::Identity(), MotionRefinementOptions{}),
+               std::invalid_argument);
+}
+
+// ---------------------------------------------------------------------------------------
+// The pipeline on a synthetic rendered scene: a textured floor and back wall seen by a
+// moving rectified stereo pair (ray-cast per pixel, texture looked up bilinearly).
+
+class SyntheticScene {
+ public:
+  SyntheticScene() {
+    cv::Mat noise(kTexRows, kTexCols, CV_32F);
+    cv::RNG rng(2024);
+    rng.fill(noise, cv::RNG::UNIFORM, 0.0, 255.0);
+    // Blobs of a few centimetres: larger than a pixel on the wall (1.4 cm at 7 m), so
+    // the renderer's bilinear lookup does not alias.
+    cv::GaussianBlur(noise, noise, cv::Size(0, 0), 3.0);
+    cv::normalize(noise, texture_, 0.0, 255.0, cv::NORM_MINMAX);
+  }
+
+  static perception::StereoCalibration Calibration() {
+    const StereoCamera c = TestCamera();
+    return perception::StereoCalibration::FromIntrinsics(c.fx, c.fy, c.cx, c.cy, c.baseline_m);
+  }
+
+  /// Left (right = false) or right image of the left camera at pose T_world_cam.
+  cv::Mat Render(const Eigen::Isometry3d& T_world_cam, bool right) const {
+    const StereoCamera c = TestCamera();
+    Eigen::Isometry3d T = T_world_cam;
+    if (right) T.translation() += T.linear() * Eigen::Vector3d(c.baseline_m, 0.0, 0.0);
+    cv::Mat map_x(kHeight, kWidth, CV_32F), map_y(kHeight, kWidth, CV_32F);
+    const Eigen::Vector3d o = T.translation();
+    for (int v = 0; v < kHeight; ++v) {
+      for (int u = 0; u < kWidth; ++u) {
+        const Eigen::Vector3d ray =
+            T.linear() * Eigen::Vector3d((u - c.cx) / c.fx, (v - c.cy) / c.fy, 1.0);
+        // 1 cm texels. Wall z = kWallZ: column (x + 6)·100, row (y + 6)·100; floor
+        // y = kFloorY (camera y is down): column (x + 6)·100, row 1200 + z·100.
+        double t_wall = (kWallZ - o.z()) / ray.z();
+        double t_floor = ray.y() > 1e-9 ? (kFloorY - o.y()) / ray.y() : 1e30;
+        float tx, ty;
+        if (t_floor < t_wall) {
+          const Eigen::Vector3d p = o + t_floor * ray;
+          tx = static_cast<float>((p.x() + 6.0) * 100.0);
+          ty = static_cast<float>(1200.0 + p.z() * 100.0);
+        } else {
+          const Eigen::Vector3d p = o + t_wall * ray;
+          tx = static_cast<float>((p.x() + 6.0) * 100.0);
+          ty = static_cast<float>((p.y() + 6.0) * 100.0);
+        }
+        map_x.at<float>(v, u) = tx;
+        map_y.at<float>(v, u) = ty;
+      }
+    }
+    cv::Mat image_f, image;
+    cv::remap(texture_, image_f, map_x, map_y, cv::INTER_LINEAR, cv::BORDER_REFLECT_101);
+    image_f.convertTo(image, CV_8U);
+    return image;
+  }
+
+  /// Camera pose of frame k: forward 8 cm per frame, drifting right, yawing 0.3°/frame,
+  /// with a little pitch and roll.
+  static Eigen::Isometry3d TruePose(int k) {
+    return Pose(Eigen::Vector3d(0.001 * std::sin(0.5 * k), 0.3 * k / kDegPerRad, 0.0005 * k),
+                Eigen::Vector3d(0.01 * k, 0.002 * std::sin(0.7 * k), 0.08 * k));
+  }
+
+  static constexpr int kWidth = 640, kHeight = 480;
+
+ private:
+  static constexpr int kTexCols = 1200, kTexRows = 2400;
+  static constexpr double kWallZ = 7.0, kFloorY = 0.6;
+  cv::Mat texture_;
+};
+
+TEST(StereoVisualOdometryTest, SyntheticSceneMotionIsRecovered) {
+  const SyntheticScene scene;
+  StereoVisualOdometry vo(SyntheticScene::Calibration());
+  Eigen::Isometry3d T_world_cam0 = SyntheticScene::TruePose(0);
+  for (int k = 0; k < 8; ++k) {
+    const Eigen::Isometry3d pose = SyntheticScene::TruePose(k);
+    const VoFrameResult r =
+        vo.Process(scene.Render(pose, false), scene.Render(pose, true), 0.1 * k);
+    if (k == 0) {
+      EXPECT_EQ(r.status, VoStatus::kFirstFrame);
+      EXPECT_GT(r.features, 100);
+      continue;
+    }
+    ASSERT_EQ(r.status, VoStatus::kOk) << "frame " << k << ": " << r.reason;
+    const Eigen::Isometry3d truth = SyntheticScene::TruePose(k - 1).inverse() * pose;
+    EXPECT_LT(RotationErrorDeg(r.T_prev_curr, truth), 0.05) << "frame " << k;
+    EXPECT_LT(TranslationError(r.T_prev_curr, truth), 0.004) << "frame " << k;
+    EXPECT_GT(r.inliers, 50);
+    EXPECT_LE(r.inliers, r.matched);
+    EXPECT_LE(r.matched, r.tracked);
+    EXPECT_LT(r.reprojection_rms_px, 0.5);
+    const Eigen::Isometry3d true_world = T_world_cam0.inverse() * pose;
+    EXPECT_LT(TranslationError(r.T_world_cam, true_world), 0.004 * k) << "frame " << k;
+  }
+}
+
+TEST(StereoVisualOdometryTest, BlankFrameFailsWithoutMotionAndTheNextFramesRecover) {
+  const SyntheticScene scene;
+  StereoVisualOdometry vo(SyntheticScene::Calibration());
+  const cv::Mat blank(SyntheticScene::kHeight, SyntheticScene::kWidth, CV_8UC1, cv::Scalar(128));
+  Eigen::Isometry3d pose_before_blank = Eigen::Isometry3d::Identity();
+  for (int k = 0; k < 7; ++k) {
+    const Eigen::Isometry3d pose = SyntheticScene::TruePose(k);
+    const bool is_blank = k == 3;
+    const VoFrameResult r =
+        is_blank ? vo.Process(blank, blank, 0.1 * k)
+                 : vo.Process(scene.Render(pose, false), scene.Render(pose, true), 0.1 * k);
+    EXPECT_TRUE(r.T_world_cam.matrix().allFinite()) << "frame " << k;
+    EXPECT_TRUE(r.T_prev_curr.matrix().allFinite()) << "frame " << k;
+    if (k == 2) pose_before_blank = r.T_world_cam;
+    if (is_blank) {
+      EXPECT_TRUE(r.status == VoStatus::kTooFewFeatures || r.status == VoStatus::kTooFewInliers)
+          << ToString(r.status);
+      EXPECT_FALSE(r.reason.empty());
+      EXPECT_EQ(r.inliers, 0);
+      EXPECT_TRUE(r.T_prev_curr.matrix().isIdentity());
+      EXPECT_TRUE(r.T_world_cam.matrix() == pose_before_blank.matrix());  // no motion
+      std::printf("blank frame: %s (%s)\n", ToString(r.status), r.reason.c_str());
+    } else if (k == 4) {
+      // Nothing to track from the blank frame: still no motion, features re-detected.
+      EXPECT_FALSE(r.ok());
+      EXPECT_EQ(r.inliers, 0);
+      EXPECT_TRUE(r.T_prev_curr.matrix().isIdentity());
+      EXPECT_GT(r.features, 100);
+    } else if (k > 4) {
+      ASSERT_EQ(r.status, VoStatus::kOk) << "frame " << k << ": " << r.reason;
+      const Eigen::Isometry3d truth = SyntheticScene::TruePose(k - 1).inverse() * pose;
+      EXPECT_LT(RotationErrorDeg(r.T_prev_curr, truth), 0.05) << "frame " << k;
+      EXPECT_LT(TranslationError(r.T_prev_curr, truth), 0.004) << "frame " << k;
+    }
+  }
+}
+
+TEST(StereoVisualOdometryTest, SameSeedSameImagesSameResult) {
+  const SyntheticScene scene;
+  std::vector<cv::Mat> left, right;
+  for (int k = 0; k < 4; ++k) {
+    left.push_back(scene.Render(SyntheticScene::TruePose(k), false));
+    right.push_back(scene.Render(SyntheticScene::TruePose(k), true));
+  }
+  StereoVisualOdometry a(SyntheticScene::Calibration()), b(SyntheticScene::Calibration());
+  for (int k = 0; k < 4; ++k) {
+    const VoFrameResult ra =
+        a.Process(left[static_cast<std::size_t>(k)], right[static_cast<std::size_t>(k)], 0.1 * k);
+    const VoFrameResult rb =
+        b.Process(left[static_cast<std::size_t>(k)], right[static_cast<std::size_t>(k)], 0.1 * k);
+    EXPECT_EQ(ra.status, rb.status);
+    EXPECT_EQ(ra.inliers, rb.inliers);
+    EXPECT_TRUE(ra.T_world_cam.matrix() == rb.T_world_cam.matrix()) << "frame " << k;
+  }
+  // Reset starts over: the first frame again.
+  a.Reset();
+  EXPECT_EQ(a.Process(left[0], right[0], 0.0).status, VoStatus::kFirstFrame);
+  EXPECT_TRUE(a.T_world_cam().matrix().isIdentity());
+}
+
+TEST(StereoVisualOdometryTest, BadInputThrows) {
+  StereoVisualOdometry vo(SyntheticScene::Calibration());
+  const cv::Mat a(48, 64, CV_8UC1, cv::Scalar(0)), b(48, 65, CV_8UC1, cv::Scalar(0));
+  EXPECT_THROW(vo.Process(a, b, 0.0), std::invalid_argument);
+  EXPECT_THROW(vo.Process(a, cv::Mat(48, 64, CV_8UC3), 0.0), std::invalid_argument);
+  EXPECT_THROW(vo.Process(a, a, std::nan("")), std::invalid_argument);
+  vo.Process(a, a, 1.0);
+  EXPECT_THROW(vo.Process(a, a, 0.5), std::invalid_argument);  // time going backwards
+  const cv::Mat big(96, 128, CV_8UC1, cv::Scalar(0));
+  EXPECT_THROW(vo.Process(big, big, 2.0), std::invalid_argument);  // size changed
+}
+
+TEST(StereoVisualOdometryTest, InvalidOptionsNameTheDottedField) {
+  const auto field_of = [](const StereoVisualOdometryOptions& o) {
+    try {
+      StereoVisualOdometry vo(SyntheticScene::Calibration(), o);
+    } catch (const OptionError& e) {
+      return e.field();
+    }
+    return std::string("(valid)");
+  };
+  StereoVisualOdometryOptions o;
+  EXPECT_EQ(field_of(o), "(valid)");
+  o.min_inliers = 2;
+  EXPECT_EQ(field_of(o), "min_inliers");
+  o = {};
+  o.grid_cols = 0;
+  EXPECT_EQ(field_of(o), "grid_cols");
+  o = {};
+  o.max_depth_m = 0.0;
+  EXPECT_EQ(field_of(o), "max_depth_m");
+  o = {};
+  o.tracker.window_px = 4;
+  EXPECT_EQ(field_of(o), "tracker.window_px");
+  o = {};
+  o.matcher.min_zncc = 2.0;
+  EXPECT_EQ(field_of(o), "matcher.min_zncc");
+  o = {};
+  o.harris.k = 0.5;
+  EXPECT_EQ(field_of(o), "harris.k");
+  o = {};
+  o.ransac.threshold_px = 0.0;
+  EXPECT_EQ(field_of(o), "ransac.threshold_px");
+  o = {};
+  o.refinement.huber_px = -1.0;
+  EXPECT_EQ(field_of(o), "refinement.huber_px");
+  o = {};
+  o.exhausted_cell_retry_frames = 0;
+  EXPECT_EQ(field_of(o), "exhausted_cell_retry_frames");
+}
+
+// ---------------------------------------------------------------------------------------
+// Real data: KITTI odometry sequence 06, frames 0–50 (59.9 m, almost straight).
+
+fs::path RealKittiDir() { return fs::path(TRACKBED_DATA_DIR) / "kitti06"; }
+
+TEST(StereoVisualOdometryTest, Kitti06EndPointErrorWithinOneAndAHalfPercent) {
+  if (!fs::exists(RealKittiDir())) {
+    GTEST_SKIP() << "real KITTI data not found at " << RealKittiDir() << ": set TRACKBED_DATA_DIR";
+  }
+  const perception::KittiSequence sequence(RealKittiDir());
+  ASSERT_TRUE(sequence.has_poses());
+  std::vector<cv::Mat> left, right;
+  for (std::size_t k = 0; k < sequence.size(); ++k) {
+    left.push_back(sequence.LoadLeft(k));
+    right.push_back(sequence.LoadRight(k));
+  }
+  StereoVisualOdometry vo(sequence.calibration());
+  std::vector<Eigen::Vector3d> p_est, p_gt;
+  double process_s = 0.0;
+  int min_inliers = 1 << 30;
+  for (std::size_t k = 0; k < sequence.size(); ++k) {
+    const auto start = std::chrono::steady_clock::now();
+    const VoFrameResult r = vo.Process(left[k], right[k], sequence.times_s()[k]);
+    process_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (k > 0) {
+      EXPECT_EQ(r.status, VoStatus::kOk) << "frame " << k << ": " << r.reason;
+      min_inliers = std::min(min_inliers, r.inliers);
+    }
+    p_est.push_back(r.T_world_cam.translation());
+    p_gt.push_back(sequence.poses()[k].translation());
+  }
+  double length = 0.0;
+  for (std::size_t k = 1; k < p_gt.size(); ++k) length += (p_gt[k] - p_gt[k - 1]).norm();
+  const double end_error = (p_est.back() - p_gt.back()).norm();
+  const SimilarityTransform S = HornAbsoluteOrientationAnyMinimizer(p_est, p_gt);
+  double sum_sq = 0.0;
+  for (std::size_t k = 0; k < p_est.size(); ++k)
+    sum_sq += (p_gt[k] - S.Apply(p_est[k])).squaredNorm();
+  const double ate = std::sqrt(sum_sq / static_cast<double>(p_est.size()));
+  const double n = static_cast<double>(sequence.size());
+  std::printf(
+      "kitti06: %zu frames, %.1f m; end-point error %.3f m (%.2f %%), ATE (SE(3)) %.3f m; "
+      "fewest inliers %d; %.1f frames/s (%.2f ms per frame)\n",
+      sequence.size(), length, end_error, 100.0 * end_error / length, ate, min_inliers,
+      n / process_s, 1e3 * process_s / n);
+  EXPECT_LE(end_error, 0.015 * length);
+  EXPECT_LT(ate, 0.3);
+  EXPECT_GE(min_inliers, 50);
+}
+
+}  // namespace
+}  // namespace trackbed::estimation
