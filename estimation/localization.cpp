@@ -23,6 +23,7 @@ FuzzyFusionWeight MakeFuzzy(const std::string& file) {
 void LocalizationOptions::Validate() const {
   option_check::Nested("wheel", wheel);
   option_check::Nested("vo", vo);
+  option_check::Nested("ekf", ekf);
   if (min_inliers_for_slip < 0) throw OptionError("min_inliers_for_slip", "must be >= 0");
 }
 
@@ -38,6 +39,7 @@ LocalizationStack::LocalizationStack(const LocalizationOptions& options,
       vo_(calibration ? std::make_unique<StereoVisualOdometry>(*calibration, options.vo) : nullptr),
       fuzzy_(MakeFuzzy(options.fusion_rules_file)),
       fused_(PlanarPose(T_world_body0)),
+      ekf_(options.ekf, PlanarPose(T_world_body0)),
       T_world_body_vo_(T_world_body0),
       wheel_at_frame_(PlanarPose(T_world_body0)) {
   options_.Validate();
@@ -49,6 +51,11 @@ void LocalizationStack::AddEncoderSample(double t_s, std::int64_t left_ticks,
                                          std::int64_t right_ticks) {
   wheel_.AddEncoderSample(t_s, left_ticks, right_ticks);
   wheel_noslip_.AddEncoderSample(t_s, left_ticks, right_ticks);
+  ekf_.AddWheelTwist(t_s, wheel_noslip_.forward_mps(), wheel_noslip_.yaw_rate_radps());
+}
+
+void LocalizationStack::AddGyroSample(double t_s, double yaw_rate_radps) {
+  ekf_.AddGyro(t_s, yaw_rate_radps);
 }
 
 LocalizationFrameReport LocalizationStack::AddStereoFrame(double t_s, const cv::Mat& left,
@@ -68,6 +75,10 @@ LocalizationFrameReport LocalizationStack::AddStereoFrame(double t_s, const cv::
       // Slip from the independent (visual) velocity over the frame interval.
       const double dt = t_s - t_frame_;
       wheel_.AddMeasuredVelocity(t_frame_, t_s, vo_increment->x / dt, vo_increment->yaw / dt);
+    }
+    if (has_frame_ && t_s > t_frame_) {
+      const double dt = t_s - t_frame_;
+      ekf_.AddVisualTwist(t_s, vo_increment->x / dt, vo_increment->yaw / dt, report.vo.inliers);
     }
   }
   report.slip = wheel_.slip();
@@ -91,6 +102,8 @@ Eigen::Isometry3d LocalizationStack::wheel_odometry() const {
 Eigen::Isometry3d LocalizationStack::wheel_odometry_noslip() const {
   return ToIsometry(wheel_noslip_.pose(), z0_);
 }
+
+Eigen::Isometry3d LocalizationStack::ekf() const { return ToIsometry(ekf_.pose(), z0_); }
 
 Eigen::Isometry3d LocalizationStack::visual_odometry() const { return T_world_body_vo_; }
 

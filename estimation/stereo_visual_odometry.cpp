@@ -3,10 +3,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <Eigen/Cholesky>
 
@@ -198,7 +199,9 @@ void EstimateMotionRansac(const std::vector<MotionCorrespondence>& correspondenc
   result->inliers =
       CountInliers(correspondences, camera, best_T, options.threshold_px, &result->inlier_mask);
 
-  // Refit on the inliers, weighting by 1/Z² (3-D noise grows with depth).
+  // Refit on the inliers. Stereo depth noise dominates the 3-D error and grows as Z²
+  // (σ_Z = Z²σ_d/(fx·b)), so each pair is weighted by the inverse variance of the
+  // difference of its two depths, 1/(Z_prev⁴ + Z_curr⁴) (up to a constant).
   if (result->inliers >= 3) {
     src.clear();
     dst.clear();
@@ -207,8 +210,8 @@ void EstimateMotionRansac(const std::vector<MotionCorrespondence>& correspondenc
       if (!result->inlier_mask[i]) continue;
       src.push_back(correspondences[i].p_prev);
       dst.push_back(correspondences[i].p_curr);
-      const double z = correspondences[i].p_prev.z();
-      weights.push_back(1.0 / (z * z));
+      const double z0 = correspondences[i].p_prev.z(), z1 = correspondences[i].p_curr.z();
+      weights.push_back(1.0 / (z0 * z0 * z0 * z0 + z1 * z1 * z1 * z1));
     }
     if (const auto refit = HornAbsoluteOrientation(src, dst, false, weights)) {
       const Eigen::Isometry3d T = refit->Rigid();
@@ -410,7 +413,7 @@ void StereoVisualOdometry::Replenish(const cv::Mat& left, const cv::Mat& right,
   }
   if (!any) return;
 
-  // Occupancy: a square of side 2r+1 around each feature (Chebyshev distance < r).
+  // Occupancy: a square of side 2r − 1 around each feature (Chebyshev distance < r).
   const int r = static_cast<int>(std::ceil(options_.min_feature_distance_px));
   occupancy_.create(left.size(), CV_8UC1);
   occupancy_.setTo(0);
@@ -466,7 +469,6 @@ void StereoVisualOdometry::Replenish(const cv::Mat& left, const cv::Mat& right,
         if (!UsablePoint(p_cam)) continue;
         features->points.push_back(p);
         features->p_cam.push_back(p_cam);
-        features->disparity_px.push_back(m.disparity_px);
         occupy(p);
         if (++count >= per_cell) break;
       }
@@ -581,10 +583,7 @@ VoFrameResult StereoVisualOdometry::Process(const cv::Mat& left, const cv::Mat& 
     if (!UsablePoint(c.p_prev) || !UsablePoint(c.p_curr)) continue;
     c.z_curr = Eigen::Vector3d(q.x, q.y, static_cast<double>(q.x) - static_cast<double>(d));
     correspondences_.push_back(c);
-    // Keep, per correspondence, where its current feature data live (reuse the arrays).
-    new_points_[kept] = q;
-    matches_[kept] = matches_[j];
-    ++kept;
+    new_points_[kept++] = q;  // compacted: new_points_[k] belongs to correspondence k
   }
   result.matched = static_cast<int>(correspondences_.size());
   if (result.matched < min_inliers) {
@@ -645,7 +644,6 @@ VoFrameResult StereoVisualOdometry::Process(const cv::Mat& left, const cv::Mat& 
     if (!inlier_mask_[j]) continue;
     curr_.points.push_back(new_points_[j]);
     curr_.p_cam.push_back(correspondences_[j].p_curr);
-    curr_.disparity_px.push_back(matches_[j].disparity_px);
   }
   Replenish(left, right, &curr_);
   return finish();

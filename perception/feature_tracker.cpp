@@ -92,16 +92,13 @@ int FeatureTracker::Track(const TrackingPyramid& prev, const TrackingPyramid& cu
   const cv::Size window(options_.window_px, options_.window_px);
   const cv::TermCriteria criteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS,
                                   options_.max_iterations, options_.epsilon_px);
-  // A guess moves each point by (guess − start); the backward track starts at the
-  // mirrored guess so that both directions begin equally far from the answer.
-  std::vector<cv::Point2f>& guess_shift = back_points_;
   if (use_initial_guess) {
-    guess_shift.resize(n);
-    for (std::size_t i = 0; i < n; ++i) guess_shift[i] = (*curr_points)[i] - prev_points[i];
+    guess_shift_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) guess_shift_[i] = (*curr_points)[i] - prev_points[i];
   }
   const int flags = use_initial_guess ? cv::OPTFLOW_USE_INITIAL_FLOW : 0;
   cv::calcOpticalFlowPyrLK(prev.levels, curr.levels, prev_points, *curr_points, lk_status_,
-                           lk_error_, window, options_.pyramid_levels, criteria, flags,
+                           cv::noArray(), window, options_.pyramid_levels, criteria, flags,
                            options_.min_eigenvalue);
 
   const float border = static_cast<float>(options_.border_px);
@@ -117,26 +114,29 @@ int FeatureTracker::Track(const TrackingPyramid& prev, const TrackingPyramid& cu
   }
   if (options_.max_forward_backward_px <= 0.0 || tracked == 0) return tracked;
 
-  // Backward track of every point that survived, all at once (unsurvived points are
-  // tracked too, from their start, which costs little and keeps indices aligned).
-  std::vector<cv::Point2f>& back = back_points_;  // overwrites guess_shift in place
-  if (use_initial_guess) {
-    for (std::size_t i = 0; i < n; ++i) back[i] = (*curr_points)[i] - guess_shift[i];
-  } else {
-    back.assign(prev_points.begin(), prev_points.end());
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    if ((*status)[i] != TrackStatus::kTracked) (*curr_points)[i] = prev_points[i];
-  }
-  cv::calcOpticalFlowPyrLK(curr.levels, prev.levels, *curr_points, back, back_status_, lk_error_,
-                           window, options_.pyramid_levels, criteria, cv::OPTFLOW_USE_INITIAL_FLOW,
-                           options_.min_eigenvalue);
-  const float max_fb_sq =
-      static_cast<float>(options_.max_forward_backward_px * options_.max_forward_backward_px);
+  // Backward track of the survivors (Kalal et al. 2010), each starting where its forward
+  // track ended, moved back by the guess's displacement if there was one (with none, it
+  // starts exactly there, the standard check). Starting at the original point instead
+  // would let a track that did not move in either direction pass.
+  fb_index_.clear();
+  fb_from_.clear();
+  back_points_.clear();
   for (std::size_t i = 0; i < n; ++i) {
     if ((*status)[i] != TrackStatus::kTracked) continue;
-    const cv::Point2f d = back[i] - prev_points[i];
-    if (!back_status_[i] || !(d.x * d.x + d.y * d.y <= max_fb_sq)) {
+    fb_index_.push_back(i);
+    fb_from_.push_back((*curr_points)[i]);
+    back_points_.push_back(use_initial_guess ? (*curr_points)[i] - guess_shift_[i]
+                                             : (*curr_points)[i]);
+  }
+  cv::calcOpticalFlowPyrLK(curr.levels, prev.levels, fb_from_, back_points_, back_status_,
+                           cv::noArray(), window, options_.pyramid_levels, criteria,
+                           cv::OPTFLOW_USE_INITIAL_FLOW, options_.min_eigenvalue);
+  const float max_fb_sq =
+      static_cast<float>(options_.max_forward_backward_px * options_.max_forward_backward_px);
+  for (std::size_t k = 0; k < fb_index_.size(); ++k) {
+    const std::size_t i = fb_index_[k];
+    const cv::Point2f d = back_points_[k] - prev_points[i];
+    if (!back_status_[k] || !(d.x * d.x + d.y * d.y <= max_fb_sq)) {
       (*status)[i] = TrackStatus::kForwardBackward;
       --tracked;
     }

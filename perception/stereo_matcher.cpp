@@ -59,6 +59,9 @@ void CheckPair(const cv::Mat& left, const cv::Mat& right) {
   }
 }
 
+/// Uniqueness compares costs 1 − ZNCC, floored here (ZNCC 0.99 ≈ image noise).
+constexpr double kCostFloor = 0.01;
+
 }  // namespace
 
 void StereoMatcherOptions::Validate() const {
@@ -108,7 +111,7 @@ StereoMatcher::StereoMatcher(const StereoMatcherOptions& options) : options_(opt
 }
 
 StereoMatcher::Search StereoMatcher::SearchRow(const cv::Mat& ref, const cv::Mat& other, float u,
-                                               float v, int sign) {
+                                               float v, int sign, bool refine) {
   Search result;
   const int w = options_.window_px;
   const int h = w / 2;
@@ -164,15 +167,26 @@ StereoMatcher::Search StereoMatcher::SearchRow(const cv::Mat& ref, const cv::Mat
   SamplePatch(other, strip_x0, y0, strip_cols, w, b, strip_.data());
 
   // Cross-correlation with the zero-mean patch: Σ P̃·S = Σ P̃·(S − mean S).
+  // Blocks of kBlock candidates whose sums stay in registers over the whole window.
+  constexpr int kBlock = 16;
   scores_.assign(static_cast<std::size_t>(nd), 0.0f);
   float* acc = scores_.data();
-  for (int j = 0; j < w; ++j) {
+  int k0 = 0;
+  for (; k0 + kBlock <= nd; k0 += kBlock) {
+    using Block = Eigen::Array<float, kBlock, 1>;
+    Block block = Block::Zero();
+    for (int j = 0; j < w; ++j) {
+      const float* srow = strip_.data() + static_cast<std::ptrdiff_t>(j) * strip_cols + k0;
+      const float* prow = patch_.data() + static_cast<std::ptrdiff_t>(j) * w;
+      for (int i = 0; i < w; ++i) block += prow[i] * Eigen::Map<const Block>(srow + i);
+    }
+    Eigen::Map<Block>(acc + k0) = block;
+  }
+  for (int j = 0; j < w; ++j) {  // the remaining candidates
     const float* srow = strip_.data() + static_cast<std::ptrdiff_t>(j) * strip_cols;
     const float* prow = patch_.data() + static_cast<std::ptrdiff_t>(j) * w;
     for (int i = 0; i < w; ++i) {
-      const float weight = prow[i];
-      const float* s = srow + i;
-      for (int k = 0; k < nd; ++k) acc[k] += weight * s[k];
+      for (int k = k0; k < nd; ++k) acc[k] += prow[i] * srow[i + k];
     }
   }
   // Window sums of S and S² from column sums, sliding along the strip.
@@ -218,8 +232,10 @@ StereoMatcher::Search StereoMatcher::SearchRow(const cv::Mat& ref, const cv::Mat
     const bool right_ok = k == nd - 1 || acc[k] >= acc[k + 1];
     if (left_ok && right_ok) second = std::max(second, acc[k]);
   }
-  const double cost_best = 1.0 - acc[best];
-  const double cost_second = 1.0 - second;
+  // Costs below the floor are equally perfect: otherwise a repeated pattern whose copies
+  // all match almost exactly (cost 1e-6 vs 3e-6) would pass as unique.
+  const double cost_best = std::max(1.0 - acc[best], kCostFloor);
+  const double cost_second = std::max(1.0 - second, kCostFloor);
   if (cost_second < (1.0 + options_.uniqueness_ratio) * cost_best) {
     result.status = StereoMatchStatus::kAmbiguous;
     return result;
@@ -236,68 +252,124 @@ StereoMatcher::Search StereoMatcher::SearchRow(const cv::Mat& ref, const cv::Mat
   const float k_sub = static_cast<float>(best) + offset;
   result.disparity = sign < 0 ? static_cast<float>(d_hi) - k_sub : static_cast<float>(d_lo) + k_sub;
   result.status = StereoMatchStatus::kMatched;
-  if (options_.refinement_iterations > 0) {
+  if (refine && options_.refinement_iterations > 0) {
     result.disparity = RefineDisparity(other, u, v, sign, result.disparity);
   }
   return result;
 }
 
 float StereoMatcher::RefineDisparity(const cv::Mat& other, float u, float v, int sign, float d0) {
-  // Gauss–Newton on e_i = a·O(u + sign·d + i, v + j) + b − P_i over (d, a, b), with P the
-  // zero-mean reference patch in patch_ and O the other image sampled bilinearly; the
-  // gradient O_x by central differences of the samples. Lucas & Kanade (1981) in one
-  // dimension, with gain and offset as in ZNCC.
+  // Gauss–Newton (Lucas & Kanade 1981, in one dimension) on
+  //   e_ij = a·O(u + sign·(d + g_x·i + g_y·j) + i, v + j) + b − P_ij
+  // over θ = (d, g_x, g_y, a, b): P is the zero-mean reference patch (patch_), O the other
+  // image sampled bilinearly, O_x its derivative by central differences (±1 px), i, j the
+  // window offsets. The disparity gradient (g_x, g_y) [px/px] models a slanted surface:
+  // a floor seen from height h has g_y = baseline/h (0.3 for KITTI's road), which a
+  // constant-disparity window would average unevenly over its rows. Gain and offset are
+  // the photometric model ZNCC is invariant to.
   const int w = options_.window_px;
   const int h = w / 2;
   const int n = w * w;
-  const int cols = w + 2;  // one extra column each side for the gradient
-  double d = d0, a = 1.0, b = 0.0;
-  grad_strip_.resize(static_cast<std::size_t>(cols) * static_cast<std::size_t>(w));
+  const float max_x = static_cast<float>(other.cols - 3);  // x − 1 >= 0, x + 2 <= cols − 1
+  const float max_y = static_cast<float>(other.rows - 2);
+  using Vector5d = Eigen::Matrix<double, 5, 1>;
+  using Matrix5d = Eigen::Matrix<double, 5, 5>;
+  double d = d0, gx = 0.0, gy = 0.0, a = 1.0, b = 0.0;
   for (int iteration = 0; iteration < options_.refinement_iterations; ++iteration) {
-    const double x_first = u + sign * d - h - 1;  // sample column of index 0
-    const double y_first = static_cast<double>(v) - h;
-    const double fx = std::floor(x_first), fy = std::floor(y_first);
-    const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
-    if (x0 < 0 || y0 < 0 || x0 + cols > other.cols - 1 || y0 + w > other.rows - 1) return d0;
-    SamplePatch(other, x0, y0, cols, w,
-                Bilinear(static_cast<float>(x_first - fx), static_cast<float>(y_first - fy)),
-                grad_strip_.data());
-    if (iteration == 0) {
-      // Gain and offset start at the least-squares fit of the values.
-      double so = 0.0, soo = 0.0, sop = 0.0;
-      for (int j = 0; j < w; ++j) {
-        for (int i = 0; i < w; ++i) {
-          const double o = grad_strip_[static_cast<std::size_t>(j * cols + i + 1)];
+    // Σ J Jᵀ and Σ J e with J = (q, q·i, q·j, o, 1), q = a·sign·O_x, accumulated per row
+    // in the moments of i (j is constant along a row).
+    double so = 0.0, soo = 0.0, sop = 0.0;  // Σo, Σo², Σo·P (first pass: gain/offset)
+    Matrix5d H = Matrix5d::Zero();
+    Vector5d g = Vector5d::Zero();
+    for (int j = -h; j <= h; ++j) {
+      const float y = v + static_cast<float>(j);
+      if (!(y >= 0.0f && y <= max_y)) return d0;
+      const int y0 = static_cast<int>(y);
+      const float fy = y - static_cast<float>(y0);
+      const unsigned char* r0 = other.ptr<unsigned char>(y0);
+      const unsigned char* r1 = other.ptr<unsigned char>(y0 + 1);
+      const auto at = [&](int x) {  // the row interpolated vertically at column x
+        return (1.0f - fy) * static_cast<float>(r0[x]) + fy * static_cast<float>(r1[x]);
+      };
+      const float* prow = patch_.data() + static_cast<std::ptrdiff_t>(j + h) * w;
+      const double base = u + sign * (d + gy * j);
+      const double slope = 1.0 + sign * gx;
+      // Row sums: of q², q²i, q²i², qo, qoi, q, qi, o², o, and of q·e, q·e·i, o·e, e.
+      float qq = 0, qqi = 0, qqii = 0, qo = 0, qoi = 0, q1 = 0, qi1 = 0, oo = 0, o1 = 0;
+      float qe = 0, qei = 0, oe = 0, e1 = 0;
+      for (int i = -h; i <= h; ++i) {
+        const float x = static_cast<float>(base + slope * i);
+        if (!(x >= 1.0f && x <= max_x)) return d0;
+        const int x0 = static_cast<int>(x);
+        const float fx = x - static_cast<float>(x0);
+        const float cm = at(x0 - 1), c0 = at(x0), c1 = at(x0 + 1), c2 = at(x0 + 2);
+        const float o = c0 + fx * (c1 - c0);
+        const float p = prow[i + h];
+        if (iteration == 0) {
           so += o;
-          soo += o * o;
-          sop += o * patch_[static_cast<std::size_t>(j * w + i)];
+          soo += static_cast<double>(o) * o;
+          sop += static_cast<double>(o) * p;
+          continue;
         }
+        // O_x = (O(x + 1) − O(x − 1)) / 2, each bilinear.
+        const float ox = 0.5f * ((c1 + fx * (c2 - c1)) - (cm + fx * (c0 - cm)));
+        const float q = static_cast<float>(a * sign) * ox;
+        const float e = static_cast<float>(a) * o + static_cast<float>(b) - p;
+        const float fi = static_cast<float>(i);
+        qq += q * q;
+        qqi += q * q * fi;
+        qqii += q * q * fi * fi;
+        qo += q * o;
+        qoi += q * o * fi;
+        q1 += q;
+        qi1 += q * fi;
+        oo += o * o;
+        o1 += o;
+        qe += q * e;
+        qei += q * e * fi;
+        oe += o * e;
+        e1 += e;
       }
+      if (iteration == 0) continue;
+      const double dj = j;
+      H(0, 0) += qq;
+      H(0, 1) += qqi;
+      H(0, 2) += qq * dj;
+      H(0, 3) += qo;
+      H(0, 4) += q1;
+      H(1, 1) += qqii;
+      H(1, 2) += qqi * dj;
+      H(1, 3) += qoi;
+      H(1, 4) += qi1;
+      H(2, 2) += qq * dj * dj;
+      H(2, 3) += qo * dj;
+      H(2, 4) += q1 * dj;
+      H(3, 3) += oo;
+      H(3, 4) += o1;
+      H(4, 4) += w;
+      g(0) += qe;
+      g(1) += qei;
+      g(2) += qe * dj;
+      g(3) += oe;
+      g(4) += e1;
+    }
+    if (iteration == 0) {
+      // Gain and offset start at the least-squares fit of the values (Σ P = 0).
       const double var = soo - so * so / n;
       if (!(var > 1e-6)) return d0;
-      a = sop / var;  // Σ P = 0
+      a = sop / var;
       b = -a * so / n;
+      continue;
     }
-    Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
-    Eigen::Vector3d g = Eigen::Vector3d::Zero();
-    for (int j = 0; j < w; ++j) {
-      const float* row = grad_strip_.data() + static_cast<std::ptrdiff_t>(j) * cols;
-      for (int i = 0; i < w; ++i) {
-        const double o = row[i + 1];
-        const double ox = 0.5 * (row[i + 2] - row[i]);
-        const double e = a * o + b - patch_[static_cast<std::size_t>(j * w + i)];
-        const Eigen::Vector3d J(a * sign * ox, o, 1.0);
-        H.noalias() += J * J.transpose();
-        g.noalias() += J * e;
-      }
-    }
-    const Eigen::Vector3d step = H.ldlt().solve(-g);
+    const Vector5d step = H.selfadjointView<Eigen::Upper>().ldlt().solve(-g);
     if (!step.allFinite()) return d0;
     d += step(0);
-    a += step(1);
-    b += step(2);
-    if (!(std::abs(d - d0) <= 1.0)) return d0;  // wandered off the peak: keep the parabola
-    if (std::abs(step(0)) < 1e-3) break;
+    gx += step(1);
+    gy += step(2);
+    a += step(3);
+    b += step(4);
+    if (!(std::abs(d - d0) <= 1.0 && std::abs(gx) < 0.5 && std::abs(gy) < 0.5)) return d0;
+    if (std::abs(step(0)) < 0.005) break;
   }
   return static_cast<float>(d);
 }
@@ -305,13 +377,15 @@ float StereoMatcher::RefineDisparity(const cv::Mat& other, float u, float v, int
 StereoMatch StereoMatcher::MatchOne(const cv::Mat& left, const cv::Mat& right,
                                     const cv::Point2f& point) {
   StereoMatch match;
-  const Search forward = SearchRow(left, right, point.x, point.y, -1);
+  const Search forward = SearchRow(left, right, point.x, point.y, -1, /*refine=*/true);
   match.zncc = forward.zncc;
   match.status = forward.status;
   if (forward.status != StereoMatchStatus::kMatched) return match;
   match.disparity_px = forward.disparity;
   if (options_.max_left_right_px > 0.0) {
-    const Search backward = SearchRow(right, left, point.x - forward.disparity, point.y, +1);
+    // The consistency check needs no sub-pixel refinement (its tolerance is ~1 px).
+    const Search backward =
+        SearchRow(right, left, point.x - forward.disparity, point.y, +1, /*refine=*/false);
     if (backward.status != StereoMatchStatus::kMatched ||
         !(std::abs(backward.disparity - forward.disparity) <= options_.max_left_right_px)) {
       match.status = StereoMatchStatus::kLeftRightMismatch;

@@ -163,6 +163,7 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers
         e.wheel_odometry = stack->wheel_odometry();
         e.wheel_odometry_noslip = stack->wheel_odometry_noslip();
         e.fused = stack->fused();
+        e.ekf = stack->ekf();
         e.has_camera = rig.has_value();
         e.slip = stack->slip();
         estimation_wall_s +=
@@ -212,6 +213,7 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers
       const robot::ImuSample sample =
           imu.Sample(clock.now_s(), truth.T_world_body.linear(), truth.omega_world, accel);
       if (observers.on_imu) observers.on_imu(sample);
+      if (stack) stack->AddGyroSample(sample.t_s, sample.gyro_radps.z());
     }
     if (clock.steps() >= end_step) break;
     if (clock.Fires(drive_period)) {

@@ -12,6 +12,7 @@ void EstimatorScoring::Add(const RunSample& truth, const EstimateSample& e) {
   truth_.push_back({truth.t_s, truth.chassis.T_world_body});
   wheel_.push_back({e.t_s, e.wheel_odometry});
   wheel_noslip_.push_back({e.t_s, e.wheel_odometry_noslip});
+  ekf_.push_back({e.t_s, e.ekf});
   if (e.has_camera) {
     has_camera_ = true;
     fused_.push_back({e.t_s, e.fused});
@@ -56,6 +57,7 @@ std::map<std::string, EstimatorMetrics> EstimatorScoring::Metrics(double distanc
   if (truth_.empty()) return m;
   m["wheel_odometry"] = Score(truth_, wheel_, distance_m);
   m["wheel_odometry_noslip"] = Score(truth_, wheel_noslip_, distance_m);
+  m["ekf"] = Score(truth_, ekf_, distance_m);
   if (has_camera_) {
     m["fused"] = Score(truth_, fused_, distance_m);
     m["visual_odometry"] = Score(vo_truth_, vo_, distance_m);

@@ -151,10 +151,11 @@ RunMetrics RunToFolder(const Scenario& scenario, const fs::path& dir) {
                  "t,left_true_mps,right_true_mps,left_track_mps,right_track_mps,"
                  "left_ground_mps,right_ground_mps,material,left_est_mps,right_est_mps");
     // One TUM file per estimator (design.md §3), opened when estimation is on.
-    std::unique_ptr<LogFile> wheel_tum, noslip_tum, fused_tum, vo_tum, fusion_csv;
+    std::unique_ptr<LogFile> wheel_tum, noslip_tum, ekf_tum, fused_tum, vo_tum, fusion_csv;
     if (scenario.estimation.enabled) {
       wheel_tum = std::make_unique<LogFile>(dir / "wheel_odometry.tum", "");
       noslip_tum = std::make_unique<LogFile>(dir / "wheel_odometry_noslip.tum", "");
+      ekf_tum = std::make_unique<LogFile>(dir / "ekf.tum", "");
       if (scenario.robot.stereo.enabled) {
         fused_tum = std::make_unique<LogFile>(dir / "fused.tum", "");
         vo_tum = std::make_unique<LogFile>(dir / "visual_odometry.tum", "");
@@ -197,10 +198,27 @@ RunMetrics RunToFolder(const Scenario& scenario, const fs::path& dir) {
       std::snprintf(line, sizeof(line), "%.6f,%lld,%lld", s.t_s, s.ticks[0], s.ticks[1]);
       encoders.Line(line);
       const robot::TrackState &l = s.tracks[0], &r = s.tracks[1];
-      std::snprintf(line, sizeof(line), "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%s", s.t_s,
-                    l.slip_velocity_mps, r.slip_velocity_mps, l.track_speed_mps, r.track_speed_mps,
-                    l.ground_speed_mps, r.ground_speed_mps, s.material ? s.material->c_str() : "");
+      const int n = std::snprintf(line, sizeof(line), "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%s,",
+                                  s.t_s, l.slip_velocity_mps, r.slip_velocity_mps,
+                                  l.track_speed_mps, r.track_speed_mps, l.ground_speed_mps,
+                                  r.ground_speed_mps, s.material ? s.material->c_str() : "");
+      const std::size_t used = static_cast<std::size_t>(n);
+      if (s.estimate) {
+        std::snprintf(line + used, sizeof(line) - used, "%.9g,%.9g", s.estimate->slip.left_mps,
+                      s.estimate->slip.right_mps);
+      } else {
+        std::snprintf(line + used, sizeof(line) - used, ",");
+      }
       slip.Line(line);
+      if (s.estimate) {
+        wheel_tum->Line(estimation::FormatTumLine({s.t_s, s.estimate->wheel_odometry}).c_str());
+        noslip_tum->Line(
+            estimation::FormatTumLine({s.t_s, s.estimate->wheel_odometry_noslip}).c_str());
+        ekf_tum->Line(estimation::FormatTumLine({s.t_s, s.estimate->ekf}).c_str());
+        if (fused_tum) {
+          fused_tum->Line(estimation::FormatTumLine({s.t_s, s.estimate->fused}).c_str());
+        }
+      }
       std::snprintf(line, sizeof(line), "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%d", s.t_s,
                     l.motor_torque_nm, r.motor_torque_nm, l.normal_load_n, r.normal_load_n,
                     l.traction_n, r.traction_n, l.compaction_resistance_n,
@@ -231,7 +249,7 @@ RunMetrics RunToFolder(const Scenario& scenario, const fs::path& dir) {
     metrics = RunClosedLoop(scenario, observers);
     for (LogFile* f : {&truth, &twist, &encoders, &slip, &tracks, &imu}) f->Close();
     if (kitti) kitti->Close();
-    for (auto* f : {&wheel_tum, &noslip_tum, &fused_tum, &vo_tum, &fusion_csv}) {
+    for (auto* f : {&wheel_tum, &noslip_tum, &ekf_tum, &fused_tum, &vo_tum, &fusion_csv}) {
       if (*f) (*f)->Close();
     }
   } catch (const std::exception& e) {

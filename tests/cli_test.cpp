@@ -135,6 +135,47 @@ TEST(CliTest, SameScenarioAndSeedGiveIdenticalRunFolders) {
   EXPECT_NE(Slurp(a / "ground_truth.tum"), Slurp(c / "ground_truth.tum"));
 }
 
+TEST(CliTest, EstimatorsAreWrittenBesideGroundTruthAndScored) {
+  const fs::path out = TempDir("estimators");
+  const Result r =
+      Trackbed("run scenes/outdoor.yaml --set duration_s=10 --out " + out.string(), "est");
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  auto lines = [](const fs::path& p) {
+    const std::string text = Slurp(p);
+    return std::count(text.begin(), text.end(), '\n');
+  };
+  const auto truth_lines = lines(out / "ground_truth.tum");
+  EXPECT_EQ(truth_lines, 1001);  // 100 Hz over 10 s, both ends
+  for (const char* f :
+       {"wheel_odometry.tum", "wheel_odometry_noslip.tum", "ekf.tum", "fused.tum"}) {
+    EXPECT_EQ(lines(out / f), truth_lines) << f;
+  }
+  EXPECT_EQ(lines(out / "visual_odometry.tum"), 101);  // one per stereo frame
+  EXPECT_EQ(lines(out / "fusion.csv"), 102);           // and a header
+  EXPECT_EQ(Slurp(out / "fusion.csv").rfind("t,slip_velocity_mps,features,w,", 0), 0u);
+  // slip.csv: true and estimated slip side by side, ten columns on every row.
+  std::istringstream slip(Slurp(out / "slip.csv"));
+  std::string row;
+  std::getline(slip, row);
+  EXPECT_NE(row.find("left_est_mps,right_est_mps"), std::string::npos);
+  while (std::getline(slip, row)) ASSERT_EQ(std::count(row.begin(), row.end(), ','), 9) << row;
+  const nlohmann::json m = Metrics(out);
+  for (const char* name :
+       {"wheel_odometry", "wheel_odometry_noslip", "visual_odometry", "fused", "ekf"}) {
+    ASSERT_TRUE(m["estimators"].contains(name)) << name;
+    for (const char* key :
+         {"ate_rmse_m", "final_error_m", "final_error_pct", "rpe_trans_pct", "ate3d_se3_rmse_m"}) {
+      EXPECT_TRUE(m["estimators"][name].contains(key)) << name << "." << key;
+    }
+  }
+  // Four metres of rough ground: every estimator that does not depend on vision
+  // alone stays within half a metre of the truth.
+  for (const char* name : {"wheel_odometry", "wheel_odometry_noslip", "fused", "ekf"}) {
+    EXPECT_LT(m["estimators"][name]["ate_rmse_m"].get<double>(), 0.5) << name;
+  }
+  EXPECT_GT(m["localization"]["mean_inliers"].get<double>(), 20.0);
+}
+
 TEST(CliTest, UnknownKeyFailsWithFileKeyAndReasonOnOneLine) {
   const fs::path dir = TempDir("bad");
   const fs::path bad = dir / "bad.yaml";

@@ -3,9 +3,12 @@
 // and the rejections: flat patches, repetitive texture, image borders, range limits.
 #include "trackbed/perception/stereo_matcher.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -52,9 +55,11 @@ Pair MakePair(const cv::Mat& texture, const std::function<double(double, double)
   return pair;
 }
 
-/// Matches a grid of sub-pixel points; returns the worst |error| and counts.
+/// Matches a grid of sub-pixel points; returns the worst and RMS |error| and counts.
 struct Score {
   double worst_px = 0.0;
+  double rms_px = 0.0;
+  int within_0_2_px = 0;
   int valid = 0;
   int total = 0;
 };
@@ -67,9 +72,13 @@ Score MatchGrid(StereoMatcher& matcher, const Pair& pair,
       const StereoMatch m = matcher.Match(pair.left, pair.right, cv::Point2f(x, y));
       if (!m.valid()) continue;
       ++s.valid;
-      s.worst_px = std::max(s.worst_px, std::abs(m.disparity_px - d(x, y)));
+      const double error = std::abs(m.disparity_px - d(x, y));
+      s.worst_px = std::max(s.worst_px, error);
+      s.rms_px += error * error;
+      s.within_0_2_px += error <= 0.2 ? 1 : 0;
     }
   }
+  s.rms_px = s.valid > 0 ? std::sqrt(s.rms_px / s.valid) : 0.0;
   return s;
 }
 
@@ -95,6 +104,29 @@ TEST(StereoMatcherTest, SlantedPlaneWithGainChangeWithinAFifthOfAPixel) {
   EXPECT_LT(s.worst_px, 0.2);
   std::printf("slanted plane, gain 0.8: %d/%d matched, worst error %.3f px\n", s.valid, s.total,
               s.worst_px);
+}
+
+TEST(StereoMatcherTest, FloorSeenFromALowCameraNeedsTheDisparityGradient) {
+  // A floor seen from height h: d grows by baseline/h per row (0.3 px/px for a 0.12 m
+  // baseline at 0.4 m), ±1.5 px across an 11-px window. The refinement models it; the
+  // parabola alone (a constant-disparity window) averages the rows unevenly.
+  const auto d = [](double, double y) { return 2.0 + 0.3 * y; };
+  const Pair pair = MakePair(Texture(360, 200, 25), d);
+  StereoMatcher refined;
+  StereoMatcherOptions no_refinement;
+  no_refinement.refinement_iterations = 0;
+  StereoMatcher parabola(no_refinement);
+  const Score with = MatchGrid(refined, pair, d);
+  const Score without = MatchGrid(parabola, pair, d);
+  EXPECT_GT(with.valid, with.total * 9 / 10) << with.valid << " of " << with.total;
+  EXPECT_GE(with.within_0_2_px, with.valid * 99 / 100);
+  EXPECT_LT(with.rms_px, 0.1);
+  EXPECT_LT(with.rms_px, without.rms_px / 3.0);
+  std::printf(
+      "floor, 0.3 px/row: %d/%d matched, RMS error %.3f px, %d within 0.2 px (parabola only: "
+      "RMS %.3f px, %d within 0.2 px)\n",
+      with.valid, with.total, with.rms_px, with.within_0_2_px, without.rms_px,
+      without.within_0_2_px);
 }
 
 TEST(StereoMatcherTest, BatchMatchesAgreeWithSinglePoints) {

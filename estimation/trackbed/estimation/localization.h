@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
+#include "trackbed/estimation/ekf_odometry.h"
 #include "trackbed/estimation/fuzzy_fusion.h"
 #include "trackbed/estimation/pose2.h"
 #include "trackbed/estimation/stereo_visual_odometry.h"
@@ -30,6 +31,8 @@ struct LocalizationOptions {
   /// Inliers a VO frame needs before its velocity updates the slip estimate (design.md
   /// §1.1 "whenever VO is valid (enough inliers)"), >= the VO's own minimum.
   int min_inliers_for_slip = 30;
+  /// The EKF baseline (wheel odometry + gyro + visual odometry).
+  EkfOdometryOptions ekf;
 
   void Validate() const;
 };
@@ -58,6 +61,8 @@ class LocalizationStack {
   LocalizationStack& operator=(const LocalizationStack&) = delete;
 
   void AddEncoderSample(double t_s, std::int64_t left_ticks, std::int64_t right_ticks);
+  /// The IMU gyro's rate about the body z axis [rad/s] (for the EKF baseline).
+  void AddGyroSample(double t_s, double yaw_rate_radps);
   LocalizationFrameReport AddStereoFrame(double t_s, const cv::Mat& left, const cv::Mat& right);
 
   /// Current estimates of T_world_body.
@@ -65,6 +70,7 @@ class LocalizationStack {
   Eigen::Isometry3d wheel_odometry_noslip() const;
   Eigen::Isometry3d visual_odometry() const;
   Eigen::Isometry3d fused() const;
+  Eigen::Isometry3d ekf() const;
   const TrackSlip& slip() const { return wheel_.slip(); }
 
  private:
@@ -75,6 +81,7 @@ class LocalizationStack {
   std::unique_ptr<StereoVisualOdometry> vo_;
   FuzzyFusionWeight fuzzy_;
   FusedOdometry fused_;
+  EkfOdometry ekf_;
   Eigen::Isometry3d T_world_body_vo_;
   // Wheel pose and time at the last stereo frame: the fusion step's interval.
   // (Declared after the estimators: initialised from the initial pose.)

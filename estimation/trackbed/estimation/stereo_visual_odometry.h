@@ -23,8 +23,9 @@
 //      z = (u_left, v, u_right);
 //   3. RANSAC: 3 random correspondences → Horn (p_prev → p_curr) → T_curr_prev; inliers
 //      by reprojection error of T_curr_prev·p_prev in the current left and right images;
-//   4. Horn refit on the inliers (weights 1/Z²), then reprojection refinement, a
-//      re-selection of the inliers with the refined motion and a second refinement;
+//   4. Horn refit on the inliers (weights 1/(Z_prev⁴ + Z_curr⁴), the inverse variance
+//      of stereo depth), then reprojection refinement, a re-selection of the inliers
+//      with the refined motion and a second refinement;
 //   5. keep the inliers as features and replenish the grid cells that have too few with
 //      new Harris corners (stereo-matched for the next frame).
 // Fewer than min_inliers inliers is a failure (design.md §3): no motion (identity),
@@ -115,8 +116,8 @@ struct MotionRansacOptions {
 
 struct MotionRansacResult {
   bool success = false;  ///< a non-degenerate hypothesis was found
-  /// Best hypothesis refitted on its inliers by Horn (weights 1/Z_prev²), unless the
-  /// refit has fewer inliers than the hypothesis. Identity when !success.
+  /// Best hypothesis refitted on its inliers by Horn (weights 1/(Z_prev⁴ + Z_curr⁴)),
+  /// unless the refit has fewer inliers than the hypothesis. Identity when !success.
   Eigen::Isometry3d T_curr_prev = Eigen::Isometry3d::Identity();
   int inliers = 0;                         ///< inliers of T_curr_prev
   int iterations = 0;                      ///< hypotheses drawn
@@ -150,7 +151,9 @@ struct MotionRefinementResult {
   int iterations = 0;
   double initial_rms_px = 0.0;  ///< RMS residual (per image coordinate) before
   double final_rms_px = 0.0;    ///< and after
-  bool converged = false;       ///< stopped on min_step (not on max_iterations)
+  /// Stopped because the step became negligible (min_step) or no step lowers the cost,
+  /// rather than on max_iterations.
+  bool converged = false;
 };
 
 /// Minimises Σ Huber(|StereoReprojectionResidual|) over the correspondences whose mask
@@ -184,7 +187,8 @@ struct StereoVisualOdometryOptions {
   /// corner already taken) is searched again only this many frames later, >= 1 (1 =
   /// every frame). Saves the Harris response of sky, blank walls and plain floors.
   int exhausted_cell_retry_frames = 4;
-  /// A new corner must be at least this far from every kept feature [px], >= 0.
+  /// A new corner must be at least this far from every kept feature in x or y [px]
+  /// (Chebyshev distance, rounded up to whole pixels), >= 0.
   double min_feature_distance_px = 8.0;
   /// Lucas–Kanade tracking options.
   perception::FeatureTrackerOptions tracker;
@@ -269,11 +273,9 @@ class StereoVisualOdometry {
   struct Features {
     std::vector<cv::Point2f> points;     // left image [px]
     std::vector<Eigen::Vector3d> p_cam;  // 3-D in that frame's left camera [m]
-    std::vector<float> disparity_px;
     void clear() {
       points.clear();
       p_cam.clear();
-      disparity_px.clear();
     }
     std::size_t size() const { return points.size(); }
   };

@@ -4,9 +4,11 @@
 //   - bounds: calcOpticalFlowPyrLK can report status 1 for a point it has moved
 //     outside the image, so every tracked point is checked against the image;
 //   - forward–backward consistency (Kalal et al. 2010): the tracked point is tracked
-//     back to the previous image and must land within `max_forward_backward_px` of
-//     where it started; this rejects tracks that slid along an edge or jumped to a
-//     similar-looking patch.
+//     back to the previous image, starting where the forward track ended (shifted back
+//     by the guess's displacement when a guess was given), and must land within
+//     `max_forward_backward_px` of where it started; this
+//     rejects tracks that slid along an edge, jumped to a similar-looking patch, or
+//     went into an occluder.
 // Pyramids are built once per image (TrackingPyramid) and reused: the current image's
 // pyramid serves the forward track now, the backward track now, and the forward track
 // of the next frame as the previous image.
@@ -103,8 +105,8 @@ class FeatureTracker {
   FeatureTrackerOptions options_;
   // Scratch, reused between calls to keep allocations out of the per-frame path.
   std::vector<unsigned char> lk_status_, back_status_;
-  std::vector<float> lk_error_;
-  std::vector<cv::Point2f> back_points_;
+  std::vector<std::size_t> fb_index_;
+  std::vector<cv::Point2f> guess_shift_, fb_from_, back_points_;
   TrackingPyramid scratch_prev_, scratch_curr_;
 };
 

@@ -12,7 +12,7 @@
 //   - the left patch has texture (standard deviation >= min_texture, gray levels),
 //   - the peak score is >= min_zncc and the peak is not at either end of the range,
 //   - it is unique: the best other local maximum has a cost (1 − ZNCC) at least
-//     (1 + uniqueness_ratio) times the peak's, and
+//     (1 + uniqueness_ratio) times the peak's (costs floored at 0.01), and
 //   - left–right consistent: matching the right point back into the left image gives
 //     the same disparity within max_left_right_px.
 #pragma once
@@ -36,7 +36,8 @@ struct StereoMatcherOptions {
   /// Minimum ZNCC of the best match, in [−1, 1].
   double min_zncc = 0.8;
   /// Uniqueness margin, >= 0: the second-best local maximum must have a cost (1 − ZNCC)
-  /// >= (1 + uniqueness_ratio) × the best cost.
+  /// >= (1 + uniqueness_ratio) × the best cost, costs below 0.01 counting as 0.01 (so
+  /// that copies of a repeated pattern that all match almost perfectly are ambiguous).
   double uniqueness_ratio = 0.2;
   /// Left–right consistency tolerance [px], >= 0; 0 disables the check (halving the
   /// cost of matching).
@@ -101,8 +102,10 @@ class StereoMatcher {
     float zncc = 0.0f;
     StereoMatchStatus status = StereoMatchStatus::kOutOfImage;
   };
-  /// Searches `other` for the patch of `ref` at (u, v) at columns u + sign·d.
-  Search SearchRow(const cv::Mat& ref, const cv::Mat& other, float u, float v, int sign);
+  /// Searches `other` for the patch of `ref` at (u, v) at columns u + sign·d; with
+  /// `refine`, the sub-pixel refinement follows the parabola.
+  Search SearchRow(const cv::Mat& ref, const cv::Mat& other, float u, float v, int sign,
+                   bool refine);
   StereoMatch MatchOne(const cv::Mat& left, const cv::Mat& right, const cv::Point2f& point);
   /// Sub-pixel refinement of disparity d0 of the patch in patch_ (zero mean).
   float RefineDisparity(const cv::Mat& other, float u, float v, int sign, float d0);

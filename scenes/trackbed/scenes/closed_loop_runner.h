@@ -28,7 +28,7 @@ struct StereoFrame {
 /// The localization stack's estimates at one encoder sample (all T_world_body).
 struct EstimateSample {
   double t_s = 0.0;
-  Eigen::Isometry3d wheel_odometry, wheel_odometry_noslip, fused;
+  Eigen::Isometry3d wheel_odometry, wheel_odometry_noslip, fused, ekf;
   bool has_camera = false;  ///< fused (and visual odometry) exist
   estimation::TrackSlip slip;
 };

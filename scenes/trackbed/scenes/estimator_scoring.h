@@ -47,7 +47,7 @@ class EstimatorScoring {
   bool empty() const { return truth_.empty(); }
 
  private:
-  estimation::Trajectory truth_, wheel_, wheel_noslip_, fused_;
+  estimation::Trajectory truth_, wheel_, wheel_noslip_, fused_, ekf_;
   estimation::Trajectory vo_truth_, vo_;
   bool has_camera_ = false;
   long long vo_failures_ = 0;
