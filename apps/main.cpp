@@ -40,6 +40,11 @@ int Run(const std::string& scenario_path, const std::string& out_dir,
       m.encoder_distance_m,
       m.distance_m > 0 ? 100.0 * (m.encoder_distance_m - m.distance_m) / m.distance_m : 0.0,
       out_dir.c_str());
+  if (m.icr.samples_used >= 100) {
+    // Turning runs (scenes/calibration/icr_turns.yaml) calibrate the effective gauge.
+    std::printf("ICR expansion chi = %.3f (B_eff = chi * B, fitted on %d turning samples)\n",
+                m.icr.chi, m.icr.samples_used);
+  }
   return 0;
 }
 
