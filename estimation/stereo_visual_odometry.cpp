@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -342,6 +343,8 @@ void StereoVisualOdometryOptions::Validate() const {
     throw OptionError("min_inliers", "must be >= 3 (got " + std::to_string(min_inliers) + ")");
   }
   option_check::Nested("refinement", refinement);
+  option_check::Positive("max_translation_per_frame_m", max_translation_per_frame_m);
+  option_check::InRange("max_rotation_per_frame_deg", max_rotation_per_frame_deg, 1e-3, 180.0);
 }
 
 const char* ToString(VoStatus status) {
@@ -356,6 +359,8 @@ const char* ToString(VoStatus status) {
       return "too_few_inliers";
     case VoStatus::kRansacFailed:
       return "ransac_failed";
+    case VoStatus::kImplausibleMotion:
+      return "implausible_motion";
   }
   return "unknown";
 }
@@ -628,9 +633,20 @@ VoFrameResult StereoVisualOdometry::Process(const cv::Mat& left, const cv::Mat& 
                                               std::to_string(min_inliers) + ")");
   }
 
-  // Success: accumulate the pose.
+  // Success, if the motion is one the platform can make: accumulate the pose.
   Eigen::Isometry3d T_curr_prev = refined.T_curr_prev;
   T_curr_prev.linear() = Eigen::Quaterniond(T_curr_prev.linear()).normalized().toRotationMatrix();
+  const double moved_m = T_curr_prev.translation().norm();
+  const double turned_deg = Eigen::AngleAxisd(T_curr_prev.linear()).angle() * 180.0 / M_PI;
+  if (moved_m > options_.max_translation_per_frame_m ||
+      turned_deg > options_.max_rotation_per_frame_deg) {
+    char reason[160];
+    std::snprintf(reason, sizeof(reason),
+                  "motion of %.3f m and %.1f deg exceeds the per-frame bounds (%.3f m, %.1f deg)",
+                  moved_m, turned_deg, options_.max_translation_per_frame_m,
+                  options_.max_rotation_per_frame_deg);
+    return fail(VoStatus::kImplausibleMotion, reason);
+  }
   result.status = VoStatus::kOk;
   result.inliers = inliers;
   result.reprojection_rms_px = refined.final_rms_px;

@@ -100,6 +100,8 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers
     lo.wheel.ticks_per_rev = rs.encoders.ticks_per_rev;
     lo.wheel.slip_decay_time_s = scenario.estimation.slip_decay_time_s;
     lo.fusion_rules_file = scenario.estimation.fusion_rules;
+    lo.vo.max_translation_per_frame_m = scenario.estimation.vo_max_translation_per_frame_m;
+    lo.vo.max_rotation_per_frame_deg = scenario.estimation.vo_max_rotation_per_frame_deg;
     std::optional<perception::StereoCalibration> calibration;
     if (rig) {
       const sim::PinholeIntrinsics& K = rig->intrinsics();

@@ -383,6 +383,8 @@ void Visit(V& v, EstimationSpec& o) {
   v("icr_offset_m", o.icr_offset_m);
   v("slip_decay_time_s", o.slip_decay_time_s);
   v("fusion_rules", o.fusion_rules);
+  v("vo_max_translation_per_frame_m", o.vo_max_translation_per_frame_m);
+  v("vo_max_rotation_per_frame_deg", o.vo_max_rotation_per_frame_deg);
 }
 
 template <class V>

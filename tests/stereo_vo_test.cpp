@@ -383,6 +383,25 @@ TEST(StereoVisualOdometryTest, SyntheticSceneMotionIsRecovered) {
               worst_deg, 1e3 * worst_m, fewest_inliers);
 }
 
+TEST(StereoVisualOdometryTest, MotionBeyondThePlatformsBoundsIsAFailureNotAMotion) {
+  const SyntheticScene scene;
+  StereoVisualOdometryOptions options;
+  // Tighter than the synthetic scene's true per-frame motion.
+  options.max_translation_per_frame_m = 1e-4;
+  StereoVisualOdometry vo(SyntheticScene::Calibration(), options);
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Isometry3d pose = SyntheticScene::TruePose(k);
+    const VoFrameResult r =
+        vo.Process(scene.Render(pose, false), scene.Render(pose, true), 0.1 * k);
+    if (k == 0) continue;
+    EXPECT_EQ(r.status, VoStatus::kImplausibleMotion) << r.reason;
+    EXPECT_NE(r.reason.find("exceeds the per-frame bounds"), std::string::npos) << r.reason;
+    EXPECT_EQ(r.inliers, 0);
+    EXPECT_TRUE(r.T_prev_curr.isApprox(Eigen::Isometry3d::Identity()));
+  }
+  EXPECT_STREQ(ToString(VoStatus::kImplausibleMotion), "implausible_motion");
+}
+
 TEST(StereoVisualOdometryTest, BlankFrameFailsWithoutMotionAndTheNextFramesRecover) {
   const SyntheticScene scene;
   StereoVisualOdometry vo(SyntheticScene::Calibration());

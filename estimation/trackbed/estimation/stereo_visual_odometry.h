@@ -169,7 +169,7 @@ MotionRefinementResult RefineMotionReprojection(
 /// HarrisOptions{} with min_response = 1e-5: the VO's default detector.
 inline perception::HarrisOptions DefaultVoHarrisOptions() {
   perception::HarrisOptions h;
-  h.min_response = 1e-5;
+  h.min_response = 2e-6;
   return h;
 }
 
@@ -203,6 +203,12 @@ struct StereoVisualOdometryOptions {
   std::uint64_t seed = 1;
   /// Fewer inliers than this is a failure (design.md §3), >= 3.
   int min_inliers = 6;
+  /// Per-frame motion bounds of the platform: a frame whose estimated motion moves the
+  /// camera farther [m] or turns it more [deg] is a failure (kImplausibleMotion), not a
+  /// motion — one wrong consensus would otherwise turn the whole trajectory. Defaults
+  /// leave room for a car at 100 km/h and 10 Hz; a slow robot may tighten them. > 0.
+  double max_translation_per_frame_m = 3.0;
+  double max_rotation_per_frame_deg = 30.0;
   /// Reprojection refinement after the inlier refit.
   MotionRefinementOptions refinement;
   /// Start LK at the position the last motion predicts (constant velocity), rather than
@@ -216,14 +222,16 @@ struct StereoVisualOdometryOptions {
 
 /// Outcome of one frame.
 enum class VoStatus {
-  kOk,              ///< motion estimated
-  kFirstFrame,      ///< first frame (or after Reset): features initialised, no motion
-  kTooFewFeatures,  ///< fewer than min_inliers 3-D–3-D correspondences
-  kTooFewInliers,   ///< RANSAC found fewer than min_inliers inliers
-  kRansacFailed,    ///< every sample was degenerate
+  kOk,                 ///< motion estimated
+  kFirstFrame,         ///< first frame (or after Reset): features initialised, no motion
+  kTooFewFeatures,     ///< fewer than min_inliers 3-D–3-D correspondences
+  kTooFewInliers,      ///< RANSAC found fewer than min_inliers inliers
+  kRansacFailed,       ///< every sample was degenerate
+  kImplausibleMotion,  ///< the motion exceeds the per-frame bounds (a wrong consensus)
 };
 
-/// "ok", "first_frame", "too_few_features", "too_few_inliers", "ransac_failed".
+/// "ok", "first_frame", "too_few_features", "too_few_inliers", "ransac_failed",
+/// "implausible_motion".
 const char* ToString(VoStatus status);
 
 /// Result of StereoVisualOdometry::Process for one frame.

@@ -102,6 +102,10 @@ struct EstimationSpec {
   double slip_decay_time_s = 3.0;
   /// FLL file with the fusion rule base; empty: the built-in Table 1.
   std::string fusion_rules;
+  /// Visual odometry's per-frame motion bounds for this robot [m], [deg]: a frame that
+  /// claims more is a failure, not a motion (the robot tops out at 1.5 m/s, 10 Hz).
+  double vo_max_translation_per_frame_m = 0.5;
+  double vo_max_rotation_per_frame_deg = 20.0;
 
   void Validate() const;
 };
