@@ -3,6 +3,7 @@
 //   trackbed run SCENARIO.yaml --out DIR [--seed N] [--set key=value ...]
 //
 // Exit status 0 on success; otherwise non-zero with a one-line reason on stderr.
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <iostream>
@@ -40,6 +41,18 @@ int Run(const std::string& scenario_path, const std::string& out_dir,
       m.encoder_distance_m,
       m.distance_m > 0 ? 100.0 * (m.encoder_distance_m - m.distance_m) / m.distance_m : 0.0,
       out_dir.c_str());
+  if (!m.estimators.empty()) {
+    // The run's report: every estimator against ground truth (design.md §3).
+    std::printf("%-22s %10s %12s %12s %14s\n", "estimator", "ATE [m]", "final [m]", "final [%]",
+                "drift/10 m [%]");
+    for (const auto& [name, e] : m.estimators) {
+      char drift[32] = "n/a (< 10 m)";
+      if (std::isfinite(e.rpe_trans_pct))
+        std::snprintf(drift, sizeof(drift), "%.2f", e.rpe_trans_pct);
+      std::printf("%-22s %10.3f %12.3f %12.2f %14s\n", name.c_str(), e.ate_rmse_m, e.final_error_m,
+                  e.final_error_pct, drift);
+    }
+  }
   if (m.icr.samples_used >= 100) {
     // Turning runs (scenes/calibration/icr_turns.yaml) calibrate the effective gauge.
     std::printf("ICR expansion chi = %.3f (B_eff = chi * B, fitted on %d turning samples)\n",

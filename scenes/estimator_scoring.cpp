@@ -2,6 +2,7 @@
 #include "trackbed/scenes/estimator_scoring.h"
 
 #include <cmath>
+#include <limits>
 
 #include "trackbed/estimation/trajectory_metrics.h"
 #include "trackbed/scenes/closed_loop_runner.h"
@@ -46,7 +47,8 @@ EstimatorMetrics Score(const estimation::Trajectory& gt, const estimation::Traje
       estimation::AbsoluteTrajectoryError(gt, est, estimation::AlignmentMode::kSe3).error_m.rmse;
   m.final_error_m = estimation::ComputeFinalError(gt, est).horizontal_m;
   m.final_error_pct = distance_m > 0 ? 100.0 * m.final_error_m / distance_m : 0.0;
-  m.rpe_trans_pct = estimation::RpeTransPct(gt, est).value_or(0.0);
+  m.rpe_trans_pct =
+      estimation::RpeTransPct(gt, est).value_or(std::numeric_limits<double>::quiet_NaN());
   return m;
 }
 
