@@ -23,6 +23,20 @@ void StereoRigOptions::Validate() const {
   if (!(far_m > near_m)) throw OptionError("far_m", "must exceed near_m");
   option_check::Positive("exposure", exposure);
   option_check::NonNegative("noise_std", noise_std);
+  for (std::size_t k = 0; k < blackouts_s.size(); ++k) {
+    const Eigen::Vector2d& b = blackouts_s[k];
+    if (!(std::isfinite(b.x()) && std::isfinite(b.y()) && b.x() >= 0.0 && b.y() > 0.0)) {
+      throw OptionError("blackouts_s[" + std::to_string(k) + "]",
+                        "must be [start >= 0, duration > 0] in seconds");
+    }
+  }
+}
+
+bool StereoRigOptions::InBlackout(double t_s) const {
+  for (const Eigen::Vector2d& b : blackouts_s) {
+    if (t_s >= b.x() && t_s < b.x() + b.y()) return true;
+  }
+  return false;
 }
 
 StereoRig::StereoRig(const StereoRigOptions& options) : options_(options) {

@@ -1,6 +1,7 @@
 // The closed-loop runner (see closed_loop_runner.h).
 #include "trackbed/scenes/closed_loop_runner.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <optional>
@@ -188,6 +189,11 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers
                               static_cast<std::uint64_t>(frame.index), 0, &left_image);
       robot::ApplySensorModel(rs.stereo.exposure, rs.stereo.noise_std, noise_seed,
                               static_cast<std::uint64_t>(frame.index), 1, &right_image);
+      frame.blackout = rs.stereo.InBlackout(frame.t_s);
+      if (frame.blackout) {
+        std::fill(left_image.pixels.begin(), left_image.pixels.end(), 0);
+        std::fill(right_image.pixels.begin(), right_image.pixels.end(), 0);
+      }
       render_wall_s +=
           std::chrono::duration<double>(std::chrono::steady_clock::now() - render_start).count();
       frame.left = &left_image;
@@ -201,6 +207,7 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers
         const auto start = std::chrono::steady_clock::now();
         LocalizationFrame lf;
         lf.t_s = frame.t_s;
+        lf.camera_blackout = frame.blackout;
         lf.report = stack->AddStereoFrame(frame.t_s, as_mat(left_image), as_mat(right_image));
         lf.visual_odometry = stack->visual_odometry();
         estimation_wall_s +=

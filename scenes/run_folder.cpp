@@ -128,11 +128,10 @@ std::string MetricsJson(const RunMetrics& m) {
   }
   j["estimators"] = estimators;
   const LocalizationSummary& loc = m.localization;
-  j["localization"] = {{"vo_frames", loc.vo_frames},
-                       {"vo_failures", loc.vo_failures},
-                       {"mean_inliers", loc.mean_inliers},
-                       {"mean_fusion_w", loc.mean_fusion_w},
-                       {"slip_estimate_rmse_mps", loc.slip_estimate_rmse_mps}};
+  j["localization"] = {
+      {"vo_frames", loc.vo_frames},         {"camera_blackout_frames", loc.camera_blackout_frames},
+      {"vo_failures", loc.vo_failures},     {"mean_inliers", loc.mean_inliers},
+      {"mean_fusion_w", loc.mean_fusion_w}, {"slip_estimate_rmse_mps", loc.slip_estimate_rmse_mps}};
   j["timing"] = {{"render_s", m.render_wall_s}, {"estimation_s", m.estimation_wall_s}};
   return j.dump(2) + "\n";
 }
@@ -160,7 +159,8 @@ RunMetrics RunToFolder(const Scenario& scenario, const fs::path& dir) {
         fused_tum = std::make_unique<LogFile>(dir / "fused.tum", "");
         vo_tum = std::make_unique<LogFile>(dir / "visual_odometry.tum", "");
         fusion_csv = std::make_unique<LogFile>(
-            dir / "fusion.csv", "t,slip_velocity_mps,features,w,vo_status,vo_tracked");
+            dir / "fusion.csv",
+            "t,slip_velocity_mps,features,w,vo_status,vo_tracked,camera_blackout");
       }
     }
     LogFile tracks(dir / "tracks.csv",
@@ -235,9 +235,10 @@ RunMetrics RunToFolder(const Scenario& scenario, const fs::path& dir) {
     observers.on_localization_frame = [&](const LocalizationFrame& f) {
       if (!vo_tum) return;
       vo_tum->Line(estimation::FormatTumLine({f.t_s, f.visual_odometry}).c_str());
-      std::snprintf(line, sizeof(line), "%.6f,%.9g,%.0f,%.6f,%s,%d", f.t_s,
+      std::snprintf(line, sizeof(line), "%.6f,%.9g,%.0f,%.6f,%s,%d,%d", f.t_s,
                     f.report.slip_velocity_mps, f.report.features, f.report.w,
-                    estimation::ToString(f.report.vo.status), f.report.vo.tracked);
+                    estimation::ToString(f.report.vo.status), f.report.vo.tracked,
+                    f.camera_blackout ? 1 : 0);
       fusion_csv->Line(line);
     };
     observers.on_imu = [&](const robot::ImuSample& s) {

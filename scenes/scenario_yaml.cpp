@@ -339,6 +339,7 @@ void Visit(V& v, robot::StereoRigOptions& o) {
   v("far_m", o.far_m);
   v("exposure", o.exposure);
   v("noise_std", o.noise_std);
+  v("blackouts_s", o.blackouts_s);
 }
 
 template <class V>

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -174,6 +175,44 @@ TEST(CliTest, EstimatorsAreWrittenBesideGroundTruthAndScored) {
     EXPECT_LT(m["estimators"][name]["ate_rmse_m"].get<double>(), 0.5) << name;
   }
   EXPECT_GT(m["localization"]["mean_inliers"].get<double>(), 20.0);
+}
+
+TEST(CliTest, CameraBlackoutMidRunFusionLeansOnWheelsAndTheRunCompletes) {
+  const fs::path out = TempDir("blackout");
+  const Result r = Trackbed(
+      "run scenes/outdoor.yaml --set duration_s=20 --set robot.stereo.blackouts_s=[[8,3]] --out " +
+          out.string(),
+      "blackout");
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  const nlohmann::json m = Metrics(out);
+  EXPECT_EQ(m["status"], "completed");
+  EXPECT_EQ(m["localization"]["camera_blackout_frames"].get<int>(), 30);  // 3 s at 10 Hz
+  // During the blackout VO reports no features and fusion takes the wheels whole.
+  std::istringstream fusion(Slurp(out / "fusion.csv"));
+  std::string row;
+  std::getline(fusion, row);
+  EXPECT_EQ(row, "t,slip_velocity_mps,features,w,vo_status,vo_tracked,camera_blackout");
+  int blacked = 0, recovered = 0;
+  while (std::getline(fusion, row)) {
+    std::vector<std::string> f;
+    std::istringstream cells(row);
+    for (std::string c; std::getline(cells, c, ',');) f.push_back(c);
+    ASSERT_EQ(f.size(), 7u) << row;
+    const double t = std::stod(f[0]);
+    if (f[6] == "1") {
+      ++blacked;
+      EXPECT_EQ(f[2], "0") << row;
+      EXPECT_DOUBLE_EQ(std::stod(f[3]), 1.0) << row;
+      EXPECT_NE(f[4], "ok") << row;
+    } else if (t > 12.0 && f[4] == "ok") {
+      ++recovered;
+    }
+  }
+  EXPECT_EQ(blacked, 30);
+  EXPECT_GT(recovered, 70);  // VO is back after the fault
+  // No NaN anywhere in the fused trajectory, and it stays near the truth.
+  EXPECT_EQ(Slurp(out / "fused.tum").find("nan"), std::string::npos);
+  EXPECT_LT(m["estimators"]["fused"]["ate_rmse_m"].get<double>(), 0.2);
 }
 
 TEST(CliTest, UnknownKeyFailsWithFileKeyAndReasonOnOneLine) {

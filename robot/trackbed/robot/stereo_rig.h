@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -37,7 +38,12 @@ struct StereoRigOptions {
   double exposure = 1.0;
   /// Standard deviation of the sensor's additive noise [grey levels], >= 0.
   double noise_std = 1.0;
+  /// Camera faults: [start, duration] pairs [s] during which both cameras deliver black
+  /// frames (a covered lens, a dropped link), for fault tests.
+  std::vector<Eigen::Vector2d> blackouts_s;
 
+  /// Whether time `t_s` falls in a blackout.
+  bool InBlackout(double t_s) const;
   void Validate() const;
 };
 

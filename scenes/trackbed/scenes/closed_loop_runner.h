@@ -23,6 +23,7 @@ struct StereoFrame {
   Eigen::Isometry3d T_world_left;  ///< Ground truth of the left camera (OpenCV axes).
   Eigen::Isometry3d T_world_right;
   const robot::StereoRig* rig = nullptr;
+  bool blackout = false;  ///< A camera fault blanked this pair (robot.stereo.blackouts_s).
 };
 
 /// The localization stack's estimates at one encoder sample (all T_world_body).
@@ -36,6 +37,7 @@ struct EstimateSample {
 /// The stack's work on one stereo frame.
 struct LocalizationFrame {
   double t_s = 0.0;
+  bool camera_blackout = false;
   estimation::LocalizationFrameReport report;
   Eigen::Isometry3d visual_odometry;  ///< T_world_body after this frame
 };
