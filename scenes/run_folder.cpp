@@ -13,7 +13,9 @@
 #include "trackbed/perception/kitti_sequence.h"
 
 #include "trackbed/estimation/trajectory.h"
+#include "trackbed/estimation/trajectory_metrics.h"
 #include "trackbed/scenes/closed_loop_runner.h"
+#include "trackbed/scenes/run_plots.h"
 #include "trackbed/scenes/scenario_yaml.h"
 
 namespace trackbed::scenes {
@@ -94,6 +96,61 @@ std::string StereoCalibrationJson(const robot::StereoRig& rig) {
   return j.dump(2) + "\n";
 }
 
+// What the plots need, gathered at 10 Hz while the run goes.
+struct PlotData {
+  estimation::Trajectory truth;
+  std::map<std::string, estimation::Trajectory> estimates;  // name → poses
+  std::vector<Eigen::Vector2d> w, slip_left_true, slip_left_est, slip_right_true, slip_right_est;
+
+  void Add(const RunSample& s) {
+    if (std::lround(s.t_s * 100.0) % 10 != 0) return;  // every 0.1 s
+    truth.push_back({s.t_s, s.chassis.T_world_body});
+    if (!s.estimate) return;
+    const EstimateSample& e = *s.estimate;
+    estimates["wheel_odometry"].push_back({s.t_s, e.wheel_odometry});
+    estimates["wheel_odometry_noslip"].push_back({s.t_s, e.wheel_odometry_noslip});
+    estimates["ekf"].push_back({s.t_s, e.ekf});
+    if (e.has_camera) estimates["fused"].push_back({s.t_s, e.fused});
+    slip_left_true.emplace_back(s.t_s, s.tracks[0].slip_velocity_mps);
+    slip_right_true.emplace_back(s.t_s, s.tracks[1].slip_velocity_mps);
+    slip_left_est.emplace_back(s.t_s, e.slip.left_mps);
+    slip_right_est.emplace_back(s.t_s, e.slip.right_mps);
+  }
+
+  // trajectories.png, error_histogram.png and (with a camera) fusion.png.
+  void Write(const fs::path& dir, const std::string& scene) const {
+    if (truth.size() < 2 || estimates.empty()) return;
+    auto xy = [](const estimation::Trajectory& t) {
+      std::vector<Eigen::Vector2d> pts;
+      for (const estimation::StampedPose& p : t)
+        pts.push_back(p.T_world_body.translation().head<2>());
+      return pts;
+    };
+    std::vector<PlotSeries> paths{{"ground truth", xy(truth)}};
+    for (const auto& [name, t] : estimates) paths.push_back({name, xy(t)});
+    WriteTrajectoryPlot(dir / "trajectories.png", scene + ": trajectories over the true path",
+                        paths);
+    std::vector<double> edges;
+    for (int k = 0; k <= 20; ++k) edges.push_back(0.05 * k);
+    std::vector<HistogramSeries> bars;
+    for (const auto& [name, t] : estimates) {
+      const estimation::DistanceHistogram h = estimation::DistanceErrorHistogram(t, truth, edges);
+      HistogramSeries b{name + " (>1 m: " + std::to_string(h.above) + ")", {}};
+      for (std::size_t c : h.counts) b.counts.push_back(static_cast<double>(c) / h.total());
+      bars.push_back(b);
+    }
+    WriteHistogramPlot(dir / "error_histogram.png",
+                       scene + ": distance of each estimate to the true path",
+                       "distance to the true path [m]", edges, bars, /*first_color=*/1);
+    if (w.empty()) return;
+    WriteTimePlot(
+        dir / "fusion.png", scene + ": fusion weight and track slip",
+        {{"w (wheel odometry)", {{"w", w}}},
+         {"left slip [m/s]", {{"true", slip_left_true}, {"estimated", slip_left_est}}},
+         {"right slip [m/s]", {{"true", slip_right_true}, {"estimated", slip_right_est}}}});
+  }
+};
+
 }  // namespace
 
 std::string MetricsJson(const RunMetrics& m) {
@@ -173,6 +230,7 @@ RunMetrics RunToFolder(const Scenario& scenario, const fs::path& dir) {
                   "t,v_x_mps,v_y_mps,v_z_mps,omega_x_radps,omega_y_radps,omega_z_radps");
     char line[512];
     RunObservers observers;
+    PlotData plots;
     std::unique_ptr<perception::KittiWriter> kitti;
     Eigen::Isometry3d T_world_cam0 = Eigen::Isometry3d::Identity();
     if (scenario.robot.stereo.enabled) {
@@ -194,6 +252,7 @@ RunMetrics RunToFolder(const Scenario& scenario, const fs::path& dir) {
       kitti->Add(f.t_s, as_mat(*f.left), as_mat(*f.right), T_world_cam0.inverse() * f.T_world_left);
     };
     observers.on_sample = [&](const RunSample& s) {
+      plots.Add(s);
       truth.Line(estimation::FormatTumLine({s.t_s, s.chassis.T_world_body}).c_str());
       std::snprintf(line, sizeof(line), "%.6f,%lld,%lld", s.t_s, s.ticks[0], s.ticks[1]);
       encoders.Line(line);
@@ -233,6 +292,8 @@ RunMetrics RunToFolder(const Scenario& scenario, const fs::path& dir) {
       twist.Line(line);
     };
     observers.on_localization_frame = [&](const LocalizationFrame& f) {
+      plots.w.emplace_back(f.t_s, f.report.w);
+      plots.estimates["visual_odometry"].push_back({f.t_s, f.visual_odometry});
       if (!vo_tum) return;
       vo_tum->Line(estimation::FormatTumLine({f.t_s, f.visual_odometry}).c_str());
       std::snprintf(line, sizeof(line), "%.6f,%.9g,%.0f,%.6f,%s,%d,%d", f.t_s,
@@ -250,6 +311,7 @@ RunMetrics RunToFolder(const Scenario& scenario, const fs::path& dir) {
     metrics = RunClosedLoop(scenario, observers);
     for (LogFile* f : {&truth, &twist, &encoders, &slip, &tracks, &imu}) f->Close();
     if (kitti) kitti->Close();
+    plots.Write(dir, scenario.scene.name);
     for (auto* f : {&wheel_tum, &noslip_tum, &ekf_tum, &fused_tum, &vo_tum, &fusion_csv}) {
       if (*f) (*f)->Close();
     }

@@ -175,6 +175,12 @@ TEST(CliTest, EstimatorsAreWrittenBesideGroundTruthAndScored) {
     EXPECT_LT(m["estimators"][name]["ate_rmse_m"].get<double>(), 0.5) << name;
   }
   EXPECT_GT(m["localization"]["mean_inliers"].get<double>(), 20.0);
+  // The paper's figures as PNG plots.
+  for (const char* png : {"trajectories.png", "error_histogram.png", "fusion.png"}) {
+    const std::string bytes = Slurp(out / png);
+    ASSERT_GT(bytes.size(), 1000u) << png;
+    EXPECT_EQ(bytes.substr(1, 3), "PNG") << png;
+  }
 }
 
 TEST(CliTest, CameraBlackoutMidRunFusionLeansOnWheelsAndTheRunCompletes) {

@@ -1,0 +1,206 @@
+// PNG plots (see run_plots.h). A small plotting canvas on cv::Mat: data bounds
+// to pixels, "nice" ticks, axes, lines, bars, legend.
+#include "trackbed/scenes/run_plots.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+namespace trackbed::scenes {
+namespace {
+
+const cv::Scalar kColors[] = {{0, 0, 0},      {200, 80, 20}, {30, 140, 30},   {20, 20, 210},
+                              {170, 40, 170}, {0, 150, 220}, {120, 120, 120}, {90, 60, 20}};
+const cv::Scalar kAxis(60, 60, 60), kGrid(225, 225, 225);
+
+cv::Scalar Color(std::size_t k) { return kColors[k % (sizeof(kColors) / sizeof(kColors[0]))]; }
+
+// Tick step of about `span / target` rounded to 1, 2 or 5 × 10^k.
+double NiceStep(double span, int target) {
+  const double raw = span / std::max(target, 1);
+  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
+  for (double m : {1.0, 2.0, 5.0, 10.0}) {
+    if (raw <= m * mag) return m * mag;
+  }
+  return 10.0 * mag;
+}
+
+std::string Format(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%g", std::abs(v) < 1e-12 ? 0.0 : v);
+  return buf;
+}
+
+// A rectangle of the image mapped to data bounds.
+struct Axes {
+  cv::Rect area;
+  double x0, x1, y0, y1;
+
+  cv::Point Map(double x, double y) const {
+    const double u = area.x + (x - x0) / (x1 - x0) * area.width;
+    const double v = area.y + area.height - (y - y0) / (y1 - y0) * area.height;
+    return {static_cast<int>(std::lround(u)), static_cast<int>(std::lround(v))};
+  }
+
+  void Draw(cv::Mat& img, const std::string& x_label, const std::string& y_label) const {
+    const double sx = NiceStep(x1 - x0, 8), sy = NiceStep(y1 - y0, 6);
+    for (double x = std::ceil(x0 / sx) * sx; x <= x1 + 1e-9; x += sx) {
+      cv::line(img, Map(x, y0), Map(x, y1), kGrid, 1);
+      const cv::Point p = Map(x, y0);
+      cv::putText(img, Format(x), {p.x - 12, p.y + 18}, cv::FONT_HERSHEY_SIMPLEX, 0.4, kAxis, 1,
+                  cv::LINE_AA);
+    }
+    for (double y = std::ceil(y0 / sy) * sy; y <= y1 + 1e-9; y += sy) {
+      cv::line(img, Map(x0, y), Map(x1, y), kGrid, 1);
+      const cv::Point p = Map(x0, y);
+      cv::putText(img, Format(y), {p.x - 48, p.y + 4}, cv::FONT_HERSHEY_SIMPLEX, 0.4, kAxis, 1,
+                  cv::LINE_AA);
+    }
+    cv::rectangle(img, area, kAxis, 1);
+    cv::putText(img, x_label, {area.x + area.width / 2 - 30, area.y + area.height + 38},
+                cv::FONT_HERSHEY_SIMPLEX, 0.45, kAxis, 1, cv::LINE_AA);
+    cv::putText(img, y_label, {area.x - 48, area.y - 8}, cv::FONT_HERSHEY_SIMPLEX, 0.45, kAxis, 1,
+                cv::LINE_AA);
+  }
+};
+
+void Legend(cv::Mat& img, const cv::Point& at, const std::vector<std::string>& names,
+            int first_color = 0) {
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    const cv::Point p(at.x, at.y + static_cast<int>(k) * 18);
+    cv::line(img, p, {p.x + 24, p.y}, Color(k + first_color), 2, cv::LINE_AA);
+    cv::putText(img, names[k], {p.x + 30, p.y + 4}, cv::FONT_HERSHEY_SIMPLEX, 0.45, kAxis, 1,
+                cv::LINE_AA);
+  }
+}
+
+void Title(cv::Mat& img, const std::string& title) {
+  cv::putText(img, title, {20, 26}, cv::FONT_HERSHEY_SIMPLEX, 0.6, kAxis, 1, cv::LINE_AA);
+}
+
+void Save(const std::filesystem::path& png, const cv::Mat& img) {
+  if (!cv::imwrite(png.string(), img)) {
+    throw std::runtime_error(png.string() + ": cannot write plot");
+  }
+}
+
+void Polyline(cv::Mat& img, const Axes& axes, const std::vector<Eigen::Vector2d>& pts,
+              const cv::Scalar& color) {
+  std::vector<cv::Point> line;
+  line.reserve(pts.size());
+  for (const Eigen::Vector2d& p : pts) {
+    if (p.allFinite()) line.push_back(axes.Map(p.x(), p.y()));
+  }
+  if (line.size() >= 2) cv::polylines(img, line, false, color, 1, cv::LINE_AA);
+}
+
+}  // namespace
+
+void WriteTrajectoryPlot(const std::filesystem::path& png, const std::string& title,
+                         const std::vector<PlotSeries>& series) {
+  double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+  for (const PlotSeries& s : series) {
+    for (const Eigen::Vector2d& p : s.points) {
+      if (!p.allFinite()) continue;
+      x0 = std::min(x0, p.x());
+      x1 = std::max(x1, p.x());
+      y0 = std::min(y0, p.y());
+      y1 = std::max(y1, p.y());
+    }
+  }
+  if (!(x1 > x0)) x1 = x0 + 1;
+  if (!(y1 > y0)) y1 = y0 + 1;
+  // Equal scales: grow the shorter span about its centre.
+  const cv::Rect area(80, 50, 720, 620);
+  const double scale = std::max((x1 - x0) / area.width, (y1 - y0) / area.height) * 1.05;
+  const double cx = (x0 + x1) / 2, cy = (y0 + y1) / 2;
+  const Axes axes{area, cx - scale * area.width / 2, cx + scale * area.width / 2,
+                  cy - scale * area.height / 2, cy + scale * area.height / 2};
+  cv::Mat img(720, 1040, CV_8UC3, cv::Scalar(255, 255, 255));
+  Title(img, title);
+  axes.Draw(img, "x [m]", "y [m]");
+  std::vector<std::string> names;
+  for (std::size_t k = 0; k < series.size(); ++k) {
+    Polyline(img, axes, series[k].points, Color(k));
+    names.push_back(series[k].name);
+  }
+  Legend(img, {820, 70}, names);
+  Save(png, img);
+}
+
+void WriteHistogramPlot(const std::filesystem::path& png, const std::string& title,
+                        const std::string& x_label, const std::vector<double>& edges,
+                        const std::vector<HistogramSeries>& series, int first_color) {
+  if (edges.size() < 2) throw std::invalid_argument("WriteHistogramPlot: needs two edges");
+  double top = 0.0;
+  for (const HistogramSeries& s : series) {
+    for (double c : s.counts) top = std::max(top, c);
+  }
+  const cv::Rect area(80, 50, 720, 560);
+  const Axes axes{area, edges.front(), edges.back(), 0.0, top > 0 ? top * 1.1 : 1.0};
+  cv::Mat img(660, 1120, CV_8UC3, cv::Scalar(255, 255, 255));
+  Title(img, title);
+  axes.Draw(img, x_label, "fraction of poses");
+  const std::size_t n = std::max<std::size_t>(series.size(), 1);
+  std::vector<std::string> names;
+  for (std::size_t k = 0; k < series.size(); ++k) {
+    names.push_back(series[k].name);
+    for (std::size_t b = 0; b + 1 < edges.size() && b < series[k].counts.size(); ++b) {
+      const double w = (edges[b + 1] - edges[b]) / static_cast<double>(n);
+      const double left = edges[b] + w * static_cast<double>(k);
+      const cv::Point p0 = axes.Map(left, 0.0), p1 = axes.Map(left + w, series[k].counts[b]);
+      cv::rectangle(img, cv::Rect(p0, p1), Color(k + first_color), cv::FILLED);
+    }
+  }
+  Legend(img, {820, 70}, names, first_color);
+  Save(png, img);
+}
+
+void WriteTimePlot(const std::filesystem::path& png, const std::string& title,
+                   const std::vector<TimePanel>& panels) {
+  const int panel_h = 220, top = 50, gap = 60;
+  cv::Mat img(top + static_cast<int>(panels.size()) * (panel_h + gap), 1040, CV_8UC3,
+              cv::Scalar(255, 255, 255));
+  Title(img, title);
+  double t0 = 1e300, t1 = -1e300;
+  for (const TimePanel& p : panels) {
+    for (const PlotSeries& s : p.series) {
+      for (const Eigen::Vector2d& q : s.points) {
+        t0 = std::min(t0, q.x());
+        t1 = std::max(t1, q.x());
+      }
+    }
+  }
+  if (!(t1 > t0)) t1 = t0 + 1;
+  for (std::size_t i = 0; i < panels.size(); ++i) {
+    double y0 = 1e300, y1 = -1e300;
+    for (const PlotSeries& s : panels[i].series) {
+      for (const Eigen::Vector2d& q : s.points) {
+        if (!std::isfinite(q.y())) continue;
+        y0 = std::min(y0, q.y());
+        y1 = std::max(y1, q.y());
+      }
+    }
+    if (!(y1 > y0)) {
+      y0 -= 0.5;
+      y1 += 0.5;
+    }
+    const double pad = 0.05 * (y1 - y0);
+    const cv::Rect area(80, top + static_cast<int>(i) * (panel_h + gap), 720, panel_h);
+    const Axes axes{area, t0, t1, y0 - pad, y1 + pad};
+    axes.Draw(img, "t [s]", panels[i].y_label);
+    std::vector<std::string> names;
+    for (std::size_t k = 0; k < panels[i].series.size(); ++k) {
+      Polyline(img, axes, panels[i].series[k].points, Color(k));
+      names.push_back(panels[i].series[k].name);
+    }
+    Legend(img, {820, area.y + 20}, names);
+  }
+  Save(png, img);
+}
+
+}  // namespace trackbed::scenes

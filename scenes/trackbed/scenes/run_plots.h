@@ -1,0 +1,43 @@
+// PNG plots of a run (Ham et al. 2012, figs. 8–11): estimated trajectories over
+// the true path, histograms of each estimator's distance to the true path, and
+// the fusion weight and slip (true vs estimated) over time. Drawn with OpenCV.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace trackbed::scenes {
+
+/// One named curve: points (x, y) in data units.
+struct PlotSeries {
+  std::string name;
+  std::vector<Eigen::Vector2d> points;
+};
+
+/// x–y plot with equal axis scales (metres), one colour per series, a legend.
+void WriteTrajectoryPlot(const std::filesystem::path& png, const std::string& title,
+                         const std::vector<PlotSeries>& series);
+
+/// Grouped bar chart: counts per bin for each series (bins between `edges`).
+struct HistogramSeries {
+  std::string name;
+  std::vector<double> counts;  ///< edges.size() − 1 values (fractions or counts)
+};
+/// `first_color` offsets the palette so that series keep the colours they have in a
+/// trajectory plot that starts with the ground truth.
+void WriteHistogramPlot(const std::filesystem::path& png, const std::string& title,
+                        const std::string& x_label, const std::vector<double>& edges,
+                        const std::vector<HistogramSeries>& series, int first_color = 0);
+
+/// Panels stacked vertically, sharing the time axis; each panel has its series.
+struct TimePanel {
+  std::string y_label;
+  std::vector<PlotSeries> series;  ///< points are (t, value)
+};
+void WriteTimePlot(const std::filesystem::path& png, const std::string& title,
+                   const std::vector<TimePanel>& panels);
+
+}  // namespace trackbed::scenes
