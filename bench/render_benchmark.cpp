@@ -1,6 +1,7 @@
-// Rendering speed: stereo pairs per second at the scenes' camera size along
-// their routes (rendering alone), and the closed loop's real-time factor with
-// the stereo camera rendering at its rate (no vision yet).
+// Rendering and vision speed: stereo pairs per second at the scenes' camera
+// size along their routes (rendering alone), visual odometry frames per second
+// on those pairs (one thread), and the closed loop's real-time factor with the
+// camera rendering at its rate and the whole localization stack running.
 //
 //   render_benchmark [--pairs N] [SCENARIO.yaml ...]
 #include <chrono>
@@ -10,6 +11,9 @@
 #include <string>
 #include <vector>
 
+#include <opencv2/core.hpp>
+
+#include "trackbed/estimation/stereo_visual_odometry.h"
 #include "trackbed/robot/stereo_rig.h"
 #include "trackbed/scenes/closed_loop_runner.h"
 #include "trackbed/scenes/scenario_yaml.h"
@@ -48,6 +52,7 @@ int main(int argc, char** argv) {
                              s.robot.stereo.near_m, s.robot.stereo.far_m);
       sim::GrayImage l, r;
       const int n = std::min<int>(pairs, static_cast<int>(left.size()));
+      // Rendering speed on n pairs spread along the whole route.
       const auto start = std::chrono::steady_clock::now();
       for (int i = 0; i < n; ++i) {
         const std::size_t k = static_cast<std::size_t>(i) * left.size() / n;
@@ -56,13 +61,34 @@ int main(int argc, char** argv) {
       }
       const double seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      // The first n consecutive pairs (untimed), for visual odometry.
+      std::vector<cv::Mat> lefts, rights;
+      for (int i = 0; i < n; ++i) {
+        renderer.Render(rig.intrinsics(), left[i], 0.1 * i, &l, nullptr);
+        renderer.Render(rig.intrinsics(), right[i], 0.1 * i, &r, nullptr);
+        lefts.push_back(cv::Mat(l.height, l.width, CV_8UC1, l.pixels.data()).clone());
+        rights.push_back(cv::Mat(r.height, r.width, CV_8UC1, r.pixels.data()).clone());
+      }
+      // Visual odometry on the first n consecutive pairs, one OpenCV thread.
+      const int threads = cv::getNumThreads();
+      cv::setNumThreads(1);
+      const sim::PinholeIntrinsics& K = rig.intrinsics();
+      estimation::StereoVisualOdometry vo(perception::StereoCalibration::FromIntrinsics(
+          K.fx, K.fy, K.cx, K.cy, s.robot.stereo.baseline_m));
+      const auto vo_start = std::chrono::steady_clock::now();
+      for (int i = 0; i < n; ++i) vo.Process(lefts[i], rights[i], 0.1 * i);
+      const double vo_seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - vo_start).count();
+      cv::setNumThreads(threads);
       std::printf(
-          "%-9s %dx%d: %6.1f stereo pairs/s rendering alone (%d pairs); closed loop with "
-          "rendering at %.0f Hz: %.1f s simulated in %.2f s, real-time factor %.1fx "
-          "(rendering %.0f %% of it); %s\n",
+          "%-9s %dx%d: %6.1f stereo pairs/s rendering alone (%d pairs); visual odometry "
+          "%6.1f frames/s (one thread); closed loop with rendering at %.0f Hz and the "
+          "localization stack: %.1f s simulated in %.2f s, real-time factor %.1fx (rendering "
+          "%.0f %%, estimation %.0f %% of it); %s\n",
           s.scene.name.c_str(), s.robot.stereo.width_px, s.robot.stereo.height_px, n / seconds, n,
-          s.robot.stereo.rate_hz, loop.sim_time_s, loop.wall_time_s, loop.real_time_factor(),
-          100.0 * loop.render_wall_s / loop.wall_time_s, renderer.gl_description().c_str());
+          n / vo_seconds, s.robot.stereo.rate_hz, loop.sim_time_s, loop.wall_time_s,
+          loop.real_time_factor(), 100.0 * loop.render_wall_s / loop.wall_time_s,
+          100.0 * loop.estimation_wall_s / loop.wall_time_s, renderer.gl_description().c_str());
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "render_benchmark: %s\n", e.what());
