@@ -14,6 +14,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <initializer_list>
 #include <limits>
 #include <memory>
@@ -973,7 +974,21 @@ Scenario LoadScenario(const std::string& path, const std::vector<Override>& over
   std::size_t n = 0;
   while ((n = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) text.append(buffer, n);
   if (std::ferror(file.get())) throw cannot_read(errno);
-  return ParseScenario(text, path, overrides);
+  Scenario scenario = ParseScenario(text, path, overrides);
+  // Files a scenario names are relative to the scenario file, and stored
+  // absolute, so that the resolved scenario.yaml in a run folder still finds them.
+  std::string& rules = scenario.estimation.fusion_rules;
+  if (!rules.empty()) {
+    std::filesystem::path p(rules);
+    if (p.is_relative())
+      p = std::filesystem::absolute(std::filesystem::path(path).parent_path() / p);
+    p = p.lexically_normal();
+    if (!std::filesystem::is_regular_file(p)) {
+      throw ScenarioError(path, "estimation.fusion_rules", "no such file: " + p.string());
+    }
+    rules = p.string();
+  }
+  return scenario;
 }
 
 std::string ScenarioToYaml(const Scenario& scenario) {

@@ -249,6 +249,26 @@ TEST(CliTest, OutOfRangeOverrideAndMissingFileFailClearly) {
   EXPECT_EQ(std::count(r.stderr_text.begin(), r.stderr_text.end(), '\n'), 1) << r.stderr_text;
 }
 
+TEST(CliTest, FusionRulesFileIsFoundBesideTheScenarioOrNamedInTheError) {
+  const fs::path dir = TempDir("rules");
+  std::ofstream(dir / "rules.fll")
+      << Slurp(fs::path(TRACKBED_SOURCE_DIR) / "estimation/rules/ham2012_fusion.fll");
+  const std::string scenario = Slurp(fs::path(TRACKBED_SOURCE_DIR) / "scenes/corridor.yaml");
+  std::ofstream(dir / "scene.yaml") << scenario << "estimation: {fusion_rules: rules.fll}\n";
+  Result r = Trackbed("run " + (dir / "scene.yaml").string() + " --set duration_s=1 --out " +
+                          (dir / "run").string(),
+                      "rules_ok");
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  EXPECT_NE(Slurp(dir / "run" / "scenario.yaml").find((dir / "rules.fll").string()),
+            std::string::npos);
+  r = Trackbed("run scenes/corridor.yaml --set estimation.fusion_rules=missing.fll --out " +
+                   (dir / "run2").string(),
+               "rules_missing");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.stderr_text.find("estimation.fusion_rules: no such file"), std::string::npos)
+      << r.stderr_text;
+}
+
 TEST(CliTest, HelpAndMissingArgumentsFollowTheExitContract) {
   EXPECT_EQ(Trackbed("--help", "help").exit_code, 0);
   EXPECT_EQ(Trackbed("run --help", "run_help").exit_code, 0);
