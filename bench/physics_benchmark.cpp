@@ -7,28 +7,18 @@
 // duration. Prints one line per scene; the figure to compare is the ratio of
 // simulated to wall-clock time on one core.
 #include <cstdio>
-#include <cstring>
 #include <exception>
 #include <string>
 #include <vector>
 
+#include "bench_args.h"
 #include "trackbed/scenes/closed_loop_runner.h"
 #include "trackbed/scenes/scenario_yaml.h"
 
 int main(int argc, char** argv) {
-  std::vector<std::string> files;
   double seconds = 0.0;
-  for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--seconds") == 0 && i + 1 < argc) {
-      seconds = std::stod(argv[++i]);
-    } else {
-      files.emplace_back(argv[i]);
-    }
-  }
-  if (files.empty()) {
-    files = {TRACKBED_SOURCE_DIR "/scenes/corridor.yaml",
-             TRACKBED_SOURCE_DIR "/scenes/outdoor.yaml"};
-  }
+  const std::vector<std::string> files =
+      trackbed::bench::ScenarioFiles(argc, argv, "--seconds", &seconds);
   try {
     for (const std::string& f : files) {
       std::vector<trackbed::scenes::Override> overrides = {{"robot.stereo.enabled", "false"}};

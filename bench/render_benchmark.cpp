@@ -6,13 +6,13 @@
 //   render_benchmark [--pairs N] [SCENARIO.yaml ...]
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <exception>
 #include <string>
 #include <vector>
 
 #include <opencv2/core.hpp>
 
+#include "bench_args.h"
 #include "trackbed/estimation/stereo_visual_odometry.h"
 #include "trackbed/robot/stereo_rig.h"
 #include "trackbed/scenes/closed_loop_runner.h"
@@ -21,19 +21,9 @@
 
 int main(int argc, char** argv) {
   using namespace trackbed;
-  std::vector<std::string> files;
-  int pairs = 200;
-  for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--pairs") == 0 && i + 1 < argc) {
-      pairs = std::stoi(argv[++i]);
-    } else {
-      files.emplace_back(argv[i]);
-    }
-  }
-  if (files.empty()) {
-    files = {TRACKBED_SOURCE_DIR "/scenes/corridor.yaml",
-             TRACKBED_SOURCE_DIR "/scenes/outdoor.yaml"};
-  }
+  double pairs_arg = 200;
+  const std::vector<std::string> files = bench::ScenarioFiles(argc, argv, "--pairs", &pairs_arg);
+  const int pairs = static_cast<int>(pairs_arg);
   try {
     for (const std::string& f : files) {
       scenes::Scenario s = scenes::LoadScenario(f, {{"robot.stereo.enabled", "true"}});

@@ -9,8 +9,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <type_traits>
 
 #include "trackbed/perception/kitti_sequence.h"
 
@@ -105,7 +107,8 @@ Eigen::Isometry3d PoseFromPositionQuaternion(const fs::path& path, std::size_t l
   return T;
 }
 
-// Calls f(line_number, trimmed_line) for every non-blank, non-`#` line.
+// Calls f(line_number, trimmed_line) for every non-blank, non-`#` line. A callback
+// that returns bool stops the walk by returning false.
 template <typename F>
 void ForEachDataLine(const fs::path& path, F&& f) {
   std::ifstream in(path);
@@ -116,7 +119,11 @@ void ForEachDataLine(const fs::path& path, F&& f) {
     ++number;
     const std::string t = Trim(line);
     if (t.empty() || t[0] == '#') continue;
-    f(number, t);
+    if constexpr (std::is_same_v<decltype(f(number, t)), bool>) {
+      if (!f(number, t)) return;
+    } else {
+      f(number, t);
+    }
   }
   if (in.bad()) throw std::runtime_error(path.string() + ": read error");
 }
@@ -252,30 +259,33 @@ TrajectoryFormat ParseFormatName(const std::string& name) {
 }
 
 TrajectoryFormat DetectFormat(const fs::path& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path.string() + ": cannot open file");
-  std::string line;
-  std::size_t number = 0;
-  while (std::getline(in, line)) {
-    ++number;
-    const std::string t = Trim(line);
-    if (t.empty() || t[0] == '#') continue;
+  // The first data line decides.
+  std::optional<TrajectoryFormat> format;
+  ForEachDataLine(path, [&](std::size_t number, const std::string& t) {
     if (t.find(',') != std::string::npos) {
       const std::size_t fields = SplitCommas(t).size();
-      if (fields >= 8) return TrajectoryFormat::kEuroc;
-      Fail(path, number,
-           "cannot detect the format: " + std::to_string(fields) +
-               " comma-separated fields (EuRoC csv needs at least 8)");
+      if (fields < 8) {
+        Fail(path, number,
+             "cannot detect the format: " + std::to_string(fields) +
+                 " comma-separated fields (EuRoC csv needs at least 8)");
+      }
+      format = TrajectoryFormat::kEuroc;
+      return false;
     }
     const std::size_t fields = SplitWhitespace(t).size();
-    if (fields == 8) return TrajectoryFormat::kTum;
-    if (fields == 12) return TrajectoryFormat::kKitti;
-    Fail(path, number,
-         "cannot detect the format: " + std::to_string(fields) +
-             " fields (TUM has 8, KITTI 12, EuRoC csv is comma-separated)");
-  }
-  if (in.bad()) throw std::runtime_error(path.string() + ": read error");
-  throw std::runtime_error(path.string() + ": no poses (the file has no data lines)");
+    if (fields == 8) {
+      format = TrajectoryFormat::kTum;
+    } else if (fields == 12) {
+      format = TrajectoryFormat::kKitti;
+    } else {
+      Fail(path, number,
+           "cannot detect the format: " + std::to_string(fields) +
+               " fields (TUM has 8, KITTI 12, EuRoC csv is comma-separated)");
+    }
+    return false;
+  });
+  if (!format) throw std::runtime_error(path.string() + ": no poses (the file has no data lines)");
+  return *format;
 }
 
 LoadedTrajectory ReadTrajectory(const fs::path& path, std::optional<TrajectoryFormat> format,
