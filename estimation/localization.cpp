@@ -69,8 +69,13 @@ LocalizationFrameReport LocalizationStack::AddStereoFrame(double t_s, const cv::
     // The left camera's motion, expressed as the body's motion.
     const Eigen::Isometry3d T_body_motion =
         T_body_left_ * report.vo.T_prev_curr * T_body_left_.inverse();
+    const Pose2 planar_before = PlanarPose(T_world_body_vo_);
     T_world_body_vo_ = T_world_body_vo_ * T_body_motion;
-    vo_increment = PlanarPose(T_body_motion);
+    // The planar motion is the change of the 3-D pose's planar projection, not the
+    // planar part of the 3-D increment: on tilted ground the body's x axis is not
+    // horizontal, and chaining the planar parts of tilted increments over-counts the
+    // horizontal distance (by 1 − cos(pitch)) and leaks roll into heading.
+    vo_increment = Between(planar_before, PlanarPose(T_world_body_vo_));
     if (has_frame_ && t_s > t_frame_ && report.vo.inliers >= options_.min_inliers_for_slip) {
       // Slip from the independent (visual) velocity over the frame interval.
       const double dt = t_s - t_frame_;
