@@ -1,0 +1,74 @@
+// Gauss–Newton wheel-speed control (see gauss_newton_controller.h).
+#include "trackbed/navigation/gauss_newton_controller.h"
+
+#include <cmath>
+
+#include <Eigen/Cholesky>
+
+#include "trackbed/common/option_error.h"
+
+namespace trackbed::navigation {
+
+void GaussNewtonOptions::Validate() const {
+  option_check::Positive("epsilon_m", epsilon_m);
+  option_check::InRange("heading_band_rad", heading_band_rad, 1e-6, M_PI - 1e-6);
+  option_check::Positive("damping", damping);
+  option_check::InRange("turn_position_weight", turn_position_weight, 0.0, 1.0);
+}
+
+GaussNewtonStep ComputeGaussNewtonStep(const NavigationSetup& setup,
+                                       const GaussNewtonOptions& options, const Pose2& pose,
+                                       const Pose2& target) {
+  GaussNewtonStep step;
+  const Eigen::Vector2d delta(target.x - pose.x, target.y - pose.y);
+  step.position_error_m = delta.norm();
+
+  const GoalError own = GoalErrorOf(pose, target);
+  step.at_goal = own.position_m <= setup.goal_position_tolerance_m &&
+                 std::abs(own.heading_rad) <= setup.goal_heading_tolerance_rad;
+  if (step.at_goal) {
+    step.phase = GaussNewtonPhase::kFinal;
+    step.target_heading_rad = target.yaw;
+    step.heading_error_rad = own.heading_rad;
+    return step;
+  }
+
+  // Eq. (4): the bearing replaces the target heading while far from the target.
+  double position_weight = 1.0;
+  if (step.position_error_m > options.epsilon_m) {
+    step.target_heading_rad = std::atan2(delta.y(), delta.x());
+    const double off = estimation::WrapAngle(step.target_heading_rad - pose.yaw);
+    if (std::abs(off) > options.heading_band_rad) {
+      step.phase = GaussNewtonPhase::kTurn;
+      step.rho = 1.0;
+      position_weight = options.turn_position_weight;
+    } else {
+      step.phase = GaussNewtonPhase::kDrive;
+      step.rho = 0.0;
+    }
+  } else {
+    step.phase = GaussNewtonPhase::kFinal;
+    step.target_heading_rad = target.yaw;
+    step.rho = 1.0;
+  }
+  step.heading_error_rad = estimation::WrapAngle(step.target_heading_rad - pose.yaw);
+
+  // Eqs. (5)–(12): Δφ = (JᵀWJ + λI)⁻¹ JᵀW e, damped (see the header).
+  const Eigen::Vector3d e(delta.x(), delta.y(), step.heading_error_rad);
+  const Eigen::Vector3d w(position_weight, position_weight, step.rho);
+  const Eigen::Matrix<double, 3, 2> J = WheelJacobian(setup.drive, pose.yaw);
+  const Eigen::Matrix2d H =
+      J.transpose() * w.asDiagonal() * J + options.damping * Eigen::Matrix2d::Identity();
+  const Eigen::Vector2d g = J.transpose() * (w.asDiagonal() * e);
+  const Eigen::Vector2d delta_phi = H.ldlt().solve(g);
+
+  const WheelSpeeds raw{delta_phi(0) / setup.control_period_s,
+                        delta_phi(1) / setup.control_period_s};
+  step.wheels = SaturateProportionally(raw, setup.drive.max_wheel_speed_radps);
+  step.saturated =
+      step.wheels.left_radps != raw.left_radps || step.wheels.right_radps != raw.right_radps;
+  step.twist = TwistFromWheelSpeeds(setup.drive, step.wheels);
+  return step;
+}
+
+}  // namespace trackbed::navigation
