@@ -34,6 +34,16 @@ int Run(const std::string& scenario_path, const std::string& out_dir,
               << ")\n";
     return 3;
   }
+  if (m.navigation) {
+    const trackbed::navigation::NavigationMetrics& n = *m.navigation;
+    std::printf(
+        "navigation (%s): %s%s; path %.2f m in %.1f s; final error %.3f m, %.2f deg; min "
+        "clearance %.2f m; %d collision(s); %d sub-goal(s); outputs in %s\n",
+        m.navigation_method.c_str(), n.status.c_str(), n.success ? " (success)" : " (no success)",
+        n.path_length_m, n.duration_s, n.final_position_error_m, n.final_heading_error_deg,
+        n.min_clearance_m, n.collisions, n.subgoals, out_dir.c_str());
+    return 0;
+  }
   std::printf(
       "%s: %.1f s simulated in %.2f s wall (%.0fx real time); distance %.2f m, encoder "
       "distance %.2f m (%+.2f %%); outputs in %s\n",

@@ -2,9 +2,12 @@
 #include "trackbed/scenes/run_folder.h"
 
 #include <cerrno>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <memory>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
@@ -12,9 +15,11 @@
 
 #include "trackbed/perception/kitti_sequence.h"
 
+#include "trackbed/estimation/pose2.h"
 #include "trackbed/estimation/trajectory.h"
 #include "trackbed/estimation/trajectory_metrics.h"
 #include "trackbed/scenes/closed_loop_runner.h"
+#include "trackbed/scenes/navigation_scenario.h"
 #include "trackbed/scenes/run_plots.h"
 #include "trackbed/scenes/scenario_yaml.h"
 
@@ -190,8 +195,96 @@ std::string MetricsJson(const RunMetrics& m) {
       {"vo_failures", loc.vo_failures},     {"mean_inliers", loc.mean_inliers},
       {"mean_fusion_w", loc.mean_fusion_w}, {"slip_estimate_rmse_mps", loc.slip_estimate_rmse_mps}};
   j["timing"] = {{"render_s", m.render_wall_s}, {"estimation_s", m.estimation_wall_s}};
+  if (m.navigation) {
+    const navigation::NavigationMetrics& n = *m.navigation;
+    const auto finite_or_null = [](double v) {
+      return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json();
+    };
+    j["navigation"] = {
+        {"method", m.navigation_method},
+        {"success", n.success},
+        {"status", n.status},
+        {"time_to_goal_s",
+         n.time_to_goal_s ? nlohmann::ordered_json(*n.time_to_goal_s) : nlohmann::ordered_json()},
+        {"duration_s", n.duration_s},
+        {"path_length_m", n.path_length_m},
+        {"final_position_error_m", n.final_position_error_m},
+        {"final_heading_error_deg", n.final_heading_error_deg},
+        {"min_clearance_m", finite_or_null(n.min_clearance_m)},
+        {"mean_clearance_m", finite_or_null(n.mean_clearance_m)},
+        {"collisions", n.collisions},
+        {"integrated_abs_jerk", n.integrated_abs_jerk},
+        {"subgoals", n.subgoals}};
+  }
   return j.dump(2) + "\n";
 }
+
+namespace {
+
+// `navigation.mode: kinematic`: the paper's differential-drive simulation, no physics
+// and no camera. Writes ground_truth.tum (the simulated pose), navigation.csv, the map
+// plot and metrics.json.
+RunMetrics RunKinematicNavigation(const Scenario& scenario, const fs::path& dir) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  const navigation::NavigationScene scene = NavigationSceneOf(scenario);
+  const std::unique_ptr<navigation::Navigator> navigator = navigation::MakeNavigator(
+      scenario.navigation.method, NavigatorOptionsOf(scenario), scene.goal);
+  const navigation::KinematicRun run =
+      navigation::RunKinematicSimulation(scene, *navigator, KinematicOptionsOf(scenario));
+
+  LogFile truth(dir / "ground_truth.tum", "");
+  LogFile csv(dir / "navigation.csv",
+              "t,x_m,y_m,yaw_rad,v_mps,yaw_rate_radps,left_radps,right_radps,target_x_m,"
+              "target_y_m,subgoal_active,clearance_m");
+  char line[512];
+  RunMetrics m;
+  for (std::size_t k = 0; k < run.log.size(); ++k) {
+    const navigation::NavigationLogEntry& e = run.log[k];
+    truth.Line(
+        estimation::FormatTumLine({e.t_s, estimation::ToIsometry({e.x_m, e.y_m, e.yaw_rad}, 0.0)})
+            .c_str());
+    std::snprintf(line, sizeof(line), "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%.9g",
+                  e.t_s, e.x_m, e.y_m, e.yaw_rad, e.v_mps, e.yaw_rate_radps, e.left_radps,
+                  e.right_radps, e.target_x_m, e.target_y_m, e.subgoal_active ? 1 : 0,
+                  e.clearance_m);
+    csv.Line(line);
+    if (k > 0) {
+      // The commanded wheel travel of the step: what encoders on this robot would count.
+      m.encoder_distance_m += std::abs(run.log[k - 1].v_mps) * (e.t_s - run.log[k - 1].t_s);
+    }
+  }
+  truth.Close();
+  csv.Close();
+
+  std::vector<PlotCircle> circles;
+  for (const navigation::Circle& c : scene.obstacles) {
+    circles.push_back({c.centre, c.radius_m + scenario.navigation.safety_radius_m, false});
+  }
+  for (const navigation::Circle& c : scene.obstacles) circles.push_back({c.centre, c.radius_m});
+  std::vector<PlotMarker> markers = {{{scene.start.x, scene.start.y}, "start"},
+                                     {{scene.goal.x, scene.goal.y}, "goal"}};
+  for (std::size_t k = 0; k < run.subgoals.size(); ++k) {
+    markers.push_back({run.subgoals[k].position, "sub-goal " + std::to_string(k + 1)});
+  }
+  PlotSeries path{scenario.navigation.method, {}};
+  for (const navigation::NavigationLogEntry& e : run.log) path.points.emplace_back(e.x_m, e.y_m);
+  WriteMapPlot(
+      dir / "navigation.png",
+      scenario.scene.name + ": " + scenario.navigation.method + " (" + run.metrics.status + ")",
+      {path}, circles, markers);
+
+  m.completed = true;
+  m.stop_reason = "navigation " + run.metrics.status;
+  m.sim_time_s = run.metrics.duration_s;
+  m.distance_m = run.metrics.path_length_m;
+  m.navigation_method = scenario.navigation.method;
+  m.navigation = run.metrics;
+  m.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  return m;
+}
+
+}  // namespace
 
 RunMetrics RunToFolder(const Scenario& scenario, const fs::path& dir) {
   scenario.Validate();
@@ -201,6 +294,11 @@ RunMetrics RunToFolder(const Scenario& scenario, const fs::path& dir) {
 
   RunMetrics metrics;
   try {
+    if (scenario.navigation.enabled) {
+      metrics = RunKinematicNavigation(scenario, dir);
+      WriteAtomically(dir / "metrics.json", MetricsJson(metrics));
+      return metrics;
+    }
     LogFile truth(dir / "ground_truth.tum", "");
     LogFile encoders(dir / "encoders.csv", "t,left_ticks,right_ticks");
     LogFile slip(dir / "slip.csv",

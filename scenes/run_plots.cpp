@@ -102,16 +102,25 @@ void Polyline(cv::Mat& img, const Axes& axes, const std::vector<Eigen::Vector2d>
 
 void WriteTrajectoryPlot(const std::filesystem::path& png, const std::string& title,
                          const std::vector<PlotSeries>& series) {
+  WriteMapPlot(png, title, series, {}, {});
+}
+
+void WriteMapPlot(const std::filesystem::path& png, const std::string& title,
+                  const std::vector<PlotSeries>& series, const std::vector<PlotCircle>& circles,
+                  const std::vector<PlotMarker>& markers) {
   double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+  const auto grow = [&](const Eigen::Vector2d& p, double r) {
+    if (!p.allFinite() || !std::isfinite(r)) return;
+    x0 = std::min(x0, p.x() - r);
+    x1 = std::max(x1, p.x() + r);
+    y0 = std::min(y0, p.y() - r);
+    y1 = std::max(y1, p.y() + r);
+  };
   for (const PlotSeries& s : series) {
-    for (const Eigen::Vector2d& p : s.points) {
-      if (!p.allFinite()) continue;
-      x0 = std::min(x0, p.x());
-      x1 = std::max(x1, p.x());
-      y0 = std::min(y0, p.y());
-      y1 = std::max(y1, p.y());
-    }
+    for (const Eigen::Vector2d& p : s.points) grow(p, 0.0);
   }
+  for (const PlotCircle& c : circles) grow(c.centre, c.radius_m);
+  for (const PlotMarker& m : markers) grow(m.position, 0.0);
   if (!(x1 > x0)) x1 = x0 + 1;
   if (!(y1 > y0)) y1 = y0 + 1;
   // Equal scales: grow the shorter span about its centre.
@@ -123,10 +132,25 @@ void WriteTrajectoryPlot(const std::filesystem::path& png, const std::string& ti
   cv::Mat img(720, 1040, CV_8UC3, cv::Scalar(255, 255, 255));
   Title(img, title);
   axes.Draw(img, "x [m]", "y [m]");
+  for (const PlotCircle& c : circles) {
+    const int r = static_cast<int>(std::lround(c.radius_m / scale));
+    const cv::Point p = axes.Map(c.centre.x(), c.centre.y());
+    if (c.filled) {
+      cv::circle(img, p, std::max(r, 2), cv::Scalar(150, 150, 150), cv::FILLED, cv::LINE_AA);
+    } else {
+      cv::circle(img, p, r, cv::Scalar(190, 190, 190), 1, cv::LINE_AA);
+    }
+  }
   std::vector<std::string> names;
   for (std::size_t k = 0; k < series.size(); ++k) {
     Polyline(img, axes, series[k].points, Color(k));
     names.push_back(series[k].name);
+  }
+  for (const PlotMarker& m : markers) {
+    const cv::Point p = axes.Map(m.position.x(), m.position.y());
+    cv::drawMarker(img, p, kColors[3], cv::MARKER_TILTED_CROSS, 10, 2, cv::LINE_AA);
+    cv::putText(img, m.label, {p.x + 7, p.y - 7}, cv::FONT_HERSHEY_SIMPLEX, 0.4, kAxis, 1,
+                cv::LINE_AA);
   }
   Legend(img, {820, 70}, names);
   Save(png, img);

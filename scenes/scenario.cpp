@@ -3,10 +3,13 @@
 // straight from an OptionError.
 #include "trackbed/scenes/scenario.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "trackbed/common/option_error.h"
+#include "trackbed/navigation/navigator_factory.h"
+#include "trackbed/scenes/navigation_scenario.h"
 #include "trackbed/sim/terrain_material.h"
 
 namespace trackbed::scenes {
@@ -17,6 +20,15 @@ std::string Indexed(const std::string& name, std::size_t k) {
 }
 
 void Finite(const std::string& field, double value) { option_check::Finite(field.c_str(), value); }
+
+// Throws unless `value` is one of `accepted`, listing them.
+void OneOf(const std::string& field, const std::string& value,
+           const std::vector<std::string>& accepted) {
+  if (std::find(accepted.begin(), accepted.end(), value) != accepted.end()) return;
+  std::string names;
+  for (const std::string& a : accepted) names += (names.empty() ? "" : ", ") + a;
+  throw OptionError(field, "must be one of " + names + " (got '" + value + "')");
+}
 
 // Throws unless `name` is a built-in material or one the terrain defines.
 void KnownMaterial(const std::string& field, const std::string& name,
@@ -106,6 +118,37 @@ void EstimationSpec::Validate() const {
                         180.0);
 }
 
+void NavigationSpec::Validate() const {
+  OneOf("method", method, navigation::NavigationMethodNames());
+  if (enabled && mode == Mode::kClosedLoop) {
+    throw OptionError("mode", "closed_loop is not available yet; use kinematic");
+  }
+  OneOf("field", field, NavigationFieldNames());
+  Finite("goal.x_m", goal.x_m);
+  Finite("goal.y_m", goal.y_m);
+  Finite("goal.yaw_deg", goal.yaw_deg);
+  for (std::size_t k = 0; k < obstacles.size(); ++k) {
+    if (!obstacles[k].center.allFinite()) {
+      throw OptionError(Indexed("obstacles", k) + ".center", "must be finite");
+    }
+    option_check::NonNegative((Indexed("obstacles", k) + ".radius_m").c_str(),
+                              obstacles[k].radius_m);
+  }
+  for (std::size_t k = 0; k < walls.size(); ++k) {
+    if (!walls[k].from.allFinite() || !walls[k].to.allFinite()) {
+      throw OptionError(Indexed("walls", k), "from and to must be finite");
+    }
+    option_check::NonNegative((Indexed("walls", k) + ".radius_m").c_str(), walls[k].radius_m);
+  }
+  option_check::Positive("safety_radius_m", safety_radius_m);
+  option_check::NonNegative("footprint_radius_m", footprint_radius_m);
+  option_check::Positive("control_period_s", control_period_s);
+  option_check::Positive("wheel_radius_m", wheel_radius_m);
+  option_check::Positive("wheel_separation_m", wheel_separation_m);
+  option_check::Positive("max_wheel_speed_radps", max_wheel_speed_radps);
+  option_check::Positive("stall_time_s", stall_time_s);
+}
+
 void OutputsSpec::Validate() const {
   if (save_images != "none" && save_images != "kitti") {
     throw OptionError("save_images", "must be none or kitti (got '" + save_images + "')");
@@ -119,8 +162,10 @@ void Scenario::Validate() const {
   }
   option_check::Nested("scene", scene);
   option_check::Nested("robot", robot);
-  option_check::Nested("drive", drive);
+  // A navigation run drives itself: the `drive` section is not used then.
+  if (!navigation.enabled) option_check::Nested("drive", drive);
   option_check::Nested("estimation", estimation);
+  option_check::Nested("navigation", navigation);
   option_check::Nested("outputs", outputs);
   if (outputs.save_images == "kitti" && !robot.stereo.enabled) {
     throw OptionError("outputs.save_images", "kitti needs robot.stereo.enabled: true");

@@ -390,6 +390,39 @@ void Visit(V& v, EstimationSpec& o) {
 }
 
 template <class V>
+void Visit(V& v, NavigationObstacleSpec& o) {
+  v("center", o.center);
+  v("radius_m", o.radius_m);
+}
+
+template <class V>
+void Visit(V& v, NavigationWallSpec& o) {
+  v("from", o.from);
+  v("to", o.to);
+  v("radius_m", o.radius_m);
+}
+
+template <class V>
+void Visit(V& v, NavigationSpec& o) {
+  using Mode = NavigationSpec::Mode;
+  v("enabled", o.enabled);
+  v("method", o.method);
+  v.Enum("mode", o.mode, {{"kinematic", Mode::kKinematic}, {"closed_loop", Mode::kClosedLoop}});
+  v("goal", o.goal);
+  v("obstacles", o.obstacles);
+  v("walls", o.walls);
+  v("field", o.field);
+  v("field_seed", o.field_seed);
+  v("safety_radius_m", o.safety_radius_m);
+  v("footprint_radius_m", o.footprint_radius_m);
+  v("control_period_s", o.control_period_s);
+  v("wheel_radius_m", o.wheel_radius_m);
+  v("wheel_separation_m", o.wheel_separation_m);
+  v("max_wheel_speed_radps", o.max_wheel_speed_radps);
+  v("stall_time_s", o.stall_time_s);
+}
+
+template <class V>
 void Visit(V& v, OutputsSpec& o) {
   v("save_images", o.save_images);
 }
@@ -402,6 +435,7 @@ void Visit(V& v, Scenario& o) {
   v("robot", o.robot);
   v("drive", o.drive);
   v("estimation", o.estimation);
+  v("navigation", o.navigation);
   v("outputs", o.outputs);
 }
 

@@ -2,12 +2,14 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <Eigen/Geometry>
 
 #include "trackbed/estimation/icr_calibration.h"
+#include "trackbed/navigation/navigation_metrics.h"
 #include "trackbed/robot/tracked_vehicle.h"
 #include "trackbed/scenes/estimator_scoring.h"
 
@@ -62,6 +64,10 @@ struct RunMetrics {
   /// Per estimator (wheel_odometry, wheel_odometry_noslip, visual_odometry, fused).
   std::map<std::string, EstimatorMetrics> estimators;
   LocalizationSummary localization;
+  /// Point-to-point navigation runs (scenario `navigation.enabled`): the method and how
+  /// it did (metrics.json `navigation`).
+  std::string navigation_method;
+  std::optional<navigation::NavigationMetrics> navigation;
 
   double real_time_factor() const { return wall_time_s > 0 ? sim_time_s / wall_time_s : 0.0; }
 };

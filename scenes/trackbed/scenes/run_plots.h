@@ -21,6 +21,24 @@ struct PlotSeries {
 void WriteTrajectoryPlot(const std::filesystem::path& png, const std::string& title,
                          const std::vector<PlotSeries>& series);
 
+/// A circle on a map plot [m]: filled grey for an obstacle's body, a thin outline for
+/// a safety circle.
+struct PlotCircle {
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  double radius_m = 0.0;
+  bool filled = true;
+};
+/// A labelled point on a map plot (start, goal, sub-goals).
+struct PlotMarker {
+  Eigen::Vector2d position = Eigen::Vector2d::Zero();
+  std::string label;
+};
+/// A trajectory plot with circles and markers drawn under the series (Jung & Kim 2014,
+/// figs. 5–8: the path among obstacles, their safety circles and the sub-goals).
+void WriteMapPlot(const std::filesystem::path& png, const std::string& title,
+                  const std::vector<PlotSeries>& series, const std::vector<PlotCircle>& circles,
+                  const std::vector<PlotMarker>& markers);
+
 /// Grouped bar chart: counts per bin for each series (bins between `edges`).
 struct HistogramSeries {
   std::string name;

@@ -110,6 +110,57 @@ struct EstimationSpec {
   void Validate() const;
 };
 
+/// A circular obstacle of a navigation scene: centre [m] (world frame) and physical
+/// radius [m] (0: the paper's point obstacle).
+struct NavigationObstacleSpec {
+  Eigen::Vector2d center{0.0, 0.0};
+  double radius_m = 0.0;
+};
+
+/// A wall of a navigation scene, seen by the avoider as a chain of circles of radius
+/// `radius_m` no farther apart than the safety radius d_max (issue 5, "Definitions").
+struct NavigationWallSpec {
+  Eigen::Vector2d from{0.0, 0.0};
+  Eigen::Vector2d to{0.0, 0.0};
+  double radius_m = 0.1;
+};
+
+/// Point-to-point navigation (Jung & Kim 2014; design.md §1.2). With `enabled`, the
+/// robot drives from `robot.start` to `goal` under `method` instead of following `drive`.
+struct NavigationSpec {
+  bool enabled = false;
+  /// gauss_newton_subgoal, potential_field or dwa.
+  std::string method = "gauss_newton_subgoal";
+  /// kinematic: the paper's differential-drive simulation (no physics, no camera; the
+  /// navigator sees the true pose and the exact circles).
+  enum class Mode { kKinematic, kClosedLoop };
+  Mode mode = Mode::kKinematic;
+  /// Goal pose (x_m, y_m, yaw_deg).
+  StartPose goal;
+  std::vector<NavigationObstacleSpec> obstacles;
+  std::vector<NavigationWallSpec> walls;
+  /// A generated scene: none, random (issue 5's seeded field, `field_seed`), paper_left,
+  /// paper_right, u_trap, narrow_gap, goal_beside_wall, narrow_corridor. A generated
+  /// scene sets the start, the goal and its obstacles; `obstacles` and `walls` add to it.
+  std::string field = "none";
+  /// Seed of the random field (issue 5 uses 0–99).
+  std::uint64_t field_seed = 0;
+  /// Safety radius d_max [m], > 0 (the paper's 1 m).
+  double safety_radius_m = 1.0;
+  /// Footprint radius for collisions and clearance in kinematic mode [m], >= 0.
+  double footprint_radius_m = 0.35;
+  /// Control period [s], > 0 (the paper's 100 ms).
+  double control_period_s = 0.1;
+  /// The kinematic robot (the paper's: r = 0.2 m, W = 0.5 m, |wheel speed| <= 25 rad/s).
+  double wheel_radius_m = 0.2;
+  double wheel_separation_m = 0.5;
+  double max_wheel_speed_radps = 25.0;
+  /// A run without progress toward the goal for this long ends as "stalled" [s], > 0.
+  double stall_time_s = 30.0;
+
+  void Validate() const;
+};
+
 struct OutputsSpec {
   /// Camera images to save: none, or kitti (KITTI odometry layout in images/;
   /// needs robot.stereo.enabled).
@@ -126,6 +177,7 @@ struct Scenario {
   RobotSpec robot;
   DriveSpec drive;
   EstimationSpec estimation;
+  NavigationSpec navigation;
   OutputsSpec outputs;
 
   void Validate() const;
