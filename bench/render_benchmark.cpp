@@ -74,7 +74,7 @@ int main(int argc, char** argv) {
           "%-9s %dx%d: %6.1f stereo pairs/s rendering alone (%d pairs); visual odometry "
           "%6.1f frames/s (one thread); closed loop with rendering at %.0f Hz and the "
           "localization stack: %.1f s simulated in %.2f s, real-time factor %.1fx (rendering "
-          "%.0f %%, estimation %.0f %% of it); %s\n",
+          "busy %.0f %% of it on the main thread, estimation %.0f %% on the second); %s\n",
           s.scene.name.c_str(), s.robot.stereo.width_px, s.robot.stereo.height_px, n / seconds, n,
           n / vo_seconds, s.robot.stereo.rate_hz, loop.sim_time_s, loop.wall_time_s,
           loop.real_time_factor(), 100.0 * loop.render_wall_s / loop.wall_time_s,

@@ -4,13 +4,16 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <optional>
 #include <sstream>
+#include <utility>
 
 #include "trackbed/estimation/skid_steer.h"
 #include "trackbed/navigation/pure_pursuit.h"
 #include "trackbed/robot/encoder.h"
 #include "trackbed/robot/tracked_vehicle.h"
+#include "trackbed/scenes/ordered_worker.h"
 #include "trackbed/sim/renderer.h"
 #include "trackbed/sim/sim_clock.h"
 #include "trackbed/sim/world.h"
@@ -65,6 +68,38 @@ class Driver {
   std::size_t next_ = 0;
 };
 
+// Tasks (encoder samples, gyro samples, stereo frames) the simulation may run ahead of
+// the localization stack.
+constexpr std::int64_t kMaxTasksAhead = 64;
+
+EstimateSample EstimateAfterEncoders(estimation::LocalizationStack& stack, const RunSample& s,
+                                     bool has_camera) {
+  stack.AddEncoderSample(s.t_s, s.ticks[0], s.ticks[1]);
+  EstimateSample e;
+  e.t_s = s.t_s;
+  e.wheel_odometry = stack.wheel_odometry();
+  e.wheel_odometry_noslip = stack.wheel_odometry_noslip();
+  e.fused = stack.fused();
+  e.ekf = stack.ekf();
+  e.has_camera = has_camera;
+  e.slip = stack.slip();
+  return e;
+}
+
+LocalizationFrame LocalizeStereoFrame(estimation::LocalizationStack& stack, double t_s,
+                                      bool blackout, const sim::GrayImage& left,
+                                      const sim::GrayImage& right) {
+  const auto as_mat = [](const sim::GrayImage& g) {
+    return cv::Mat(g.height, g.width, CV_8UC1, const_cast<std::uint8_t*>(g.pixels.data()));
+  };
+  LocalizationFrame lf;
+  lf.t_s = t_s;
+  lf.camera_blackout = blackout;
+  lf.report = stack.AddStereoFrame(t_s, as_mat(left), as_mat(right));
+  lf.visual_odometry = stack.visual_odometry();
+  return lf;
+}
+
 }  // namespace
 
 RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers) {
@@ -113,6 +148,11 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers
         lo, calibration ? &*calibration : nullptr,
         rig ? rig->T_body_left() : Eigen::Isometry3d::Identity(), vehicle.chassis().T_world_body);
   }
+  // With the camera on, the localization stack runs on a second thread, fed the same
+  // samples in the same order as it would be inline (identical results), while this
+  // thread simulates and renders ahead. The drive does not read the estimates.
+  std::unique_ptr<OrderedWorker> worker;
+  if (stack && rig) worker = std::make_unique<OrderedWorker>();
   std::int64_t stereo_index = 0;
   double render_wall_s = 0.0;
   const std::uint64_t noise_seed = StreamSeed(scenario.seed, 3);
@@ -158,23 +198,27 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers
         break;
       }
       metrics.Add(s, g.height_m);
-      EstimateSample e;
-      if (stack) {
+      if (worker) {
+        worker->Submit([&, s] {
+          const EstimateSample e = EstimateAfterEncoders(*stack, s, rig.has_value());
+          worker->Deliver([&, s, e]() mutable {
+            estimates.Add(s, e);
+            s.estimate = &e;
+            if (observers.on_sample) observers.on_sample(s);
+          });
+        });
+        worker->RunDeliveries();
+      } else if (stack) {
         const auto start = std::chrono::steady_clock::now();
-        stack->AddEncoderSample(s.t_s, s.ticks[0], s.ticks[1]);
-        e.t_s = s.t_s;
-        e.wheel_odometry = stack->wheel_odometry();
-        e.wheel_odometry_noslip = stack->wheel_odometry_noslip();
-        e.fused = stack->fused();
-        e.ekf = stack->ekf();
-        e.has_camera = rig.has_value();
-        e.slip = stack->slip();
+        const EstimateSample e = EstimateAfterEncoders(*stack, s, rig.has_value());
         estimation_wall_s +=
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         estimates.Add(s, e);
         s.estimate = &e;
+        if (observers.on_sample) observers.on_sample(s);
+      } else if (observers.on_sample) {
+        observers.on_sample(s);
       }
-      if (observers.on_sample) observers.on_sample(s);
     }
     if (renderer && clock.Fires(camera_period)) {
       const auto render_start = std::chrono::steady_clock::now();
@@ -200,20 +244,25 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers
       frame.right = &right_image;
       frame.rig = &*rig;
       if (observers.on_stereo) observers.on_stereo(frame);
-      if (stack) {
-        const auto as_mat = [](const sim::GrayImage& g) {
-          return cv::Mat(g.height, g.width, CV_8UC1, const_cast<std::uint8_t*>(g.pixels.data()));
-        };
-        const auto start = std::chrono::steady_clock::now();
-        LocalizationFrame lf;
-        lf.t_s = frame.t_s;
-        lf.camera_blackout = frame.blackout;
-        lf.report = stack->AddStereoFrame(frame.t_s, as_mat(left_image), as_mat(right_image));
-        lf.visual_odometry = stack->visual_odometry();
-        estimation_wall_s +=
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        estimates.AddFrame(truth.T_world_body, lf);
-        if (observers.on_localization_frame) observers.on_localization_frame(lf);
+      if (worker) {
+        // The worker owns copies of the pair: the main thread renders the next one into
+        // the same buffers while visual odometry runs on this one.
+        auto pair = std::make_shared<const std::pair<sim::GrayImage, sim::GrayImage>>(left_image,
+                                                                                      right_image);
+        const Eigen::Isometry3d T_world_body = truth.T_world_body;
+        const double t_s = frame.t_s;
+        const bool blackout = frame.blackout;
+        worker->Submit([&, pair, T_world_body, t_s, blackout] {
+          const LocalizationFrame lf =
+              LocalizeStereoFrame(*stack, t_s, blackout, pair->first, pair->second);
+          worker->Deliver([&, T_world_body, lf] {
+            estimates.AddFrame(T_world_body, lf);
+            if (observers.on_localization_frame) observers.on_localization_frame(lf);
+          });
+        });
+        // Bounded look-ahead: the simulation runs at most about two camera periods ahead
+        // of the robot software.
+        worker->WaitUntilPendingAtMost(kMaxTasksAhead);
       }
     }
     if (clock.steps() > 0 && clock.Fires(imu_period)) {
@@ -222,7 +271,12 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers
       const robot::ImuSample sample =
           imu.Sample(clock.now_s(), truth.T_world_body.linear(), truth.omega_world, accel);
       if (observers.on_imu) observers.on_imu(sample);
-      if (stack) stack->AddGyroSample(sample.t_s, sample.gyro_radps.z());
+      if (worker) {
+        worker->Submit(
+            [&, t = sample.t_s, z = sample.gyro_radps.z()] { stack->AddGyroSample(t, z); });
+      } else if (stack) {
+        stack->AddGyroSample(sample.t_s, sample.gyro_radps.z());
+      }
     }
     if (clock.steps() >= end_step) break;
     if (clock.Fires(drive_period)) {
@@ -239,6 +293,10 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers
     clock.Tick();
   }
 
+  if (worker) {
+    worker->Drain();
+    estimation_wall_s = worker->busy_s();
+  }
   RunMetrics m = metrics.Metrics();
   m.completed = !failed;
   m.stereo_frames = stereo_index;
