@@ -25,6 +25,7 @@ void LocalizationOptions::Validate() const {
   option_check::Nested("vo", vo);
   option_check::Nested("ekf", ekf);
   if (min_inliers_for_slip < 0) throw OptionError("min_inliers_for_slip", "must be >= 0");
+  option_check::NonNegative("fusion_weight_rise_time_s", fusion_weight_rise_time_s);
 }
 
 LocalizationStack::LocalizationStack(const LocalizationOptions& options,
@@ -91,7 +92,16 @@ LocalizationFrameReport LocalizationStack::AddStereoFrame(double t_s, const cv::
   report.features = report.vo.inliers;
   if (has_frame_) {
     const Pose2 wheel_increment = Between(wheel_at_frame_, wheel_.pose());
-    report.w = report.vo_valid ? fuzzy_.Weight(report.slip_velocity_mps, report.features) : 1.0;
+    // A frame without VO counts as w = 1: the weight climbs back toward the wheels.
+    report.w_rule =
+        report.vo_valid ? fuzzy_.Weight(report.slip_velocity_mps, report.features) : 1.0;
+    const double tau = options_.fusion_weight_rise_time_s;
+    if (report.w_rule <= w_ || tau <= 0.0 || !(t_s > t_frame_)) {
+      w_ = report.w_rule;
+    } else {
+      w_ += (1.0 - std::exp(-(t_s - t_frame_) / tau)) * (report.w_rule - w_);
+    }
+    report.w = report.vo_valid ? w_ : 1.0;
     fused_.Add(wheel_increment, vo_increment, report.w);
   }
   wheel_at_frame_ = wheel_.pose();

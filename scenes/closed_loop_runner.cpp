@@ -12,7 +12,9 @@
 #include "trackbed/estimation/skid_steer.h"
 #include "trackbed/navigation/pure_pursuit.h"
 #include "trackbed/robot/encoder.h"
+#include "trackbed/robot/range_sensor.h"
 #include "trackbed/robot/tracked_vehicle.h"
+#include "trackbed/scenes/closed_loop_navigation.h"
 #include "trackbed/scenes/ordered_worker.h"
 #include "trackbed/sim/renderer.h"
 #include "trackbed/sim/sim_clock.h"
@@ -113,7 +115,8 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers
   robot::TrackedVehicle vehicle(rs.vehicle, &world, rs.start.x_m, rs.start.y_m,
                                 rs.start.yaw_deg * M_PI / 180.0);
   robot::Imu imu(rs.imu, scenario.scene.world.gravity_mps2, StreamSeed(scenario.seed, 1));
-  Driver driver(scenario.drive, rs.vehicle.track_gauge_m);
+  std::optional<Driver> driver;  // the drive, unless navigation drives
+  if (!scenario.navigation.enabled) driver.emplace(scenario.drive, rs.vehicle.track_gauge_m);
   std::optional<robot::StereoRig> rig;
   std::unique_ptr<sim::Renderer> renderer;
   if (rs.stereo.enabled) {
@@ -136,6 +139,7 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers
     lo.wheel.ticks_per_rev = rs.encoders.ticks_per_rev;
     lo.wheel.slip_decay_time_s = scenario.estimation.slip_decay_time_s;
     lo.fusion_rules_file = scenario.estimation.fusion_rules;
+    lo.fusion_weight_rise_time_s = scenario.estimation.fusion_weight_rise_time_s;
     lo.vo.max_translation_per_frame_m = scenario.estimation.vo_max_translation_per_frame_m;
     lo.vo.max_rotation_per_frame_deg = scenario.estimation.vo_max_rotation_per_frame_deg;
     std::optional<perception::StereoCalibration> calibration;
@@ -153,6 +157,16 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers
   // thread simulates and renders ahead. The drive does not read the estimates.
   std::unique_ptr<OrderedWorker> worker;
   if (stack && rig) worker = std::make_unique<OrderedWorker>();
+  // Closed-loop navigation replaces the drive; it reads the estimates at each control
+  // step (the worker is drained first, so they are the same as inline).
+  std::unique_ptr<ClosedLoopNavigation> navigator;
+  if (scenario.navigation.enabled) navigator = std::make_unique<ClosedLoopNavigation>(scenario);
+  std::unique_ptr<robot::RangeSensor> range_sensor;
+  if (rs.range_sensor.enabled) {
+    range_sensor =
+        std::make_unique<robot::RangeSensor>(rs.range_sensor, StreamSeed(scenario.seed, 4));
+  }
+  std::uint64_t scan_index = 0;
   std::int64_t stereo_index = 0;
   double render_wall_s = 0.0;
   const std::uint64_t noise_seed = StreamSeed(scenario.seed, 3);
@@ -164,11 +178,15 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers
   const std::int64_t imu_period = clock.StepsPerPeriod(rs.imu.rate_hz);
   const std::int64_t drive_period = clock.StepsPerPeriod(scenario.drive.rate_hz);
   const std::int64_t camera_period = clock.StepsPerPeriod(rs.stereo.rate_hz);
+  const std::int64_t scan_period = clock.StepsPerPeriod(rs.range_sensor.rate_hz);
+  const std::int64_t navigation_period =
+      navigator ? clock.StepsPerPeriod(1.0 / navigator->period_s()) : 1;
   const auto end_step =
       static_cast<std::int64_t>(std::llround(scenario.duration_s / clock.step_s()));
   const double dt = clock.step_s();
 
   std::string stop_reason = "duration reached";
+  bool time_ran_out = false;
   bool failed = false;
   Eigen::Vector3d v_at_last_imu = vehicle.chassis().v_world;
   for (;;) {
@@ -278,10 +296,36 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers
         stack->AddGyroSample(sample.t_s, sample.gyro_radps.z());
       }
     }
-    if (clock.steps() >= end_step) break;
-    if (clock.Fires(drive_period)) {
+    if (range_sensor && clock.Fires(scan_period)) {
+      const robot::RangeScanSample scan =
+          range_sensor->Scan(world, truth.T_world_body, clock.now_s(), scan_index++);
+      if (navigator) navigator->AddScan(scan);
+    }
+    if (clock.steps() >= end_step) {
+      time_ran_out = true;
+      break;
+    }
+    if (navigator) {
+      if (clock.Fires(navigation_period)) {
+        if (worker) worker->Drain();
+        const estimation::Pose2 believed =
+            scenario.navigation.pose_source == "ground_truth"
+                ? estimation::PlanarPose(truth.T_world_body)
+                : estimation::PlanarPose(scenario.navigation.pose_source == "fused"
+                                             ? stack->fused()
+                                             : stack->wheel_odometry());
+        const estimation::TrackSpeeds cmd =
+            navigator->Update(clock.now_s(), believed, truth.T_world_body, world.objects());
+        if (observers.on_navigation_step) observers.on_navigation_step(navigator->last_entry());
+        vehicle.CommandTrackSpeeds(cmd.left_mps, cmd.right_mps);
+        if (navigator->finished()) {
+          stop_reason = "navigation " + navigator->Metrics(false).status;
+          break;
+        }
+      }
+    } else if (clock.Fires(drive_period)) {
       bool finished = false;
-      const estimation::TrackSpeeds cmd = driver.Update(clock.now_s(), truth, &finished);
+      const estimation::TrackSpeeds cmd = driver->Update(clock.now_s(), truth, &finished);
       vehicle.CommandTrackSpeeds(cmd.left_mps, cmd.right_mps);
       if (finished) {
         stop_reason = "path finished";
@@ -305,6 +349,11 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers
   m.estimators = estimates.Metrics(m.distance_m);
   m.localization = estimates.Summary();
   m.stop_reason = stop_reason;
+  if (navigator) {
+    m.navigation_method = scenario.navigation.method;
+    m.navigation = navigator->Metrics(time_ran_out);
+    m.navigation_subgoals = navigator->subgoals();
+  }
   m.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   return m;

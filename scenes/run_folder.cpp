@@ -221,6 +221,62 @@ std::string MetricsJson(const RunMetrics& m) {
 
 namespace {
 
+constexpr char kNavigationCsvHeader[] =
+    "t,x_m,y_m,yaw_rad,v_mps,yaw_rate_radps,left_radps,right_radps,target_x_m,target_y_m,"
+    "subgoal_active,clearance_m";
+
+std::string NavigationCsvRow(const navigation::NavigationLogEntry& e) {
+  char line[512];
+  std::snprintf(line, sizeof(line), "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%.9g",
+                e.t_s, e.x_m, e.y_m, e.yaw_rad, e.v_mps, e.yaw_rate_radps, e.left_radps,
+                e.right_radps, e.target_x_m, e.target_y_m, e.subgoal_active ? 1 : 0, e.clearance_m);
+  return line;
+}
+
+// The path among the obstacles, their safety circles and the sub-goals (Jung & Kim
+// 2014, figs. 5–8).
+void WriteNavigationMap(const fs::path& png, const std::string& title,
+                        const std::vector<navigation::NavigationLogEntry>& log,
+                        const std::vector<navigation::Circle>& obstacles, double safety_radius_m,
+                        const estimation::Pose2& start, const estimation::Pose2& goal,
+                        const std::vector<navigation::SubgoalRecord>& subgoals) {
+  std::vector<PlotCircle> circles;
+  for (const navigation::Circle& c : obstacles) {
+    circles.push_back({c.centre, c.radius_m + safety_radius_m, false});
+  }
+  for (const navigation::Circle& c : obstacles) circles.push_back({c.centre, c.radius_m});
+  std::vector<PlotMarker> markers = {{{start.x, start.y}, "start"}, {{goal.x, goal.y}, "goal"}};
+  for (std::size_t k = 0; k < subgoals.size(); ++k) {
+    markers.push_back({subgoals[k].position, "sub-goal " + std::to_string(k + 1)});
+  }
+  PlotSeries path{"path (ground truth)", {}};
+  for (const navigation::NavigationLogEntry& e : log) path.points.emplace_back(e.x_m, e.y_m);
+  WriteMapPlot(png, title, {path}, circles, markers);
+}
+
+// The scene's colliding objects as circles, for the map: cylinders as they are, boxes
+// as chains of circles along their longer side.
+std::vector<navigation::Circle> ObjectCircles(const std::vector<sim::StaticObject>& objects) {
+  std::vector<navigation::Circle> circles;
+  for (const sim::StaticObject& o : objects) {
+    if (!o.collides) continue;
+    if (o.shape == sim::StaticObject::Shape::kCylinder) {
+      circles.push_back({o.center_m, o.radius_m});
+      continue;
+    }
+    const bool along_x = o.size_m.x() >= o.size_m.y();
+    const double half_long = 0.5 * (along_x ? o.size_m.x() : o.size_m.y());
+    const double radius = 0.5 * (along_x ? o.size_m.y() : o.size_m.x());
+    const double axis_yaw = o.yaw_rad + (along_x ? 0.0 : M_PI / 2);
+    const Eigen::Vector2d u(std::cos(axis_yaw), std::sin(axis_yaw));
+    const double reach = std::max(half_long - radius, 0.0);
+    const std::vector<navigation::Circle> chain = navigation::WallCircles(
+        o.center_m - reach * u, o.center_m + reach * u, radius, std::max(radius, 0.05));
+    circles.insert(circles.end(), chain.begin(), chain.end());
+  }
+  return circles;
+}
+
 // `navigation.mode: kinematic`: the paper's differential-drive simulation, no physics
 // and no camera. Writes ground_truth.tum (the simulated pose), navigation.csv, the map
 // plot and metrics.json.
@@ -233,21 +289,14 @@ RunMetrics RunKinematicNavigation(const Scenario& scenario, const fs::path& dir)
       navigation::RunKinematicSimulation(scene, *navigator, KinematicOptionsOf(scenario));
 
   LogFile truth(dir / "ground_truth.tum", "");
-  LogFile csv(dir / "navigation.csv",
-              "t,x_m,y_m,yaw_rad,v_mps,yaw_rate_radps,left_radps,right_radps,target_x_m,"
-              "target_y_m,subgoal_active,clearance_m");
-  char line[512];
+  LogFile csv(dir / "navigation.csv", kNavigationCsvHeader);
   RunMetrics m;
   for (std::size_t k = 0; k < run.log.size(); ++k) {
     const navigation::NavigationLogEntry& e = run.log[k];
     truth.Line(
         estimation::FormatTumLine({e.t_s, estimation::ToIsometry({e.x_m, e.y_m, e.yaw_rad}, 0.0)})
             .c_str());
-    std::snprintf(line, sizeof(line), "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%.9g",
-                  e.t_s, e.x_m, e.y_m, e.yaw_rad, e.v_mps, e.yaw_rate_radps, e.left_radps,
-                  e.right_radps, e.target_x_m, e.target_y_m, e.subgoal_active ? 1 : 0,
-                  e.clearance_m);
-    csv.Line(line);
+    csv.Line(NavigationCsvRow(e).c_str());
     if (k > 0) {
       // The commanded wheel travel of the step: what encoders on this robot would count.
       m.encoder_distance_m += std::abs(run.log[k - 1].v_mps) * (e.t_s - run.log[k - 1].t_s);
@@ -256,22 +305,11 @@ RunMetrics RunKinematicNavigation(const Scenario& scenario, const fs::path& dir)
   truth.Close();
   csv.Close();
 
-  std::vector<PlotCircle> circles;
-  for (const navigation::Circle& c : scene.obstacles) {
-    circles.push_back({c.centre, c.radius_m + scenario.navigation.safety_radius_m, false});
-  }
-  for (const navigation::Circle& c : scene.obstacles) circles.push_back({c.centre, c.radius_m});
-  std::vector<PlotMarker> markers = {{{scene.start.x, scene.start.y}, "start"},
-                                     {{scene.goal.x, scene.goal.y}, "goal"}};
-  for (std::size_t k = 0; k < run.subgoals.size(); ++k) {
-    markers.push_back({run.subgoals[k].position, "sub-goal " + std::to_string(k + 1)});
-  }
-  PlotSeries path{scenario.navigation.method, {}};
-  for (const navigation::NavigationLogEntry& e : run.log) path.points.emplace_back(e.x_m, e.y_m);
-  WriteMapPlot(
+  WriteNavigationMap(
       dir / "navigation.png",
       scenario.scene.name + ": " + scenario.navigation.method + " (" + run.metrics.status + ")",
-      {path}, circles, markers);
+      run.log, scene.obstacles, scenario.navigation.safety_radius_m, scene.start, scene.goal,
+      run.subgoals);
 
   m.completed = true;
   m.stop_reason = "navigation " + run.metrics.status;
@@ -294,7 +332,8 @@ RunMetrics RunToFolder(const Scenario& scenario, const fs::path& dir) {
 
   RunMetrics metrics;
   try {
-    if (scenario.navigation.enabled) {
+    if (scenario.navigation.enabled &&
+        scenario.navigation.mode == NavigationSpec::Mode::kKinematic) {
       metrics = RunKinematicNavigation(scenario, dir);
       WriteAtomically(dir / "metrics.json", MetricsJson(metrics));
       return metrics;
@@ -315,7 +354,7 @@ RunMetrics RunToFolder(const Scenario& scenario, const fs::path& dir) {
         vo_tum = std::make_unique<LogFile>(dir / "visual_odometry.tum", "");
         fusion_csv = std::make_unique<LogFile>(
             dir / "fusion.csv",
-            "t,slip_velocity_mps,features,w,vo_status,vo_tracked,camera_blackout");
+            "t,slip_velocity_mps,features,w,vo_status,vo_tracked,camera_blackout,w_rule");
       }
     }
     LogFile tracks(dir / "tracks.csv",
@@ -394,10 +433,10 @@ RunMetrics RunToFolder(const Scenario& scenario, const fs::path& dir) {
       plots.estimates["visual_odometry"].push_back({f.t_s, f.visual_odometry});
       if (!vo_tum) return;
       vo_tum->Line(estimation::FormatTumLine({f.t_s, f.visual_odometry}).c_str());
-      std::snprintf(line, sizeof(line), "%.6f,%.9g,%.0f,%.6f,%s,%d,%d", f.t_s,
+      std::snprintf(line, sizeof(line), "%.6f,%.9g,%.0f,%.6f,%s,%d,%d,%.6f", f.t_s,
                     f.report.slip_velocity_mps, f.report.features, f.report.w,
                     estimation::ToString(f.report.vo.status), f.report.vo.tracked,
-                    f.camera_blackout ? 1 : 0);
+                    f.camera_blackout ? 1 : 0, f.report.w_rule);
       fusion_csv->Line(line);
     };
     observers.on_imu = [&](const robot::ImuSample& s) {
@@ -406,7 +445,26 @@ RunMetrics RunToFolder(const Scenario& scenario, const fs::path& dir) {
                     s.accel_mps2.y(), s.accel_mps2.z());
       imu.Line(line);
     };
+    std::unique_ptr<LogFile> navigation_csv;
+    std::vector<navigation::NavigationLogEntry> navigation_log;
+    if (scenario.navigation.enabled) {
+      navigation_csv = std::make_unique<LogFile>(dir / "navigation.csv", kNavigationCsvHeader);
+      observers.on_navigation_step = [&](const navigation::NavigationLogEntry& e) {
+        navigation_csv->Line(NavigationCsvRow(e).c_str());
+        navigation_log.push_back(e);
+      };
+    }
     metrics = RunClosedLoop(scenario, observers);
+    if (navigation_csv) {
+      navigation_csv->Close();
+      const navigation::NavigationScene scene = NavigationSceneOf(scenario);
+      WriteNavigationMap(dir / "navigation.png",
+                         scenario.scene.name + ": " + scenario.navigation.method + " (" +
+                             metrics.navigation->status + ")",
+                         navigation_log, ObjectCircles(scenario.scene.objects),
+                         scenario.navigation.safety_radius_m, scene.start, scene.goal,
+                         metrics.navigation_subgoals);
+    }
     for (LogFile* f : {&truth, &twist, &encoders, &slip, &tracks, &imu}) f->Close();
     if (kitti) kitti->Close();
     plots.Write(dir, scenario.scene.name);

@@ -71,6 +71,7 @@ void RobotSpec::Validate() const {
   option_check::Nested("encoders", encoders);
   option_check::Nested("imu", imu);
   option_check::Nested("stereo", stereo);
+  option_check::Nested("range_sensor", range_sensor);
 }
 
 void DriveSpec::Validate() const {
@@ -113,6 +114,7 @@ void EstimationSpec::Validate() const {
   option_check::InRange("icr_expansion", icr_expansion, 0.2, 5.0);
   option_check::Finite("icr_offset_m", icr_offset_m);
   option_check::Positive("slip_decay_time_s", slip_decay_time_s);
+  option_check::NonNegative("fusion_weight_rise_time_s", fusion_weight_rise_time_s);
   option_check::Positive("vo_max_translation_per_frame_m", vo_max_translation_per_frame_m);
   option_check::InRange("vo_max_rotation_per_frame_deg", vo_max_rotation_per_frame_deg, 1e-3,
                         180.0);
@@ -120,9 +122,7 @@ void EstimationSpec::Validate() const {
 
 void NavigationSpec::Validate() const {
   OneOf("method", method, navigation::NavigationMethodNames());
-  if (enabled && mode == Mode::kClosedLoop) {
-    throw OptionError("mode", "closed_loop is not available yet; use kinematic");
-  }
+  OneOf("pose_source", pose_source, {"fused", "wheel_odometry", "ground_truth"});
   OneOf("field", field, NavigationFieldNames());
   Finite("goal.x_m", goal.x_m);
   Finite("goal.y_m", goal.y_m);
@@ -147,6 +147,10 @@ void NavigationSpec::Validate() const {
   option_check::Positive("wheel_separation_m", wheel_separation_m);
   option_check::Positive("max_wheel_speed_radps", max_wheel_speed_radps);
   option_check::Positive("stall_time_s", stall_time_s);
+  option_check::Positive("max_speed_mps", max_speed_mps);
+  option_check::Positive("max_yaw_rate_radps", max_yaw_rate_radps);
+  option_check::Positive("stop_position_tolerance_m", stop_position_tolerance_m);
+  option_check::InRange("stop_heading_tolerance_deg", stop_heading_tolerance_deg, 1e-3, 180.0);
 }
 
 void OutputsSpec::Validate() const {
@@ -167,6 +171,24 @@ void Scenario::Validate() const {
   option_check::Nested("estimation", estimation);
   option_check::Nested("navigation", navigation);
   option_check::Nested("outputs", outputs);
+  if (navigation.enabled && navigation.mode == NavigationSpec::Mode::kClosedLoop) {
+    if (!robot.range_sensor.enabled) {
+      throw OptionError("robot.range_sensor.enabled",
+                        "navigation.mode closed_loop needs the range sensor (set it true)");
+    }
+    if (navigation.pose_source != "ground_truth" && !estimation.enabled) {
+      throw OptionError("navigation.pose_source",
+                        navigation.pose_source + " needs estimation.enabled: true");
+    }
+    if (navigation.pose_source == "fused" && !robot.stereo.enabled) {
+      throw OptionError("navigation.pose_source", "fused needs robot.stereo.enabled: true");
+    }
+    if (navigation.field != "none" || !navigation.obstacles.empty() || !navigation.walls.empty()) {
+      throw OptionError("navigation.mode",
+                        "closed_loop senses the scene's objects; navigation.field, obstacles "
+                        "and walls are for kinematic mode");
+    }
+  }
   if (outputs.save_images == "kitti" && !robot.stereo.enabled) {
     throw OptionError("outputs.save_images", "kitti needs robot.stereo.enabled: true");
   }

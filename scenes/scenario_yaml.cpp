@@ -344,12 +344,24 @@ void Visit(V& v, robot::StereoRigOptions& o) {
 }
 
 template <class V>
+void Visit(V& v, robot::RangeSensorOptions& o) {
+  v("enabled", o.enabled);
+  v("beams", o.beams);
+  v("rate_hz", o.rate_hz);
+  v("min_range_m", o.min_range_m);
+  v("max_range_m", o.max_range_m);
+  v("noise_std_m", o.noise_std_m);
+  v("mount_m", o.mount_m);
+}
+
+template <class V>
 void Visit(V& v, RobotSpec& o) {
   v("start", o.start);
   v("vehicle", o.vehicle);
   v("encoders", o.encoders);
   v("imu", o.imu);
   v("stereo", o.stereo);
+  v("range_sensor", o.range_sensor);
 }
 
 template <class V>
@@ -385,6 +397,7 @@ void Visit(V& v, EstimationSpec& o) {
   v("icr_offset_m", o.icr_offset_m);
   v("slip_decay_time_s", o.slip_decay_time_s);
   v("fusion_rules", o.fusion_rules);
+  v("fusion_weight_rise_time_s", o.fusion_weight_rise_time_s);
   v("vo_max_translation_per_frame_m", o.vo_max_translation_per_frame_m);
   v("vo_max_rotation_per_frame_deg", o.vo_max_rotation_per_frame_deg);
 }
@@ -420,6 +433,11 @@ void Visit(V& v, NavigationSpec& o) {
   v("wheel_separation_m", o.wheel_separation_m);
   v("max_wheel_speed_radps", o.max_wheel_speed_radps);
   v("stall_time_s", o.stall_time_s);
+  v("pose_source", o.pose_source);
+  v("max_speed_mps", o.max_speed_mps);
+  v("max_yaw_rate_radps", o.max_yaw_rate_radps);
+  v("stop_position_tolerance_m", o.stop_position_tolerance_m);
+  v("stop_heading_tolerance_deg", o.stop_heading_tolerance_deg);
 }
 
 template <class V>

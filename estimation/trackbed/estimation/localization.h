@@ -31,6 +31,12 @@ struct LocalizationOptions {
   /// Inliers a VO frame needs before its velocity updates the slip estimate (design.md
   /// §1.1 "whenever VO is valid (enough inliers)"), >= the VO's own minimum.
   int min_inliers_for_slip = 30;
+  /// Time constant with which the wheel weight w may rise [s], >= 0 (0: the rule's
+  /// value each frame). It falls at once. The slip estimate lags the ground by its
+  /// filter and hold times, so the wheels' errors outlast the slip episode that caused
+  /// them (and cancel with the errors of its onset); a weight that returned to the
+  /// wheels as fast as the estimated slip fades would keep one half of each such pair.
+  double fusion_weight_rise_time_s = 3.0;
   /// The EKF baseline (wheel odometry + gyro + visual odometry).
   EkfOdometryOptions ekf;
 
@@ -43,7 +49,8 @@ struct LocalizationFrameReport {
   bool vo_valid = false;           ///< VO produced a motion (enough inliers).
   double slip_velocity_mps = 0.0;  ///< Fusion input: larger track |slip| estimate.
   double features = 0.0;           ///< Fusion input: VO inliers.
-  double w = 1.0;                  ///< Weight of wheel odometry in this step.
+  double w = 1.0;                  ///< Weight of wheel odometry applied in this step.
+  double w_rule = 1.0;             ///< The rule base's weight for this frame alone.
   TrackSlip slip;                  ///< Estimated slip of both tracks.
 };
 
@@ -88,6 +95,7 @@ class LocalizationStack {
   Pose2 wheel_at_frame_;
   double t_frame_ = 0.0;
   bool has_frame_ = false;
+  double w_ = 1.0;  // the applied wheel weight, rising slowly (fusion_weight_rise_time_s)
 };
 
 }  // namespace trackbed::estimation

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "trackbed/estimation/localization.h"
+#include "trackbed/navigation/navigation_metrics.h"
 #include "trackbed/robot/imu.h"
 #include "trackbed/robot/stereo_rig.h"
 #include "trackbed/scenes/run_metrics.h"
@@ -52,6 +53,8 @@ struct RunObservers {
   std::function<void(const RunSample&)> on_sample;
   /// Every IMU sample.
   std::function<void(const robot::ImuSample&)> on_imu;
+  /// Every control step of closed-loop navigation (ground-truth pose, command, target).
+  std::function<void(const navigation::NavigationLogEntry&)> on_navigation_step;
 };
 
 /// Runs one scenario in closed loop. Throws std::invalid_argument for an

@@ -10,6 +10,7 @@
 
 #include "trackbed/estimation/icr_calibration.h"
 #include "trackbed/navigation/navigation_metrics.h"
+#include "trackbed/navigation/subgoal_planner.h"
 #include "trackbed/robot/tracked_vehicle.h"
 #include "trackbed/scenes/estimator_scoring.h"
 
@@ -68,6 +69,8 @@ struct RunMetrics {
   /// it did (metrics.json `navigation`).
   std::string navigation_method;
   std::optional<navigation::NavigationMetrics> navigation;
+  /// The sub-goals the navigator created (for the map plot).
+  std::vector<navigation::SubgoalRecord> navigation_subgoals;
 
   double real_time_factor() const { return wall_time_s > 0 ? sim_time_s / wall_time_s : 0.0; }
 };

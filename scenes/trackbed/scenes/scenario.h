@@ -12,6 +12,7 @@
 
 #include "trackbed/robot/encoder.h"
 #include "trackbed/robot/imu.h"
+#include "trackbed/robot/range_sensor.h"
 #include "trackbed/robot/stereo_rig.h"
 #include "trackbed/robot/tracked_vehicle.h"
 #include "trackbed/sim/occluder.h"
@@ -50,6 +51,7 @@ struct RobotSpec {
   robot::EncoderOptions encoders;
   robot::ImuOptions imu;
   robot::StereoRigOptions stereo;
+  robot::RangeSensorOptions range_sensor;
 
   void Validate() const;
 };
@@ -102,6 +104,9 @@ struct EstimationSpec {
   double slip_decay_time_s = 3.0;
   /// FLL file with the fusion rule base; empty: the built-in Table 1.
   std::string fusion_rules;
+  /// Time constant with which the fusion's wheel weight may rise [s], >= 0 (it falls at
+  /// once; 0: the rule base's weight of each frame as it is).
+  double fusion_weight_rise_time_s = 3.0;
   /// Visual odometry's per-frame motion bounds for this robot [m], [deg]: a frame that
   /// claims more is a failure, not a motion (the robot tops out at 1.5 m/s, 10 Hz).
   double vo_max_translation_per_frame_m = 0.5;
@@ -132,7 +137,9 @@ struct NavigationSpec {
   /// gauss_newton_subgoal, potential_field or dwa.
   std::string method = "gauss_newton_subgoal";
   /// kinematic: the paper's differential-drive simulation (no physics, no camera; the
-  /// navigator sees the true pose and the exact circles).
+  /// navigator sees the true pose and the exact circles). closed_loop: the tracked
+  /// vehicle in the scene, the navigator seeing `pose_source` and the obstacle circles
+  /// clustered from the range sensor's scans (robot.range_sensor).
   enum class Mode { kKinematic, kClosedLoop };
   Mode mode = Mode::kKinematic;
   /// Goal pose (x_m, y_m, yaw_deg).
@@ -157,6 +164,20 @@ struct NavigationSpec {
   double max_wheel_speed_radps = 25.0;
   /// A run without progress toward the goal for this long ends as "stalled" [s], > 0.
   double stall_time_s = 30.0;
+  /// closed_loop: the pose the navigator sees: fused (needs the stereo camera),
+  /// wheel_odometry, or ground_truth.
+  std::string pose_source = "fused";
+  /// closed_loop: top speed of the tracked robot under navigation [m/s], > 0 (the
+  /// navigator's wheel-speed limit is this over the sprocket radius).
+  double max_speed_mps = 0.4;
+  /// closed_loop: yaw-rate limit [rad/s], > 0; a faster command is scaled down with its
+  /// forward speed (same curvature). Turning in place at full track speed (1.4 rad/s)
+  /// sweeps 8° between camera frames, more than visual odometry tracks reliably.
+  double max_yaw_rate_radps = 0.5;
+  /// The navigator stops when its pose is this close to the goal [m], [deg]; success is
+  /// judged by ground truth at 0.1 m and 2° (issue 5), so a closed-loop run aims tighter.
+  double stop_position_tolerance_m = 0.1;
+  double stop_heading_tolerance_deg = 2.0;
 
   void Validate() const;
 };
