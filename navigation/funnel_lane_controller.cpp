@@ -1,0 +1,328 @@
+// Repeat 2D: funnel-lane rules, the vote and milestone switching (see
+// funnel_lane_controller.h).
+#include "trackbed/navigation/funnel_lane_controller.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "teach_repeat_tracks.h"
+#include "trackbed/common/option_error.h"
+#include "trackbed/navigation/teach_repeat_geometry.h"
+
+namespace trackbed::navigation {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+void AtLeast(const char* field, int value, int minimum) {
+  if (value < minimum) {
+    throw OptionError(
+        field, "must be >= " + std::to_string(minimum) + " (got " + std::to_string(value) + ")");
+  }
+}
+
+}  // namespace
+
+TurnVote FunnelLaneVote(double f_current_px, double f_destination_px) {
+  const double fc = f_current_px, fd = f_destination_px;
+  // Choi & Ha 2011, eq. (1).
+  if ((fc > 0.0 && fd < 0.0) || (fc > 0.0 && fc > fd)) return TurnVote::kRight;
+  if ((fc < 0.0 && fd > 0.0) || (fc < 0.0 && fc < fd)) return TurnVote::kLeft;
+  return TurnVote::kStraight;
+}
+
+TurnVote DecideTurn(const VoteTally& tally, double min_net_vote) {
+  const int total = tally.total();
+  if (total == 0) return TurnVote::kStraight;
+  const double needed = min_net_vote * total;
+  if (tally.right - tally.left > needed) return TurnVote::kRight;
+  if (tally.left - tally.right > needed) return TurnVote::kLeft;
+  return TurnVote::kStraight;
+}
+
+ErrorMinimumDetector::ErrorMinimumDetector(double hysteresis) : hysteresis_(hysteresis) {
+  if (!(hysteresis >= 0.0 && std::isfinite(hysteresis))) {
+    throw std::invalid_argument("ErrorMinimumDetector: hysteresis must be finite and >= 0");
+  }
+  Reset();
+}
+
+void ErrorMinimumDetector::Reset() {
+  minimum_ = std::numeric_limits<double>::infinity();
+  passed_ = false;
+}
+
+bool ErrorMinimumDetector::Update(double error) {
+  if (passed_) return true;
+  if (!std::isfinite(error)) return false;
+  minimum_ = std::min(minimum_, error);
+  passed_ = error > minimum_ + hysteresis_;
+  return passed_;
+}
+
+perception::FeatureTrackerOptions DefaultRepeatTrackerOptions() {
+  perception::FeatureTrackerOptions o;
+  o.window_px = 21;
+  o.pyramid_levels = 4;
+  return o;
+}
+
+void FunnelLaneOptions::Validate() const {
+  option_check::Positive("forward_speed_mps", forward_speed_mps);
+  option_check::Positive("turn_rate_radps", turn_rate_radps);
+  if (!(min_net_vote >= 0.0 && min_net_vote < 1.0)) {
+    throw OptionError("min_net_vote",
+                      "must be in [0, 1) (got " + option_check::Describe(min_net_vote) + ")");
+  }
+  option_check::NonNegative("switch_hysteresis_px", switch_hysteresis_px);
+  AtLeast("min_frames_per_milestone", min_frames_per_milestone, 1);
+  AtLeast("min_features", min_features, 1);
+  AtLeast("lost_patience_frames", lost_patience_frames, 1);
+  AtLeast("start_milestone", start_milestone, 0);
+  option_check::Nested("tracker", tracker);
+}
+
+namespace detail {
+
+FunnelFrame EvaluateFunnel(const CameraIntrinsics& camera, const Milestone& m,
+                           const std::vector<FeatureTrack>& tracks, bool bearing) {
+  FunnelFrame f;
+  f.error_px.assign(tracks.size(), kNaN);
+  f.outward.assign(tracks.size(), 0.0);
+  for (std::size_t i = 0; i < tracks.size(); ++i) {
+    const double fd = m.features[i].last_px.x - camera.cx;
+    f.outward[i] = fd < 0.0 ? -1.0 : 1.0;
+    if (!tracks[i].tracked) continue;
+    const double fc = tracks[i].position.x - camera.cx;
+    switch (FunnelLaneVote(fc, fd)) {
+      case TurnVote::kLeft:
+        ++f.tally.left;
+        break;
+      case TurnVote::kRight:
+        ++f.tally.right;
+        break;
+      case TurnVote::kStraight:
+        ++f.tally.straight;
+        break;
+    }
+    f.error_px[i] =
+        bearing ? camera.fx * (std::atan(fc / camera.fx) - std::atan(fd / camera.fx)) : fc - fd;
+  }
+  return f;
+}
+
+MilestoneSwitch::MilestoneSwitch(double hysteresis_px, SwitchError mode, bool remove_rotation)
+    : detector_(hysteresis_px), mode_(mode), remove_rotation_(remove_rotation) {}
+
+void MilestoneSwitch::Reset() {
+  detector_.Reset();
+  fresh_ = true;
+  common_ = 0.0;
+  accumulated_ = 0.0;
+  last_error_.clear();
+  last_outward_.clear();
+}
+
+double MilestoneSwitch::Term(double error, double outward, double common) const {
+  const double e = error - common;
+  return mode_ == SwitchError::kMeanAbsolute ? std::abs(e) : outward * e;
+}
+
+bool MilestoneSwitch::Update(const FunnelFrame& frame) {
+  const std::vector<double>& e = frame.error_px;
+  if (fresh_ || last_error_.size() != e.size()) {
+    // The start values, over every tracked feature.
+    double sum = 0.0;
+    int n = 0;
+    for (double v : e) {
+      if (std::isfinite(v)) {
+        sum += v;
+        ++n;
+      }
+    }
+    if (n > 0) {
+      common_ = remove_rotation_ ? sum / n : 0.0;
+      double terms = 0.0;
+      for (std::size_t i = 0; i < e.size(); ++i) {
+        if (std::isfinite(e[i])) terms += Term(e[i], frame.outward[i], common_);
+      }
+      accumulated_ = terms / n;
+      fresh_ = false;
+    }
+  } else {
+    // Changes over the features tracked in both frames only.
+    double shift = 0.0;
+    int n = 0;
+    for (std::size_t i = 0; i < e.size(); ++i) {
+      if (std::isfinite(e[i]) && std::isfinite(last_error_[i])) {
+        shift += e[i] - last_error_[i];
+        ++n;
+      }
+    }
+    if (n > 0) {
+      const double common = remove_rotation_ ? common_ + shift / n : 0.0;
+      double change = 0.0;
+      for (std::size_t i = 0; i < e.size(); ++i) {
+        if (std::isfinite(e[i]) && std::isfinite(last_error_[i])) {
+          change += Term(e[i], frame.outward[i], common) -
+                    Term(last_error_[i], last_outward_[i], common_);
+        }
+      }
+      accumulated_ += change / n;
+      common_ = common;
+    }
+  }
+  last_error_ = e;
+  last_outward_ = frame.outward;
+  if (fresh_) return false;
+  return detector_.Update(error_px());
+}
+
+double MilestoneSwitch::error_px() const {
+  return mode_ == SwitchError::kMeanAbsolute ? accumulated_ : std::abs(accumulated_);
+}
+
+std::vector<cv::Point2f> ShiftedGuesses(const Milestone& previous,
+                                        const std::vector<FeatureTrack>& tracks,
+                                        const Milestone& next) {
+  std::vector<float> dx, dy;
+  for (std::size_t i = 0; i < tracks.size() && i < previous.features.size(); ++i) {
+    if (!tracks[i].tracked) continue;
+    dx.push_back(tracks[i].position.x - previous.features[i].last_px.x);
+    dy.push_back(tracks[i].position.y - previous.features[i].last_px.y);
+  }
+  cv::Point2f shift(0.0f, 0.0f);
+  if (!dx.empty()) {
+    const std::size_t mid = dx.size() / 2;
+    std::nth_element(dx.begin(), dx.begin() + static_cast<std::ptrdiff_t>(mid), dx.end());
+    std::nth_element(dy.begin(), dy.begin() + static_cast<std::ptrdiff_t>(mid), dy.end());
+    shift = {dx[mid], dy[mid]};
+  }
+  std::vector<cv::Point2f> guesses;
+  guesses.reserve(next.features.size());
+  for (const MilestoneFeature& f : next.features) guesses.push_back(f.first_px + shift);
+  return guesses;
+}
+
+std::vector<cv::Point2f> StartGuesses(const Milestone& m, const cv::Mat& gray) {
+  const cv::Point2f shift = EstimateImageShift(m.key_image, gray);
+  std::vector<cv::Point2f> guesses;
+  guesses.reserve(m.features.size());
+  for (const MilestoneFeature& f : m.features) guesses.push_back(f.first_px + shift);
+  return guesses;
+}
+
+}  // namespace detail
+
+FunnelLaneRepeater::FunnelLaneRepeater(TeachMap map, const FunnelLaneOptions& options)
+    : map_(std::move(map)), options_(options) {
+  options_.Validate();
+  if (map_.milestones.empty()) {
+    throw std::invalid_argument("FunnelLaneRepeater: the teach map has no milestones");
+  }
+  if (options_.start_milestone >= static_cast<int>(map_.milestones.size())) {
+    throw std::invalid_argument("FunnelLaneRepeater: start_milestone " +
+                                std::to_string(options_.start_milestone) + " beyond the map's " +
+                                std::to_string(map_.milestones.size()) + " milestones");
+  }
+  tracks_ = std::make_unique<detail::MilestoneTracks>(options_.tracker);
+  switch_ = std::make_unique<detail::MilestoneSwitch>(
+      options_.switch_hysteresis_px, options_.switch_error, options_.remove_rotation);
+}
+
+FunnelLaneRepeater::~FunnelLaneRepeater() = default;
+
+void FunnelLaneRepeater::StartMilestone(int index, const std::vector<cv::Point2f>& guesses) {
+  milestone_ = index;
+  tracks_->Start(map_.milestones[static_cast<std::size_t>(index)], curr_pyramid_, guesses);
+  switch_->Reset();
+  frames_in_milestone_ = 0;
+}
+
+RepeatCommand FunnelLaneRepeater::Update(const cv::Mat& gray, double t_s) {
+  if (gray.empty() || gray.type() != CV_8UC1 || gray.size() != map_.camera.size()) {
+    throw std::invalid_argument("FunnelLaneRepeater::Update: needs a CV_8UC1 image of " +
+                                std::to_string(map_.camera.width) + "x" +
+                                std::to_string(map_.camera.height) + " px");
+  }
+  if (!std::isfinite(t_s) || (started_ && t_s < last_t_s_)) {
+    throw std::invalid_argument(
+        "FunnelLaneRepeater::Update: time must be finite and not decreasing");
+  }
+  last_t_s_ = t_s;
+  RepeatCommand cmd;
+  cmd.milestone = milestone_;
+  cmd.features_lost = lost_total_;
+  if (status_ != RepeatStatus::kDriving) {
+    cmd.status = status_;
+    return cmd;
+  }
+
+  tracks_->BuildPyramid(gray, &curr_pyramid_);
+  if (!started_) {
+    StartMilestone(options_.start_milestone,
+                   detail::StartGuesses(
+                       map_.milestones[static_cast<std::size_t>(options_.start_milestone)], gray));
+    started_ = true;
+  } else {
+    tracks_->Advance(prev_pyramid_, curr_pyramid_);
+    cmd.lost = tracks_->CommitLosses();  // the 2D method has no way to find them again
+    lost_total_ += cmd.lost;
+  }
+  ++frames_in_milestone_;
+
+  const Milestone* m = &map_.milestones[static_cast<std::size_t>(milestone_)];
+  detail::FunnelFrame frame =
+      detail::EvaluateFunnel(map_.camera, *m, tracks_->tracks(), options_.remove_rotation);
+  const bool passed =
+      switch_->Update(frame) && frames_in_milestone_ > options_.min_frames_per_milestone;
+  cmd.mean_error_px = switch_->error_px();
+  if (passed) {
+    if (milestone_ + 1 >= static_cast<int>(map_.milestones.size())) {
+      status_ = RepeatStatus::kFinished;
+      cmd.status = status_;
+      cmd.features_lost = lost_total_;
+      std::swap(prev_pyramid_, curr_pyramid_);
+      return cmd;
+    }
+    const Milestone& next = map_.milestones[static_cast<std::size_t>(milestone_ + 1)];
+    const std::vector<cv::Point2f> guesses = detail::ShiftedGuesses(*m, tracks_->tracks(), next);
+    StartMilestone(milestone_ + 1, guesses);
+    cmd.switched = true;
+    m = &next;
+    frame = detail::EvaluateFunnel(map_.camera, *m, tracks_->tracks(), options_.remove_rotation);
+    switch_->Update(frame);
+    cmd.mean_error_px = switch_->error_px();
+  }
+
+  cmd.milestone = milestone_;
+  cmd.features = static_cast<int>(tracks_->size());
+  cmd.tracked = tracks_->tracked();
+  cmd.votes_left = frame.tally.left;
+  cmd.votes_right = frame.tally.right;
+  cmd.votes_straight = frame.tally.straight;
+  cmd.features_lost = lost_total_;
+  if (cmd.tracked < options_.min_features) {
+    cmd.too_few_features = true;
+    if (++too_few_frames_ > options_.lost_patience_frames) {
+      status_ = RepeatStatus::kLost;
+      cmd.status = status_;
+      std::swap(prev_pyramid_, curr_pyramid_);
+      return cmd;
+    }
+    cmd.twist.v_mps = options_.forward_speed_mps;  // straight on, hoping to see again
+  } else {
+    too_few_frames_ = 0;
+    cmd.decision = DecideTurn(frame.tally, options_.min_net_vote);
+    cmd.twist.v_mps = options_.forward_speed_mps;
+    cmd.twist.yaw_rate_radps =
+        static_cast<double>(static_cast<int>(cmd.decision)) * options_.turn_rate_radps;
+  }
+  std::swap(prev_pyramid_, curr_pyramid_);
+  return cmd;
+}
+
+}  // namespace trackbed::navigation

@@ -1,0 +1,177 @@
+// Repeat 2D: qualitative, funnel-lane path following (Chen & Birchfield 2006, as Choi &
+// Ha 2011 §II state it; design.md §1.3).
+//
+// For feature i, f_c is its x in the current image and f_d its x in the milestone's
+// destination (last) image, both relative to the principal point (> 0 right of it). The
+// rules (Choi & Ha eq. 1):
+//   turn right  if f_c > 0 and f_d < 0,  or  f_c > 0 and f_c > f_d;
+//   turn left   if f_c < 0 and f_d > 0,  or  f_c < 0 and f_c < f_d;
+//   otherwise go straight.
+// Approaching the destination, a feature moves away from the image centre toward f_d;
+// as long as it lies between the centre and f_d (inside its "funnel lane") the robot may
+// go straight; outside, turning toward it brings it back.
+//
+// Our readings, where the paper leaves the details open:
+//
+// * Matching. Features are not matched by descriptors: each milestone's features are
+//   tracked by KLT, as the paper does in teaching. When a milestone becomes active its
+//   features are tracked from its key image (stored in the map) into the current image;
+//   from then on from the previous repeat image into the current one. A feature that KLT
+//   loses stays lost for the rest of the milestone (the 2D method has no way to find it
+//   again — Choi & Ha's experiment 1); the next milestone brings fresh features.
+// * The vote. Bang-bang: with N_R, N_L, N_S votes, turn right at the full turn rate when
+//   (N_R − N_L) > min_net_vote · (N_R + N_L + N_S), left when (N_L − N_R) exceeds it,
+//   else straight. min_net_vote = 0 is the bare majority of the turn votes; a small
+//   positive value keeps a few noisy features from steering.
+// * The switch. "The mean x-error stops decreasing and starts to increase." Two readings
+//   of "mean x-error", an option (`switch_error`):
+//     - kMeanAbsolute, the literal one: E = mean_i |e_i|, e_i = f_c − f_d;
+//     - kMeanOutward (default): E = |mean_i sign(f_d)·e_i|, the mean of the errors
+//       counted outward from the image centre (negative while a feature has not yet
+//       reached its destination, positive once it has passed it: features move outward
+//       as the robot approaches), which crosses zero at the destination.
+//   Why the second: off the taught path by y, features on the near side of the route
+//   appear as if the robot were behind the destination and those on the far side as if
+//   it were ahead, both by ~fx·y/Z — pixels to tens of pixels, more than the
+//   approach moves them in a frame. |e_i| summed over both sides then has a flat
+//   minimum spread over the whole stretch between the two sides' crossings, and the
+//   switch comes late (by tens of centimetres in our tests, with y = 0.2 m); in the
+//   outward mean the two sides' offsets cancel to first order.
+//   With `remove_rotation` (default) errors are bearing errors, e_i = fx·(atan(f_c/fx) −
+//   atan(f_d/fx)), minus their common part: a pure yaw of the robot shifts every bearing
+//   by the same angle, and the bang-bang turns, which move every feature at once, would
+//   otherwise look like approach or retreat.
+//   E and the common part are followed through their frame-to-frame changes over the
+//   features tracked in both frames, accumulated from their values when the milestone
+//   became active: features lost on the way (to an occluder on one side, say) move
+//   neither. The milestone is passed when E has risen more than `switch_hysteresis_px`
+//   above its minimum since then (ErrorMinimumDetector), and no earlier than
+//   `min_frames_per_milestone` frames after it began.
+// * Starting a milestone. The first milestone's features are tracked from its key image
+//   starting at their key-image positions moved by the global image shift (phase
+//   correlation, EstimateImageShift); a later milestone's, moved by the median
+//   displacement of the previous milestone's features. Features the first KLT pass
+//   misses get a second pass from guesses corrected by the median of those found.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "trackbed/navigation/teach_map.h"
+#include "trackbed/navigation/teach_repeat.h"
+#include "trackbed/perception/feature_tracker.h"
+
+namespace trackbed::navigation {
+
+namespace detail {
+class MilestoneTracks;
+class MilestoneSwitch;
+}  // namespace detail
+
+/// The funnel-lane rule for one feature (see the file comment): f_c, f_d [px] relative to
+/// the principal point.
+TurnVote FunnelLaneVote(double f_current_px, double f_destination_px);
+
+/// Votes of all features.
+struct VoteTally {
+  int left = 0, right = 0, straight = 0;
+  int total() const { return left + right + straight; }
+};
+
+/// Bang-bang decision from a tally (see the file comment); straight when there are no
+/// votes. min_net_vote in [0, 1).
+TurnVote DecideTurn(const VoteTally& tally, double min_net_vote);
+
+/// Detects that an error passed its minimum: fed the error every frame, reports once it
+/// exceeds its running minimum by the hysteresis.
+class ErrorMinimumDetector {
+ public:
+  /// hysteresis >= 0 [units of the error]; throws std::invalid_argument otherwise.
+  explicit ErrorMinimumDetector(double hysteresis);
+  /// Starts over (a new milestone).
+  void Reset();
+  /// Adds one frame's error; returns true once it has risen above minimum + hysteresis
+  /// (and from then on, until Reset). Non-finite errors are ignored.
+  bool Update(double error);
+  double minimum() const { return minimum_; }
+
+ private:
+  double hysteresis_;
+  double minimum_;
+  bool passed_ = false;
+};
+
+/// What the 2D milestone switch follows (see the file comment).
+enum class SwitchError {
+  kMeanAbsolute,  ///< mean_i |e_i| (Choi & Ha's words, literally)
+  kMeanOutward,   ///< |mean_i sign(f_d)·e_i| (robust to a lateral offset)
+};
+
+/// Repeat tracking options for milestone features: OpenCV's 21 px window and 4 pyramid
+/// levels, so that the start of a milestone (KLT from its key image) catches features
+/// displaced by up to ~80 px (a repeat that starts 0.2 m and 5° off).
+perception::FeatureTrackerOptions DefaultRepeatTrackerOptions();
+
+/// Options of FunnelLaneRepeater.
+struct FunnelLaneOptions {
+  /// Constant forward speed [m/s], > 0 (Choi & Ha's lab repeat: 0.05 m/s).
+  double forward_speed_mps = 0.05;
+  /// Bang-bang turn rate [rad/s], > 0 (Choi & Ha's lab repeat: 4°/s).
+  double turn_rate_radps = 4.0 * M_PI / 180.0;
+  /// Net vote fraction needed to turn, in [0, 1) (see the file comment).
+  double min_net_vote = 0.1;
+  /// Rise of the accumulated x-error above its minimum that switches milestones [px], >= 0.
+  double switch_hysteresis_px = 1.0;
+  /// The error the milestone switch follows (file comment).
+  SwitchError switch_error = SwitchError::kMeanOutward;
+  /// Remove the common rotation from the x-errors before switching (file comment).
+  bool remove_rotation = true;
+  /// Frames a milestone stays active at least before it may be switched, >= 1.
+  int min_frames_per_milestone = 3;
+  /// Fewer tracked features than this is "too few": the robot goes straight, >= 1.
+  int min_features = 8;
+  /// Consecutive frames with too few features before the repeat is lost, >= 1.
+  int lost_patience_frames = 20;
+  /// Milestone the repeat starts at (the robot stands near its key image), >= 0.
+  int start_milestone = 0;
+  /// KLT tracking of the milestone features.
+  perception::FeatureTrackerOptions tracker = DefaultRepeatTrackerOptions();
+
+  /// Throws OptionError naming the first invalid field.
+  void Validate() const;
+};
+
+/// The 2D repeat (see the file comment). Stateful; not copyable.
+class FunnelLaneRepeater : public Repeater {
+ public:
+  /// Throws OptionError for invalid options, std::invalid_argument for a map without
+  /// milestones or a start milestone beyond it.
+  FunnelLaneRepeater(TeachMap map, const FunnelLaneOptions& options = {});
+  ~FunnelLaneRepeater() override;
+
+  RepeatCommand Update(const cv::Mat& gray, double t_s) override;
+  const char* method() const override { return "2d"; }
+  const TeachMap& map() const override { return map_; }
+  const FunnelLaneOptions& options() const { return options_; }
+
+ private:
+  void StartMilestone(int index, const std::vector<cv::Point2f>& guesses);
+
+  TeachMap map_;
+  FunnelLaneOptions options_;
+  std::unique_ptr<detail::MilestoneTracks> tracks_;
+  std::unique_ptr<detail::MilestoneSwitch> switch_;
+  perception::TrackingPyramid prev_pyramid_, curr_pyramid_;
+  bool started_ = false;
+  double last_t_s_ = 0.0;
+  int milestone_ = 0;
+  int frames_in_milestone_ = 0;
+  int too_few_frames_ = 0;
+  RepeatStatus status_ = RepeatStatus::kDriving;
+  std::int64_t lost_total_ = 0;
+};
+
+}  // namespace trackbed::navigation

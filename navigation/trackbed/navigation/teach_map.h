@@ -1,0 +1,158 @@
+// The teach map of visual teach & repeat (Choi & Ha 2011; design.md §1.3): the
+// milestones cut from the taught image sequence, and its on-disk format.
+//
+// A milestone spans the teach images first_image … last_image. Its features were
+// detected in the first image and tracked (pyramidal KLT, forward–backward checked)
+// through every image of the milestone to the last one; both positions are stored
+// (Chen & Birchfield 2006). A 3D milestone (Diosi et al. 2007) also stores the local
+// reconstruction between its first and last image: the motion T_first_last and each
+// feature's 3-D point in the first camera's frame, at metric scale (the scale comes from
+// the wheel odometry's distance between the two images; see milestone_builder.h). Every
+// feature carries a small patch of its last image, compared with the current image to
+// recover features lost to an occluder. The first image of each milestone (its key
+// image) is kept: a repeat starts a milestone's tracks by KLT from it.
+//
+// On disk a map is a directory (docs/teach_repeat.md has the full description):
+//   map.json          — format "trackbed.teach_map", version 1: camera, teach images'
+//                       times and odometry (metadata), milestones with their features;
+//   patches.bin       — every feature's patch, milestone by milestone, feature by feature:
+//                       magic "TBPATCH1", uint32 side, uint32 0, uint64 count (little
+//                       endian), then count·side² bytes (row-major, 8-bit grey);
+//   key_images/NNNNNN.png — milestone NNNNNN's key image (8-bit grey, lossless).
+// Numbers in map.json are written with the shortest representation that reads back to
+// the same double, so Load(Save(map)) equals map exactly and saving it again gives the
+// same bytes.
+//
+// Frames: cameras follow OpenCV (x right, y down, z forward); T_a_b maps b coordinates to
+// a (p_a = T_a_b · p_b). Pixel coordinates: the centre of the top-left pixel is (0, 0).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <opencv2/core.hpp>
+
+#include "trackbed/estimation/pose2.h"
+#include "trackbed/perception/kitti_sequence.h"
+
+namespace trackbed::navigation {
+
+/// Pinhole intrinsics of the (left) camera whose images are taught and repeated.
+struct CameraIntrinsics {
+  double fx = 0.0;  ///< focal length along x [px], > 0
+  double fy = 0.0;  ///< focal length along y [px], > 0
+  double cx = 0.0;  ///< principal point x [px], finite
+  double cy = 0.0;  ///< principal point y [px], finite
+  int width = 0;    ///< image width [px], > 0
+  int height = 0;   ///< image height [px], > 0
+
+  /// The left camera of a calibration, for images of `image_size`. Throws OptionError
+  /// for a calibration without positive focal lengths or an empty size.
+  static CameraIntrinsics FromCalibration(const perception::StereoCalibration& calibration,
+                                          cv::Size image_size);
+  /// K as a 3×3 matrix.
+  cv::Matx33d K() const;
+  cv::Size size() const { return {width, height}; }
+  /// Throws OptionError naming the first invalid field.
+  void Validate() const;
+};
+
+/// How the milestones were cut.
+enum class TeachMode {
+  k2d,  ///< fixed interval (Chen & Birchfield 2006): no reconstruction
+  k3d,  ///< by the local reconstruction's reprojection error (Diosi et al. 2007)
+};
+/// "2d", "3d".
+const char* ToString(TeachMode mode);
+/// Parses "2d" / "3d"; throws std::invalid_argument otherwise.
+TeachMode ParseTeachMode(const std::string& text);
+
+/// Why a milestone ended.
+enum class MilestoneCut {
+  kInterval,           ///< 2D: the fixed interval (images or odometry distance) was reached
+  kReprojectionError,  ///< 3D: the next image's reconstruction error passed the threshold
+  kTooFewFeatures,     ///< too few features survived tracking into the next image
+  kMaxImages,          ///< the milestone reached max_milestone_images
+  kEndOfTeach,         ///< the teach sequence ended
+};
+/// "interval", "reprojection_error", "too_few_features", "max_images", "end_of_teach".
+const char* ToString(MilestoneCut cut);
+/// Parses the names above; throws std::invalid_argument otherwise.
+MilestoneCut ParseMilestoneCut(const std::string& text);
+
+/// One milestone feature.
+struct MilestoneFeature {
+  cv::Point2f first_px;  ///< position in the milestone's first (key) image [px]
+  cv::Point2f last_px;   ///< position in its last image, KLT-tracked [px]
+  /// 3-D point in the first camera's frame [m] (3D milestones; zero otherwise).
+  Eigen::Vector3d p_first = Eigen::Vector3d::Zero();
+  /// patch_size_px × patch_size_px CV_8UC1 patch of the last image centred on last_px.
+  cv::Mat patch;
+};
+
+/// One milestone: teach images first_image … last_image.
+struct Milestone {
+  int first_image = 0;     ///< index of the first (key) image in the teach sequence
+  int last_image = 0;      ///< index of the last image (the next milestone's first), >= first
+  double first_t_s = 0.0;  ///< teach time of the first image [s]
+  double last_t_s = 0.0;   ///< teach time of the last image [s]
+  MilestoneCut cut = MilestoneCut::kInterval;
+  /// The local reconstruction is valid (3D milestones with enough baseline and inliers):
+  /// T_first_last and the features' p_first are meaningful.
+  bool reconstructed = false;
+  /// Pose of the last camera in the first camera's frame (metric) when reconstructed.
+  Eigen::Isometry3d T_first_last = Eigen::Isometry3d::Identity();
+  /// Mean reprojection error of the reconstruction at the last image [px] (0 if none).
+  double reprojection_error_px = 0.0;
+  /// Odometry distance between the first and the last image [m]: the reconstruction's
+  /// scale (0 when the teach recorded no odometry).
+  double baseline_m = 0.0;
+  std::vector<MilestoneFeature> features;
+  /// The first image (CV_8UC1, the camera's size).
+  cv::Mat key_image;
+};
+
+/// One teach image's metadata.
+struct TeachImageRecord {
+  double t_s = 0.0;  ///< [s]
+  /// Wheel-odometry pose of the body at that time, if the teach recorded it (metadata;
+  /// 3D teach uses the distance between poses for the reconstruction's scale).
+  std::optional<estimation::Pose2> odometry;
+};
+
+/// A taught route.
+struct TeachMap {
+  TeachMode mode = TeachMode::k2d;
+  CameraIntrinsics camera;
+  int patch_size_px = 11;                ///< side of the stored patches [px], odd, >= 3
+  std::vector<TeachImageRecord> images;  ///< every teach image, in order
+  std::vector<Milestone> milestones;
+
+  /// Total number of features over all milestones.
+  std::size_t feature_count() const;
+  /// Throws std::invalid_argument naming the first inconsistency (intrinsics, patch
+  /// sizes, image indices out of order or range, key images of the wrong size or type,
+  /// non-finite numbers). Save and Load call it.
+  void Validate() const;
+};
+
+/// The current version of the on-disk format.
+constexpr int kTeachMapFormatVersion = 1;
+
+/// Writes `map` into directory `dir` (created if missing; an existing map.json,
+/// patches.bin and key_images/ in it are replaced). Throws std::invalid_argument for an
+/// invalid map, std::runtime_error naming the file for I/O failures.
+void SaveTeachMap(const TeachMap& map, const std::string& dir);
+
+/// Reads a map written by SaveTeachMap. Throws std::runtime_error whose message names
+/// the file and what is wrong: a missing directory or file, JSON that does not parse, a
+/// wrong format name or version, a missing or mistyped key (named by its path, e.g.
+/// `milestones[3].features[7]`), counts that disagree (features vs patches), a
+/// truncated or oversized patch file, a key image that is missing, unreadable or of the
+/// wrong size.
+TeachMap LoadTeachMap(const std::string& dir);
+
+}  // namespace trackbed::navigation
