@@ -370,7 +370,7 @@ TEST(ScenarioYamlTest, BadOverrideIsAttributedToSet) {
   const std::string typo = ErrorOf(m, {ParseOverride("robot.vehicel.mass_kg=50")});
   EXPECT_EQ(typo,
             "--set robot.vehicel.mass_kg=50: robot.vehicel: unknown key (allowed: start, vehicle, "
-            "encoders, imu, stereo)");
+            "encoders, imu, stereo, range_sensor)");
   EXPECT_EQ(ErrorOf(m, {ParseOverride("duration_s=soon")}),
             "--set duration_s=soon: duration_s: expected a number, got 'soon'");
   EXPECT_EQ(
