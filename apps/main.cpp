@@ -13,6 +13,8 @@
 #include <CLI/CLI.hpp>
 
 #include "eval_command.h"
+#include "report_command.h"
+#include "sweep_command.h"
 #include "trackbed/scenes/run_folder.h"
 #include "trackbed/scenes/scenario_yaml.h"
 #include "vo_command.h"
@@ -88,6 +90,8 @@ int main(int argc, char** argv) {
   run->add_option("--set", sets, "Override a scenario key: --set dotted.key=value (repeatable)");
 
   trackbed::apps::AddEvalCommand(app);
+  trackbed::apps::AddSweepCommand(app);
+  trackbed::apps::AddReportCommand(app);
   trackbed::apps::AddVoCommand(app);
 
   try {

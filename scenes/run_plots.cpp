@@ -227,4 +227,160 @@ void WriteTimePlot(const std::filesystem::path& png, const std::string& title,
   Save(png, img);
 }
 
+namespace {
+
+// Quantile q of sorted values, linear between order statistics (R's type 7).
+double SortedQuantile(const std::vector<double>& sorted, double q) {
+  const double h = (static_cast<double>(sorted.size()) - 1.0) * q;
+  const std::size_t lo = static_cast<std::size_t>(std::floor(h));
+  const std::size_t hi = std::min(lo + 1, sorted.size() - 1);
+  return sorted[lo] + (h - static_cast<double>(lo)) * (sorted[hi] - sorted[lo]);
+}
+
+void CenteredText(cv::Mat& img, const std::string& text, cv::Point centre, double scale) {
+  int baseline = 0;
+  const cv::Size size = cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, scale, 1, &baseline);
+  cv::putText(img, text, {centre.x - size.width / 2, centre.y}, cv::FONT_HERSHEY_SIMPLEX, scale,
+              kAxis, 1, cv::LINE_AA);
+}
+
+}  // namespace
+
+void WriteBoxPlot(const std::filesystem::path& png, const std::string& title,
+                  const std::string& y_label, const std::vector<BoxSeries>& boxes, bool log_y,
+                  int first_color) {
+  // The samples in axis units (log10 of the value on a log axis), sorted.
+  std::vector<std::vector<double>> samples(boxes.size());
+  double lo = 1e300, hi = -1e300;
+  for (std::size_t k = 0; k < boxes.size(); ++k) {
+    for (double v : boxes[k].values) {
+      if (!std::isfinite(v) || (log_y && !(v > 0))) continue;
+      const double u = log_y ? std::log10(v) : v;
+      samples[k].push_back(u);
+      lo = std::min(lo, u);
+      hi = std::max(hi, u);
+    }
+    std::sort(samples[k].begin(), samples[k].end());
+  }
+  if (!(hi >= lo)) {
+    lo = 0.0;
+    hi = 1.0;
+  }
+  if (hi - lo < 1e-12) {
+    const double pad = log_y ? 0.5 : std::max(std::abs(lo) * 0.1, 0.5);
+    lo -= pad;
+    hi += pad;
+  }
+  const double pad = 0.08 * (hi - lo);
+  const cv::Rect area(90, 70, 800, 420);
+  const Axes axes{area, 0.0, static_cast<double>(std::max<std::size_t>(boxes.size(), 1)), lo - pad,
+                  hi + pad};
+  cv::Mat img(580, 940, CV_8UC3, cv::Scalar(255, 255, 255));
+  Title(img, title);
+  // Value axis: nice steps, or decades (with 2 and 5 between when the span is short).
+  std::vector<std::pair<double, std::string>> ticks;
+  if (log_y) {
+    const bool fine = axes.y1 - axes.y0 < 2.5;
+    for (int e = static_cast<int>(std::floor(axes.y0)); e <= static_cast<int>(std::ceil(axes.y1));
+         ++e) {
+      for (double m : fine ? std::vector<double>{1, 2, 5} : std::vector<double>{1}) {
+        const double u = e + std::log10(m);
+        if (u >= axes.y0 && u <= axes.y1) ticks.emplace_back(u, Format(m * std::pow(10.0, e)));
+      }
+    }
+  } else {
+    const double step = NiceStep(axes.y1 - axes.y0, 6);
+    for (double y = std::ceil(axes.y0 / step) * step; y <= axes.y1 + 1e-9; y += step) {
+      ticks.emplace_back(y, Format(y));
+    }
+  }
+  for (const auto& [u, label] : ticks) {
+    const cv::Point a = axes.Map(axes.x0, u), b = axes.Map(axes.x1, u);
+    cv::line(img, a, b, kGrid, 1);
+    cv::putText(img, label, {a.x - 56, a.y + 4}, cv::FONT_HERSHEY_SIMPLEX, 0.4, kAxis, 1,
+                cv::LINE_AA);
+  }
+  cv::rectangle(img, area, kAxis, 1);
+  cv::putText(img, y_label + (log_y ? " (log scale)" : ""), {area.x - 56, area.y - 12},
+              cv::FONT_HERSHEY_SIMPLEX, 0.45, kAxis, 1, cv::LINE_AA);
+
+  const double slot_px = static_cast<double>(area.width) / std::max<double>(boxes.size(), 1);
+  const int half_w = static_cast<int>(std::min(slot_px * 0.25, 40.0));
+  for (std::size_t k = 0; k < boxes.size(); ++k) {
+    const double x = static_cast<double>(k) + 0.5;
+    const int cx = axes.Map(x, 0.0).x;
+    const cv::Scalar color = Color(k + static_cast<std::size_t>(first_color));
+    // Labels alternate between two rows when a slot is narrower than its label.
+    int baseline = 0;
+    const int text_w =
+        cv::getTextSize(boxes[k].name, cv::FONT_HERSHEY_SIMPLEX, 0.42, 1, &baseline).width;
+    const int row = (text_w > slot_px - 6 && k % 2 == 1) ? 1 : 0;
+    CenteredText(img, boxes[k].name, {cx, area.y + area.height + 20 + 18 * row}, 0.42);
+    const std::vector<double>& s = samples[k];
+    CenteredText(img, "n=" + std::to_string(s.size()), {cx, area.y + area.height + 58}, 0.38);
+    if (s.empty()) continue;
+    const double q1 = SortedQuantile(s, 0.25), q3 = SortedQuantile(s, 0.75);
+    const double median = SortedQuantile(s, 0.5), iqr = q3 - q1;
+    double whisker_lo = q1, whisker_hi = q3;
+    for (double u : s) {
+      if (u >= q1 - 1.5 * iqr) whisker_lo = std::min(whisker_lo, u);
+      if (u <= q3 + 1.5 * iqr) whisker_hi = std::max(whisker_hi, u);
+    }
+    const int y_q1 = axes.Map(x, q1).y, y_q3 = axes.Map(x, q3).y;
+    const int y_lo = axes.Map(x, whisker_lo).y, y_hi = axes.Map(x, whisker_hi).y;
+    cv::line(img, {cx, y_q1}, {cx, y_lo}, color, 1, cv::LINE_AA);
+    cv::line(img, {cx, y_q3}, {cx, y_hi}, color, 1, cv::LINE_AA);
+    cv::line(img, {cx - half_w / 2, y_lo}, {cx + half_w / 2, y_lo}, color, 1, cv::LINE_AA);
+    cv::line(img, {cx - half_w / 2, y_hi}, {cx + half_w / 2, y_hi}, color, 1, cv::LINE_AA);
+    cv::rectangle(img, cv::Point(cx - half_w, y_q3), cv::Point(cx + half_w, y_q1), color, 2,
+                  cv::LINE_AA);
+    const int y_med = axes.Map(x, median).y;
+    cv::line(img, {cx - half_w, y_med}, {cx + half_w, y_med}, color, 3, cv::LINE_AA);
+    for (double u : s) {
+      if (u < whisker_lo || u > whisker_hi) {
+        cv::circle(img, axes.Map(x, u), 3, color, 1, cv::LINE_AA);
+      }
+    }
+  }
+  Save(png, img);
+}
+
+void WriteBarPlot(const std::filesystem::path& png, const std::string& title,
+                  const std::string& x_label, const std::vector<BarValue>& bars, double x_max) {
+  if (!(x_max > 0)) throw std::invalid_argument("WriteBarPlot: x_max must be > 0");
+  int label_w = 60;
+  for (const BarValue& b : bars) {
+    int baseline = 0;
+    label_w = std::max(
+        label_w, cv::getTextSize(b.label, cv::FONT_HERSHEY_SIMPLEX, 0.42, 1, &baseline).width);
+  }
+  label_w = std::min(label_w, 520);
+  const int row_h = 24, top = 50;
+  const int rows = static_cast<int>(std::max<std::size_t>(bars.size(), 1));
+  const cv::Rect area(label_w + 30, top, 420, rows * row_h);
+  const Axes axes{area, 0.0, x_max, 0.0, static_cast<double>(rows)};
+  cv::Mat img(top + rows * row_h + 60, area.x + area.width + 110, CV_8UC3,
+              cv::Scalar(255, 255, 255));
+  Title(img, title);
+  const double step = NiceStep(x_max, 5);
+  for (double x = 0.0; x <= x_max + 1e-9; x += step) {
+    const cv::Point a = axes.Map(x, 0.0), b = axes.Map(x, rows);
+    cv::line(img, a, b, kGrid, 1);
+    CenteredText(img, Format(x), {a.x, a.y + 18}, 0.4);
+  }
+  cv::rectangle(img, area, kAxis, 1);
+  CenteredText(img, x_label, {area.x + area.width / 2, area.y + area.height + 40}, 0.45);
+  for (std::size_t k = 0; k < bars.size(); ++k) {
+    const double row = static_cast<double>(rows) - static_cast<double>(k);  // first on top
+    const cv::Point p0 = axes.Map(0.0, row - 0.2);
+    const cv::Point p1 = axes.Map(std::clamp(bars[k].value, 0.0, x_max), row - 0.8);
+    if (p1.x > p0.x) cv::rectangle(img, cv::Rect(p0, p1), Color(1), cv::FILLED);
+    const int y = axes.Map(0.0, row - 0.5).y + 5;
+    cv::putText(img, bars[k].label, {20, y}, cv::FONT_HERSHEY_SIMPLEX, 0.42, kAxis, 1, cv::LINE_AA);
+    cv::putText(img, bars[k].annotation, {std::max(p0.x, p1.x) + 6, y}, cv::FONT_HERSHEY_SIMPLEX,
+                0.4, kAxis, 1, cv::LINE_AA);
+  }
+  Save(png, img);
+}
+
 }  // namespace trackbed::scenes

@@ -58,4 +58,30 @@ struct TimePanel {
 void WriteTimePlot(const std::filesystem::path& png, const std::string& title,
                    const std::vector<TimePanel>& panels);
 
+/// One box of a box plot: a label and the sample it summarises.
+struct BoxSeries {
+  std::string name;
+  std::vector<double> values;  ///< non-finite values are left out
+};
+/// Tukey box plot, one box per series (e.g. the ATE of each estimator over seeds): the
+/// box spans the first to the third quartile with a line at the median, whiskers reach
+/// the farthest values within 1.5 interquartile ranges of the box, values beyond are
+/// drawn as circles, and n is written under each box. With `log_y` the value axis is
+/// logarithmic (decades labelled; values <= 0 are left out). `first_color` offsets the
+/// palette as in WriteHistogramPlot.
+void WriteBoxPlot(const std::filesystem::path& png, const std::string& title,
+                  const std::string& y_label, const std::vector<BoxSeries>& boxes,
+                  bool log_y = false, int first_color = 1);
+
+/// One bar of a horizontal bar chart.
+struct BarValue {
+  std::string label;       ///< written left of the bar
+  double value = 0.0;      ///< bar length in data units
+  std::string annotation;  ///< written right of the bar (e.g. "9/10")
+};
+/// Horizontal bars, one row per value, on an axis from 0 to `x_max` (e.g. the success
+/// rate of each scenario group); rows stay readable with many or long labels.
+void WriteBarPlot(const std::filesystem::path& png, const std::string& title,
+                  const std::string& x_label, const std::vector<BarValue>& bars, double x_max);
+
 }  // namespace trackbed::scenes

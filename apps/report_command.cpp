@@ -1,0 +1,34 @@
+// `trackbed report DIR` (see report_command.h).
+#include "report_command.h"
+
+#include <exception>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "trackbed/scenes/sweep_report.h"
+
+namespace trackbed::apps {
+
+void AddReportCommand(CLI::App& app) {
+  auto dir = std::make_shared<std::string>();
+  CLI::App* report = app.add_subcommand(
+      "report",
+      "Rebuild a sweep folder's summary.csv, summary.json, aggregates.csv, report.md and plots "
+      "from its cell files");
+  report->add_option("dir", *dir, "Sweep folder (the --out of `trackbed sweep`)")->required();
+  report->callback([dir]() {
+    try {
+      const scenes::SweepCounts n = scenes::WriteSweepReport(*dir);
+      std::cout << "trackbed report: " << n.total() << " cells (" << n.ok << " ok, " << n.failed
+                << " failed, " << n.timed_out << " timed out, " << n.interrupted << " interrupted, "
+                << n.pending << " pending) -> " << *dir << "/report.md" << std::endl;
+    } catch (const std::exception& e) {
+      std::cerr << "trackbed report: " << e.what() << std::endl;
+      throw CLI::RuntimeError(2);
+    }
+    throw CLI::RuntimeError(0);
+  });
+}
+
+}  // namespace trackbed::apps

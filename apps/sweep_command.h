@@ -1,0 +1,42 @@
+// `trackbed sweep SWEEP.yaml --out DIR [--jobs N]`: many closed-loop runs, each a
+// separate `trackbed run` process, N at a time, resumable (docs/sweeps.md); and
+// `trackbed sweep-cell DIR INDEX`, which runs one cell of a prepared sweep folder —
+// what a batch scheduler's array task runs (issue 8's Slurm backend).
+//
+// Exit status of `sweep`: 0 when every cell is ok; 1 when some cell failed or timed
+// out (the summary and report are written all the same); 2 on bad input (sweep file,
+// command line, a sweep folder holding another sweep); 128 + signal (130 for SIGINT,
+// 143 for SIGTERM) when interrupted — finished cells are kept and a rerun resumes.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace trackbed::apps {
+
+/// The command line of `trackbed sweep`.
+struct SweepArgs {
+  std::string sweep_file;
+  std::string out_dir;
+  int jobs = 1;                   ///< cells run at once, >= 1
+  std::string backend = "local";  ///< local (the only backend so far)
+};
+
+/// Runs the sweep and writes the summary and report; returns the exit status. Prints
+/// progress to stderr (a bar on a terminal, else one line per finished cell) and the
+/// result to stdout. Throws std::exception with a one-line reason on bad input.
+int RunSweep(const SweepArgs& args);
+
+/// Runs cell `index` of the sweep folder `sweep_dir` (unless it is finished) and
+/// records its cell.json; does not write the summary (`trackbed report` does).
+/// Returns 0 when the cell is ok, 1 when not, 128 + signal when interrupted.
+int RunSweepCell(const std::string& sweep_dir, std::size_t index);
+
+/// Registers the `sweep` and `sweep-cell` subcommands; like AddEvalCommand, they run in
+/// their CLI11 callbacks and end parsing by throwing CLI::RuntimeError with the exit
+/// status.
+void AddSweepCommand(CLI::App& app);
+
+}  // namespace trackbed::apps

@@ -1,0 +1,335 @@
+// `trackbed sweep`, `sweep-cell` and `report` end to end, on cells that take well
+// under a second (the paper's kinematic navigation scene; the corridor and the
+// park for 3 simulated seconds): a failing cell among good ones, resume after lost
+// cells, an interrupted sweep, and reports rebuilt from the files. Synchronisation
+// is by polling for files the sweep writes, never by sleeping for a set time.
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kSource = TRACKBED_SOURCE_DIR;
+
+struct Result {
+  int exit_code = -1;
+  std::string stdout_text, stderr_text;
+};
+
+std::string Slurp(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+fs::path TempDir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("trackbed_sweep_cli_test_" + name);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+// Runs `trackbed ARGS` from the source folder, capturing both streams.
+Result Trackbed(const std::string& args, const fs::path& io) {
+  fs::create_directories(io);
+  const std::string cmd = "cd '" + kSource.string() + "' && '" + TRACKBED_BINARY + "' " + args +
+                          " >'" + (io / "out").string() + "' 2>'" + (io / "err").string() + "'";
+  const int status = std::system(cmd.c_str());
+  Result r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.stdout_text = Slurp(io / "out");
+  r.stderr_text = Slurp(io / "err");
+  return r;
+}
+
+nlohmann::json CellJson(const fs::path& sweep, const std::string& cell) {
+  return nlohmann::json::parse(Slurp(sweep / "cells" / cell / "cell.json"));
+}
+
+// summary.csv without its machine-dependent columns (wall_, timing_, mem_, host…).
+std::string DeterministicColumns(const fs::path& csv) {
+  std::istringstream in(Slurp(csv));
+  std::string line, out;
+  std::vector<bool> keep;
+  // The summary's text fields here hold no commas inside quotes except reasons, which
+  // come before any machine-dependent column; split on commas outside quotes.
+  const auto split = [](const std::string& l) {
+    std::vector<std::string> fields(1);
+    bool quoted = false;
+    for (char c : l) {
+      if (c == '"') quoted = !quoted;
+      if (c == ',' && !quoted) {
+        fields.emplace_back();
+      } else {
+        fields.back().push_back(c);
+      }
+    }
+    return fields;
+  };
+  bool header = true;
+  while (std::getline(in, line)) {
+    const std::vector<std::string> fields = split(line);
+    if (header) {
+      for (const std::string& f : fields) {
+        keep.push_back(!(f.rfind("wall_", 0) == 0 || f.rfind("timing_", 0) == 0 ||
+                         f.rfind("mem_", 0) == 0 || f.rfind("host", 0) == 0));
+      }
+      header = false;
+    }
+    EXPECT_EQ(fields.size(), keep.size()) << line;
+    for (std::size_t k = 0; k < fields.size() && k < keep.size(); ++k) {
+      if (keep[k]) out += fields[k] + ",";
+    }
+    out += "\n";
+  }
+  return out;
+}
+
+// A sweep of the paper's navigation scene over four methods, one of them unknown.
+fs::path WriteNavigationSweep(const fs::path& dir) {
+  const fs::path file = dir / "nav.yaml";
+  std::ofstream(file) << "name: nav\n"
+                      << "scenarios: [" << (kSource / "scenes/nav_paper_left.yaml").string()
+                      << "]\n"
+                      << "seeds: [1]\n"
+                      << "set: [\"duration_s=30\"]\n"
+                      << "vary:\n"
+                      << "  - {key: navigation.method, values: [gauss_newton_subgoal, "
+                         "potential_field, teleport, dwa]}\n";
+  return file;
+}
+
+const char* kBadCell = "nav_paper_left__method-teleport__seed-1";
+const std::vector<std::string> kGoodCells = {"nav_paper_left__method-gauss_newton_subgoal__seed-1",
+                                             "nav_paper_left__method-potential_field__seed-1",
+                                             "nav_paper_left__method-dwa__seed-1"};
+
+TEST(SweepCliTest, AFailingCellIsReportedAndTheOthersFinish) {
+  const fs::path dir = TempDir("failing");
+  const fs::path out = dir / "sweep";
+  const Result r = Trackbed(
+      "sweep " + WriteNavigationSweep(dir).string() + " --out " + out.string() + " --jobs 2",
+      dir / "io");
+  EXPECT_EQ(r.exit_code, 1) << r.stderr_text;  // some cell failed
+  EXPECT_NE(r.stdout_text.find("nav: 3 ok, 1 failed, 0 timed out"), std::string::npos)
+      << r.stdout_text;
+  const nlohmann::json bad = CellJson(out, kBadCell);
+  EXPECT_EQ(bad["status"], "failed");
+  EXPECT_EQ(bad["reason"],
+            "invalid scenario: --set navigation.method=teleport: navigation.method: must be one "
+            "of gauss_newton_subgoal, potential_field, dwa (got 'teleport')");
+  for (const std::string& c : kGoodCells) {
+    EXPECT_EQ(CellJson(out, c)["status"], "ok") << c;
+    EXPECT_EQ(CellJson(out, c)["exit_code"], 0) << c;
+    EXPECT_TRUE(fs::exists(out / "cells" / c / "run" / "metrics.json")) << c;
+  }
+  for (const char* f : {"sweep.yaml", "cells.json", "summary.csv", "summary.json", "aggregates.csv",
+                        "report.md", "plots/navigation_success.png"}) {
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  }
+  const std::string summary = Slurp(out / "summary.csv");
+  EXPECT_EQ(std::count(summary.begin(), summary.end(), '\n'), 5);
+  EXPECT_NE(summary.find(",navigation_success,"), std::string::npos);
+  EXPECT_NE(summary.find(",teleport,failed,\"invalid scenario: "), std::string::npos);
+  const std::string report = Slurp(out / "report.md");
+  EXPECT_NE(report.find("| " + std::string(kBadCell) + " | failed | invalid scenario: "),
+            std::string::npos)
+      << report;
+  // The scenario as the sweep file names it.
+  EXPECT_NE(report.find("| nav_paper_left__method-gauss_newton_subgoal | " +
+                        (kSource / "scenes/nav_paper_left.yaml").string() + " |"),
+            std::string::npos)
+      << report;
+}
+
+TEST(SweepCliTest, ResumeRunsOnlyTheLostCellsAndGivesTheSameSummary) {
+  const fs::path dir = TempDir("resume");
+  const fs::path out = dir / "sweep";
+  const std::string sweep =
+      "sweep " + WriteNavigationSweep(dir).string() + " --out " + out.string() + " --jobs 2";
+  ASSERT_EQ(Trackbed(sweep, dir / "io1").exit_code, 1);
+  const std::string first = DeterministicColumns(out / "summary.csv");
+  const std::string kept_before = Slurp(out / "cells" / kGoodCells[0] / "cell.json");
+
+  // One cell's folder lost entirely, another's run cut short (no metrics.json).
+  fs::remove_all(out / "cells" / kGoodCells[1]);
+  fs::remove(out / "cells" / kGoodCells[2] / "run" / "metrics.json");
+  const Result again = Trackbed(sweep, dir / "io2");
+  EXPECT_EQ(again.exit_code, 1);
+  // The failed cell has no result either and runs again (and fails again).
+  EXPECT_NE(again.stderr_text.find("4 cells, 1 finished already, 3 to run"), std::string::npos)
+      << again.stderr_text;
+  // The finished cell was not touched; the lost ones ran again.
+  EXPECT_EQ(Slurp(out / "cells" / kGoodCells[0] / "cell.json"), kept_before);
+  EXPECT_EQ(CellJson(out, kGoodCells[1])["status"], "ok");
+  EXPECT_EQ(CellJson(out, kGoodCells[2])["status"], "ok");
+  EXPECT_EQ(DeterministicColumns(out / "summary.csv"), first);
+
+  // Nothing left to do: nothing runs, but the failed cell is retried.
+  const Result third = Trackbed(sweep, dir / "io3");
+  EXPECT_NE(third.stderr_text.find("4 cells, 3 finished already, 1 to run"), std::string::npos)
+      << third.stderr_text;
+  EXPECT_EQ(Slurp(out / "cells" / kGoodCells[0] / "cell.json"), kept_before);
+}
+
+TEST(SweepCliTest, ReportRebuildsTheSameFilesFromTheCells) {
+  const fs::path dir = TempDir("report");
+  const fs::path out = dir / "sweep";
+  ASSERT_EQ(Trackbed("sweep " + WriteNavigationSweep(dir).string() + " --out " + out.string(),
+                     dir / "io1")
+                .exit_code,
+            1);
+  const std::vector<std::string> files = {"summary.csv", "summary.json", "aggregates.csv",
+                                          "report.md", "plots/navigation_success.png"};
+  std::vector<std::string> before;
+  for (const std::string& f : files) {
+    before.push_back(Slurp(out / f));
+    fs::remove(out / f);
+  }
+  const Result r = Trackbed("report " + out.string(), dir / "io2");
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  EXPECT_NE(r.stdout_text.find("4 cells (3 ok, 1 failed"), std::string::npos) << r.stdout_text;
+  for (std::size_t k = 0; k < files.size(); ++k) {
+    EXPECT_EQ(Slurp(out / files[k]), before[k]) << files[k] << " differs";
+  }
+
+  // `sweep-cell DIR i` (a batch scheduler's task) reruns one lost cell; the report then
+  // reads as before.
+  fs::remove_all(out / "cells" / kGoodCells[1]);
+  const Result cell = Trackbed("sweep-cell " + out.string() + " 1", dir / "io3");
+  EXPECT_EQ(cell.exit_code, 0) << cell.stderr_text;
+  EXPECT_EQ(CellJson(out, kGoodCells[1])["status"], "ok");
+  EXPECT_EQ(Trackbed("sweep-cell " + out.string() + " 2", dir / "io4").exit_code, 1);
+  ASSERT_EQ(Trackbed("report " + out.string(), dir / "io5").exit_code, 0);
+  EXPECT_EQ(Slurp(out / "report.md"), before[3]);
+  const Result no_folder = Trackbed("report " + (dir / "nothing").string(), dir / "io6");
+  EXPECT_EQ(no_folder.exit_code, 2);
+  EXPECT_NE(no_folder.stderr_text.find("not a sweep folder"), std::string::npos);
+}
+
+TEST(SweepCliTest, BadSweepFilesAndFoldersStopBeforeAnythingRuns) {
+  const fs::path dir = TempDir("bad");
+  std::ofstream(dir / "bad.yaml") << "scenarios: [nowhere.yaml]\nseeds: [1]\n";
+  const Result r = Trackbed(
+      "sweep " + (dir / "bad.yaml").string() + " --out " + (dir / "out").string(), dir / "io1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.stderr_text, "trackbed sweep: " + (dir / "bad.yaml").string() +
+                               ": scenarios[0]: no such file: " + (dir / "nowhere.yaml").string() +
+                               "\n");
+
+  // A folder holding another sweep (other fixed overrides) is refused.
+  const fs::path out = dir / "sweep";
+  const fs::path nav = WriteNavigationSweep(dir);
+  ASSERT_EQ(Trackbed("sweep " + nav.string() + " --out " + out.string(), dir / "io2").exit_code, 1);
+  std::string text = Slurp(nav);
+  text.replace(text.find("duration_s=30"), 13, "duration_s=31");
+  std::ofstream(nav) << text;
+  const Result other = Trackbed("sweep " + nav.string() + " --out " + out.string(), dir / "io3");
+  EXPECT_EQ(other.exit_code, 2);
+  EXPECT_NE(other.stderr_text.find("holds another sweep"), std::string::npos) << other.stderr_text;
+}
+
+TEST(SweepCliTest, ACellOverItsTimeLimitIsKilledAndReported) {
+  const fs::path dir = TempDir("timeout");
+  // The whole corridor route with the camera: tens of seconds, far over 0.5 s.
+  std::ofstream(dir / "slow.yaml") << "scenarios: [" << (kSource / "scenes/corridor.yaml").string()
+                                   << "]\nseeds: [1]\ntimeout_s: 0.5\n";
+  const fs::path out = dir / "sweep";
+  const Result r =
+      Trackbed("sweep " + (dir / "slow.yaml").string() + " --out " + out.string(), dir / "io");
+  EXPECT_EQ(r.exit_code, 1);
+  const nlohmann::json cell = CellJson(out, "corridor__seed-1");
+  EXPECT_EQ(cell["status"], "timed_out");
+  EXPECT_EQ(cell["reason"], "no result within timeout_s = 0.5 s; killed");
+  EXPECT_TRUE(cell["exit_code"].is_null());
+  EXPECT_NE(Slurp(out / "summary.csv").find(",timed_out,no result within"), std::string::npos);
+}
+
+// Starts `trackbed ARGS...` without a shell so that the test can signal it.
+pid_t Spawn(const std::vector<std::string>& args, const fs::path& io) {
+  fs::create_directories(io);
+  std::vector<std::string> all = {TRACKBED_BINARY};
+  all.insert(all.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& a : all) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const std::string out = (io / "out").string(), err = (io / "err").string();
+  posix_spawn_file_actions_t files;
+  posix_spawn_file_actions_init(&files);
+  posix_spawn_file_actions_addopen(&files, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&files, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = -1;
+  const int rc = posix_spawn(&pid, TRACKBED_BINARY, &files, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&files);
+  EXPECT_EQ(rc, 0);
+  return pid;
+}
+
+// Polls for `file` while `pid` runs; false if the process ended first.
+bool WaitForFile(const fs::path& file, pid_t pid) {
+  while (!fs::exists(file)) {
+    int status = 0;
+    if (waitpid(pid, &status, WNOHANG) == pid) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return true;
+}
+
+TEST(SweepCliTest, AnInterruptedSweepResumesToTheSameSummaryAsAnUninterruptedOne) {
+  const fs::path dir = TempDir("interrupt");
+  const std::string ci = (kSource / "scenes/sweeps/ci.yaml").string();
+  const fs::path whole = dir / "whole", cut = dir / "cut";
+  const Result uninterrupted =
+      Trackbed("sweep " + ci + " --out " + whole.string() + " --jobs 2", dir / "io1");
+  ASSERT_EQ(uninterrupted.exit_code, 0) << uninterrupted.stderr_text;
+
+  // One cell at a time; SIGINT as soon as the second cell has started (its stderr.txt
+  // is created when it is launched), i.e. while it runs — it takes about a second.
+  const pid_t pid = Spawn({"sweep", ci, "--out", cut.string(), "--jobs", "1"}, dir / "io2");
+  ASSERT_TRUE(WaitForFile(cut / "cells" / "corridor__seed-2" / "stderr.txt", pid));
+  ASSERT_EQ(kill(pid, SIGINT), 0);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130) << Slurp(dir / "io2" / "err");
+  EXPECT_NE(Slurp(dir / "io2" / "err").find("rerun the same command to resume"), std::string::npos);
+  EXPECT_EQ(CellJson(cut, "corridor__seed-1")["status"], "ok");
+  const nlohmann::json stopped = CellJson(cut, "corridor__seed-2");
+  EXPECT_EQ(stopped["status"], "interrupted");
+  EXPECT_FALSE(fs::exists(cut / "cells/corridor__seed-2/run/metrics.json"));
+  EXPECT_FALSE(fs::exists(cut / "cells/outdoor__seed-2"));  // never started
+  EXPECT_NE(Slurp(cut / "summary.csv").find(",pending,"), std::string::npos);
+
+  const Result resumed =
+      Trackbed("sweep " + ci + " --out " + cut.string() + " --jobs 2", dir / "io3");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.stderr_text;
+  EXPECT_NE(resumed.stderr_text.find("4 cells, 1 finished already, 3 to run"), std::string::npos)
+      << resumed.stderr_text;
+  EXPECT_EQ(DeterministicColumns(cut / "summary.csv"), DeterministicColumns(whole / "summary.csv"));
+  // The report holds no machine-dependent figure: the same bytes.
+  EXPECT_EQ(Slurp(cut / "report.md"), Slurp(whole / "report.md"));
+  const std::string report = Slurp(whole / "report.md");
+  EXPECT_NE(report.find("## Localization: ATE [m] per estimator"), std::string::npos);
+  EXPECT_NE(report.find("plots/ate_corridor.png"), std::string::npos);
+  EXPECT_TRUE(fs::exists(whole / "plots/ate_outdoor.png"));
+}
+
+}  // namespace

@@ -1,0 +1,484 @@
+// Sweep files and sweep results without running anything: expansion order and
+// cell names, the strict reader's messages, the folder's JSON round trips, the
+// summary's column rules, and the statistics of the aggregates.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "trackbed/scenes/sweep.h"
+#include "trackbed/scenes/sweep_report.h"
+
+namespace trackbed::scenes {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kScenes = fs::path(TRACKBED_SOURCE_DIR) / "scenes";
+
+SweepSpec Parse(const std::string& yaml) { return ParseSweep(yaml, "test.yaml", kScenes); }
+
+std::string ErrorOf(const std::string& yaml) {
+  try {
+    Parse(yaml);
+  } catch (const SweepError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+std::vector<std::string> Names(const std::vector<SweepCell>& cells) {
+  std::vector<std::string> names;
+  for (const SweepCell& c : cells) names.push_back(c.name);
+  return names;
+}
+
+fs::path TempDir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("trackbed_sweep_test_" + name);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+TEST(SweepFileTest, ExpandsScenariosThenAxesThenSeedsWithStableNames) {
+  const SweepSpec spec = Parse(R"(
+name: order
+scenarios: [nav_paper_left.yaml, nav_paper_right.yaml]
+seeds: [3, 1]
+set: ["duration_s=5"]
+vary:
+  - {key: navigation.method, values: [dwa, potential_field]}
+  - {key: navigation.safety_radius_m, range: {from: 0.5, to: 1.0, step: 0.25}}
+)");
+  const std::vector<SweepCell> cells = ExpandSweep(spec);
+  ASSERT_EQ(cells.size(), 2u * 2u * 3u * 2u);
+  // Seeds fastest, then the last axis, then the first, then the scenario.
+  EXPECT_EQ(cells[0].name, "nav_paper_left__method-dwa__safety_radius_m-0.5__seed-3");
+  EXPECT_EQ(cells[1].name, "nav_paper_left__method-dwa__safety_radius_m-0.5__seed-1");
+  EXPECT_EQ(cells[2].name, "nav_paper_left__method-dwa__safety_radius_m-0.75__seed-3");
+  EXPECT_EQ(cells[5].name, "nav_paper_left__method-dwa__safety_radius_m-1__seed-1");
+  EXPECT_EQ(cells[6].name, "nav_paper_left__method-potential_field__safety_radius_m-0.5__seed-3");
+  EXPECT_EQ(cells[12].name, "nav_paper_right__method-dwa__safety_radius_m-0.5__seed-3");
+  for (std::size_t i = 0; i < cells.size(); ++i) EXPECT_EQ(cells[i].index, i);
+  EXPECT_EQ(cells[1].group, "nav_paper_left__method-dwa__safety_radius_m-0.5");
+  EXPECT_EQ(cells[1].group, cells[0].group);
+  EXPECT_NE(cells[2].group, cells[0].group);
+  EXPECT_EQ(cells[12].scenario, "nav_paper_right.yaml");
+  EXPECT_EQ(cells[12].scenario_path, kScenes / "nav_paper_right.yaml");
+  EXPECT_EQ(cells[1].seed, 1u);
+  // Fixed overrides first, then the varied ones in axis order.
+  ASSERT_EQ(cells[2].overrides.size(), 3u);
+  EXPECT_EQ(cells[2].overrides[0].key, "duration_s");
+  EXPECT_EQ(cells[2].overrides[0].value, "5");
+  EXPECT_EQ(cells[2].overrides[1].key, "navigation.method");
+  EXPECT_EQ(cells[2].overrides[1].value, "dwa");
+  EXPECT_EQ(cells[2].overrides[2].key, "navigation.safety_radius_m");
+  EXPECT_EQ(cells[2].overrides[2].value, "0.75");
+  ASSERT_EQ(cells[2].varied.size(), 2u);
+  EXPECT_EQ(cells[2].varied[1].value, "0.75");
+  // The same file expands to the same names.
+  EXPECT_EQ(Names(ExpandSweep(Parse(R"(
+name: order
+scenarios: [nav_paper_left.yaml, nav_paper_right.yaml]
+seeds: [3, 1]
+set: ["duration_s=5"]
+vary:
+  - {key: navigation.method, values: [dwa, potential_field]}
+  - {key: navigation.safety_radius_m, range: {from: 0.5, to: 1.0, step: 0.25}}
+)"))),
+            Names(cells));
+}
+
+TEST(SweepFileTest, RangesAndSeedRangesExpandInclusively) {
+  const SweepSpec spec = Parse(R"(
+scenarios: [nav_paper_left.yaml]
+seeds: {from: 1, to: 10}
+vary:
+  - {key: navigation.field_seed, range: {from: 0, to: 4, step: 2}}
+  - {key: navigation.safety_radius_m, range: {from: 0.1, to: 0.3, step: 0.1}}
+)");
+  EXPECT_EQ(spec.name, "test");  // the file's stem
+  ASSERT_EQ(spec.seeds.size(), 10u);
+  EXPECT_EQ(spec.seeds.front(), 1u);
+  EXPECT_EQ(spec.seeds.back(), 10u);
+  EXPECT_EQ(spec.vary[0].values, (std::vector<std::string>{"0", "2", "4"}));
+  // 0.1 + 2 * 0.1 is not 0.3 in binary; the value text is.
+  EXPECT_EQ(spec.vary[1].values, (std::vector<std::string>{"0.1", "0.2", "0.3"}));
+  EXPECT_EQ(ExpandSweep(spec).size(), 10u * 3u * 3u);
+}
+
+TEST(SweepFileTest, ListValuesBecomeOneSetTokenAndSafeNames) {
+  const SweepSpec spec = Parse(R"(
+scenarios: [corridor.yaml]
+seeds: [1]
+vary:
+  - key: drive.waypoints
+    values:
+      - [[0, 0], [5, 0]]
+      - [[0, 0], [3, 0]]
+  - {key: scene.terrain.default_material, values: ["hard floor?", grass]}
+)");
+  const std::vector<SweepCell> cells = ExpandSweep(spec);
+  ASSERT_EQ(cells.size(), 4u);
+  EXPECT_EQ(cells[0].varied[0].value, "[[0, 0], [5, 0]]");
+  EXPECT_EQ(cells[0].varied[1].value, "hard floor?");
+  const std::regex safe("[A-Za-z0-9._+-]+");
+  for (const SweepCell& c : cells) EXPECT_TRUE(std::regex_match(c.name, safe)) << c.name;
+  // Unsafe values keep a readable part and a hash of the original text.
+  EXPECT_EQ(cells[0].name.rfind("corridor__waypoints-0_0_5_0-", 0), 0u) << cells[0].name;
+  EXPECT_NE(cells[0].name.find("__default_material-hard_floor-"), std::string::npos)
+      << cells[0].name;
+  EXPECT_NE(cells[0].group, cells[2].group);
+  EXPECT_EQ(cells[3].name, cells[3].group + "__seed-1");
+}
+
+TEST(SweepFileTest, ScenariosWithTheSameStemAreNamedByTheirPath) {
+  const fs::path dir = TempDir("stems");
+  for (const char* sub : {"a", "b"}) {
+    fs::create_directories(dir / sub);
+    fs::copy_file(kScenes / "nav_paper_left.yaml", dir / sub / "nav.yaml");
+  }
+  const std::vector<SweepCell> cells =
+      ExpandSweep(ParseSweep("scenarios: [a/nav.yaml, b/nav.yaml]\nseeds: [1]\n", "s.yaml", dir));
+  ASSERT_EQ(cells.size(), 2u);
+  EXPECT_EQ(cells[0].name, "a-nav__seed-1");
+  EXPECT_EQ(cells[1].name, "b-nav__seed-1");
+}
+
+TEST(SweepFileTest, ReplicateAxesAreLeftOutOfGroups) {
+  const SweepSpec spec = Parse(R"(
+scenarios: [nav_paper_left.yaml]
+seeds: [1]
+vary:
+  - {key: navigation.method, values: [dwa, potential_field]}
+  - {key: navigation.field_seed, range: {from: 0, to: 2}, replicate: true}
+)");
+  const SweepPlan plan = MakeSweepPlan(spec);
+  ASSERT_EQ(plan.cells.size(), 6u);
+  EXPECT_EQ(plan.cells[1].name, "nav_paper_left__method-dwa__field_seed-1__seed-1");
+  EXPECT_EQ(plan.cells[1].group, "nav_paper_left__method-dwa");
+  EXPECT_EQ(plan.cells[2].group, plan.cells[0].group);
+  EXPECT_EQ(plan.replicate_keys, std::vector<std::string>{"navigation.field_seed"});
+  EXPECT_EQ(plan.GroupKeys(), std::vector<std::string>{"navigation.method"});
+}
+
+struct BadSweep {
+  std::string yaml;
+  std::string message;
+};
+
+class SweepFileErrorTest : public ::testing::TestWithParam<BadSweep> {};
+
+TEST_P(SweepFileErrorTest, NamesFileKeyAndReason) {
+  EXPECT_EQ(ErrorOf(GetParam().yaml), GetParam().message);
+}
+
+const std::string kOk = "scenarios: [nav_paper_left.yaml]\nseeds: [1]\n";
+
+INSTANTIATE_TEST_SUITE_P(
+    Messages, SweepFileErrorTest,
+    ::testing::Values(
+        BadSweep{"- a\n", "test.yaml: expected a map of sweep keys, got a list"},
+        BadSweep{kOk + "seed: 1\n",
+                 "test.yaml: seed: unknown key (expected one of: name, base_dir, scenarios, "
+                 "seeds, set, vary, timeout_s)"},
+        BadSweep{"seeds: [1]\n", "test.yaml: scenarios: missing (a list of scenario files)"},
+        BadSweep{"scenarios: []\nseeds: [1]\n", "test.yaml: scenarios: must not be empty"},
+        BadSweep{"scenarios: [nav_paper_left.yaml, ./nav_paper_left.yaml]\nseeds: [1]\n",
+                 "test.yaml: scenarios[1]: listed twice (also scenarios[0])"},
+        BadSweep{"scenarios: [nav_paper_left.yaml]\n",
+                 "test.yaml: seeds: missing (a list of seeds or {from: A, to: B})"},
+        BadSweep{"scenarios: [nav_paper_left.yaml]\nseeds: [1, -2]\n",
+                 "test.yaml: seeds[1]: expected a non-negative integer, got '-2'"},
+        BadSweep{"scenarios: [nav_paper_left.yaml]\nseeds: [1, 1.5]\n",
+                 "test.yaml: seeds[1]: expected a non-negative integer, got '1.5'"},
+        BadSweep{"scenarios: [nav_paper_left.yaml]\nseeds: [2, 2]\n",
+                 "test.yaml: seeds[1]: duplicate seed 2"},
+        BadSweep{"scenarios: [nav_paper_left.yaml]\nseeds: {from: 5, to: 1}\n",
+                 "test.yaml: seeds.to: must be >= from"},
+        BadSweep{"scenarios: [nav_paper_left.yaml]\nseeds: 3\n",
+                 "test.yaml: seeds: expected a list of seeds or {from: A, to: B}, got a scalar"},
+        BadSweep{kOk + "set: [duration_s]\n",
+                 "test.yaml: set[0]: expected key=value, got 'duration_s'"},
+        BadSweep{kOk + "set: [\"seed=3\"]\n",
+                 "test.yaml: set[0]: the seed comes from `seeds`, not from an override"},
+        BadSweep{kOk + "set: [\"duration_s=3\", \"duration_s=4\"]\n",
+                 "test.yaml: set[1]: 'duration_s' is set twice"},
+        BadSweep{kOk + "vary: [{key: duration_s, values: [1], range: {from: 1, to: 2}}]\n",
+                 "test.yaml: vary[0]: give either `values` or `range`"},
+        BadSweep{kOk + "vary: [{key: duration_s}]\n",
+                 "test.yaml: vary[0]: give either `values` or `range`"},
+        BadSweep{kOk + "vary: [{values: [1]}]\n", "test.yaml: vary[0]: missing `key`"},
+        BadSweep{kOk + "vary: [{key: duration_s, value: [1]}]\n",
+                 "test.yaml: vary[0].value: unknown key (expected one of: key, values, range, "
+                 "replicate)"},
+        BadSweep{kOk + "vary: [{key: duration_s, values: []}]\n",
+                 "test.yaml: vary[0].values: must not be empty"},
+        BadSweep{kOk + "vary: [{key: navigation.method, values: [dwa, dwa]}]\n",
+                 "test.yaml: vary[0].values[1]: duplicate value 'dwa'"},
+        BadSweep{kOk + "vary: [{key: duration_s, range: {from: 1, to: 3, step: 0}}]\n",
+                 "test.yaml: vary[0].range.step: must be > 0"},
+        BadSweep{kOk + "vary: [{key: duration_s, range: {from: 3, to: 1}}]\n",
+                 "test.yaml: vary[0].range.to: must be >= from"},
+        BadSweep{kOk + "vary: [{key: duration_s, range: {from: 1, to: x}}]\n",
+                 "test.yaml: vary[0].range.to: expected a number, got 'x'"},
+        BadSweep{kOk + "set: [\"duration_s=3\"]\nvary: [{key: duration_s, values: [1]}]\n",
+                 "test.yaml: vary[0].key: 'duration_s' is also in `set`"},
+        BadSweep{kOk + "vary: [{key: 'a..b', values: [1]}]\n",
+                 "test.yaml: vary[0].key: 'a..b' is not a dotted scenario key"},
+        BadSweep{kOk + "vary: [{key: duration_s, values: [1], replicate: maybe}]\n",
+                 "test.yaml: vary[0].replicate: expected true or false, got 'maybe'"},
+        BadSweep{kOk + "timeout_s: 0\n", "test.yaml: timeout_s: must be > 0"},
+        BadSweep{kOk + "name: [a]\n", "test.yaml: name: expected a string, got a list"}));
+
+TEST(SweepFileTest, MissingScenarioAndSyntaxErrorsNameTheFile) {
+  const std::string missing = ErrorOf("scenarios: [nope.yaml]\nseeds: [1]\n");
+  EXPECT_EQ(missing, "test.yaml: scenarios[0]: no such file: " + (kScenes / "nope.yaml").string());
+  EXPECT_EQ(ErrorOf("scenarios: [a\n").rfind("test.yaml: YAML syntax error at line ", 0), 0u);
+  try {
+    LoadSweep(kScenes / "sweeps" / "no_such_sweep.yaml");
+    FAIL() << "no error";
+  } catch (const SweepError& e) {
+    EXPECT_EQ(e.reason(), "cannot read file");
+  }
+}
+
+TEST(SweepFileTest, ResolvedCopyAndCellListRoundTrip) {
+  const SweepSpec spec = Parse(R"(
+name: round trip
+scenarios: [nav_paper_left.yaml]
+seeds: {from: 1, to: 2}
+set: ["navigation.obstacles=[]"]
+vary:
+  - {key: navigation.method, values: [dwa, potential_field]}
+  - {key: navigation.field_seed, range: {from: 0, to: 1}, replicate: true}
+timeout_s: 2.5
+)");
+  // The resolved copy lives elsewhere; base_dir keeps its scenario paths meaning the same.
+  const SweepSpec again = ParseSweep(SweepToYaml(spec), "copy.yaml", TempDir("copy"));
+  EXPECT_EQ(again.name, spec.name);
+  EXPECT_EQ(again.base_dir, spec.base_dir);
+  EXPECT_EQ(again.timeout_s, spec.timeout_s);
+  EXPECT_EQ(SweepPlanJson(MakeSweepPlan(again)), SweepPlanJson(MakeSweepPlan(spec)));
+
+  const SweepPlan plan = MakeSweepPlan(spec);
+  const SweepPlan read = ParseSweepPlan(SweepPlanJson(plan), "cells.json");
+  EXPECT_EQ(SweepPlanJson(read), SweepPlanJson(plan));
+  EXPECT_EQ(read.cells[3].overrides.size(), 3u);
+  EXPECT_EQ(PlanConflict(plan, read), "");
+}
+
+TEST(SweepFileTest, AFolderOfAnotherSweepIsRefused) {
+  const SweepPlan before = MakeSweepPlan(Parse(kOk + "set: [\"duration_s=5\"]\n"));
+  const SweepPlan after = MakeSweepPlan(Parse(kOk + "set: [\"duration_s=6\"]\n"));
+  EXPECT_EQ(PlanConflict(before, after),
+            "cell nav_paper_left__seed-1 was `nav_paper_left.yaml --seed 1 --set duration_s=5`, "
+            "is now `nav_paper_left.yaml --seed 1 --set duration_s=6`");
+  // More seeds: the old cells keep their meaning.
+  const SweepPlan more = MakeSweepPlan(
+      Parse("scenarios: [nav_paper_left.yaml]\nseeds: [1, 2]\nset: [\"duration_s=5\"]\n"));
+  EXPECT_EQ(PlanConflict(before, more), "");
+}
+
+TEST(SweepCellTest, ValidationGivesTheScenarioErrorOfTheCell) {
+  const std::vector<SweepCell> cells =
+      ExpandSweep(Parse(kOk + "vary: [{key: navigation.method, values: [dwa, teleport]}]\n"));
+  EXPECT_EQ(ValidateCell(cells[0]), std::nullopt);
+  EXPECT_EQ(ValidateCell(cells[1]),
+            "--set navigation.method=teleport: navigation.method: must be one of "
+            "gauss_newton_subgoal, potential_field, dwa (got 'teleport')");
+}
+
+TEST(SweepCellTest, OutcomesRoundTripAndMetricsDecideFinishedRuns) {
+  const SweepCell cell = ExpandSweep(Parse(kOk))[0];
+  CellOutcome o;
+  o.status = CellStatus::kTimedOut;
+  o.reason = "no result";
+  o.stderr_tail = "line 1\nline 2\n";
+  o.wall_time_s = 1.25;
+  o.host = "h";
+  o.started_utc = "2024-01-01T00:00:00.000Z";
+  const CellOutcome r = ParseCellOutcome(CellOutcomeJson(cell, o), "cell.json");
+  EXPECT_EQ(r.status, CellStatus::kTimedOut);
+  EXPECT_EQ(r.exit_code, std::nullopt);
+  EXPECT_EQ(r.reason, o.reason);
+  EXPECT_EQ(r.stderr_tail, o.stderr_tail);
+  EXPECT_EQ(r.wall_time_s, 1.25);
+  EXPECT_EQ(CellOutcomeJson(cell, r), CellOutcomeJson(cell, o));
+
+  EXPECT_EQ(OutcomeFromMetrics(R"({"status": "completed"})").status, CellStatus::kOk);
+  const CellOutcome stopped =
+      OutcomeFromMetrics(R"({"status": "failed", "stop_reason": "robot tipped over"})");
+  EXPECT_EQ(stopped.status, CellStatus::kFailed);
+  EXPECT_EQ(stopped.reason, "run failed: robot tipped over");
+
+  // A cut-short metrics.json is not a finished run.
+  const fs::path dir = TempDir("finished");
+  fs::create_directories(CellRunDir(dir, cell));
+  EXPECT_FALSE(CellFinished(dir, cell));
+  std::ofstream(CellMetricsPath(dir, cell)) << "{\"status\": \"comp";
+  EXPECT_FALSE(CellFinished(dir, cell));
+  WriteFileAtomically(CellMetricsPath(dir, cell), "{\"status\": \"completed\"}\n");
+  EXPECT_TRUE(CellFinished(dir, cell));
+}
+
+// A sweep folder of three seeds of one cell, the last failed, built by hand.
+struct FakeSweep {
+  SweepPlan plan;
+  std::vector<CellResult> cells;
+};
+
+FakeSweep MakeFakeSweep() {
+  FakeSweep f;
+  f.plan = MakeSweepPlan(
+      Parse("scenarios: [nav_paper_left.yaml]\nseeds: [1, 2, 3]\nvary: [{key: navigation.method, "
+            "values: [dwa]}]\n"));
+  const char* metrics[] = {
+      R"({"status": "completed", "sim_time_s": 1.5, "wall_time_s": 0.25, "real_time_factor": 6.0,
+          "estimators": {"fused": {"ate_rmse_m": 0.1, "rpe_trans_pct": null}},
+          "timing": {"render_s": 0.125}, "navigation": {"success": true, "method": "dwa"}})",
+      R"({"status": "completed", "sim_time_s": 1.5, "wall_time_s": 0.5, "real_time_factor": 3.0,
+          "estimators": {"fused": {"ate_rmse_m": 0.3, "rpe_trans_pct": null}},
+          "timing": {"render_s": 0.25}, "navigation": {"success": false, "method": "dwa"}})"};
+  for (std::size_t i = 0; i < 3; ++i) {
+    CellResult r;
+    r.cell = f.plan.cells[i];
+    r.outcome.status = i < 2 ? CellStatus::kOk : CellStatus::kFailed;
+    r.outcome.wall_time_s = 0.5;
+    r.outcome.host = "host1";
+    if (i < 2) {
+      r.metrics_json = metrics[i];
+    } else {
+      r.outcome.reason = "invalid scenario: x, \"y\" in /abs/sweep/cells/z";
+    }
+    f.cells.push_back(r);
+  }
+  return f;
+}
+
+TEST(SweepSummaryTest, ColumnsFollowTheNamingRule) {
+  EXPECT_EQ(SummaryColumnName({"estimators", "fused", "ate_rmse_m"}),
+            "estimators_fused_ate_rmse_m");
+  EXPECT_EQ(SummaryColumnName({"navigation", "success"}), "navigation_success");
+  EXPECT_EQ(SummaryColumnName({"wall_time_s"}), "wall_time_s");
+  EXPECT_EQ(SummaryColumnName({"real_time_factor"}), "wall_real_time_factor");
+  EXPECT_EQ(SummaryColumnName({"timing", "render_s"}), "timing_render_s");
+  EXPECT_EQ(SummaryColumnName({"localization", "timing", "vo_s"}),
+            "timing_localization_timing_vo_s");
+  EXPECT_EQ(SummaryColumnName({"peak_memory_mb"}), "mem_peak_memory_mb");
+  EXPECT_EQ(SummaryColumnName({"slip", "by_material", "hard_floor", "samples"}),
+            "slip_by_material_hard_floor_samples");
+  EXPECT_TRUE(IsMachineDependentColumn("host"));
+  EXPECT_TRUE(IsMachineDependentColumn("wall_cell_s"));
+  EXPECT_FALSE(IsMachineDependentColumn("estimators_fused_ate_rmse_m"));
+
+  const FakeSweep f = MakeFakeSweep();
+  const SweepSummary s = BuildSweepSummary(f.plan, f.cells, "/abs/sweep");
+  std::vector<std::string> names;
+  for (const SummaryColumn& c : s.columns) names.push_back(c.name);
+  EXPECT_EQ(names, (std::vector<std::string>{
+                       "index", "cell", "group", "scenario", "seed", "vary_navigation_method",
+                       "cell_status", "cell_reason", "status", "sim_time_s", "wall_time_s",
+                       "wall_real_time_factor", "estimators_fused_ate_rmse_m",
+                       "estimators_fused_rpe_trans_pct", "timing_render_s", "navigation_success",
+                       "navigation_method", "wall_cell_s", "host"}));
+  const std::string csv = SummaryCsv(s);
+  const std::string header = csv.substr(0, csv.find('\n'));
+  EXPECT_EQ(header.rfind("index,cell,group,scenario,seed,vary_navigation_method,cell_status,", 0),
+            0u);
+  // Metric text as metrics.json wrote it; null is empty; reasons are quoted, and paths
+  // under the sweep folder are relative to it.
+  EXPECT_NE(csv.find(",ok,,completed,1.5,0.25,6.0,0.1,,0.125,true,dwa,0.5,host1\n"),
+            std::string::npos)
+      << csv;
+  EXPECT_NE(csv.find(",failed,\"invalid scenario: x, \"\"y\"\" in cells/z\",,,"), std::string::npos)
+      << csv;
+  const std::string json = SummaryJson(s);
+  EXPECT_NE(json.find("\"navigation_success\": false"), std::string::npos);
+  EXPECT_NE(json.find("\"seed\": 3"), std::string::npos);
+}
+
+TEST(SweepStatsTest, StudentTQuantilesMatchTables) {
+  EXPECT_NEAR(StudentTQuantile(0.975, 1), 12.7062047, 1e-6);
+  EXPECT_NEAR(StudentTQuantile(0.975, 2), 4.3026527, 1e-6);
+  EXPECT_NEAR(StudentTQuantile(0.975, 9), 2.2621572, 1e-6);
+  EXPECT_NEAR(StudentTQuantile(0.975, 29), 2.0452296, 1e-6);
+  EXPECT_NEAR(StudentTQuantile(0.975, 1e7), 1.9599640, 1e-5);
+  EXPECT_NEAR(StudentTQuantile(0.95, 4), 2.1318468, 1e-6);
+  EXPECT_NEAR(StudentTQuantile(0.025, 9), -StudentTQuantile(0.975, 9), 1e-12);
+}
+
+TEST(SweepStatsTest, DescribeGivesMeanStdIntervalAndOrderStatistics) {
+  const SampleStats s = Describe({4.0, 1.0, 3.0, 2.0, NAN});
+  EXPECT_EQ(s.n, 4u);
+  EXPECT_DOUBLE_EQ(s.mean, 2.5);
+  EXPECT_NEAR(s.std, std::sqrt(5.0 / 3.0), 1e-12);
+  EXPECT_NEAR(s.ci95_half_width, 3.1824463 * std::sqrt(5.0 / 3.0) / 2.0, 1e-6);
+  EXPECT_DOUBLE_EQ(s.median, 2.5);
+  EXPECT_DOUBLE_EQ(s.min, 1.0);
+  EXPECT_DOUBLE_EQ(s.max, 4.0);
+  const SampleStats one = Describe({7.0});
+  EXPECT_EQ(one.n, 1u);
+  EXPECT_DOUBLE_EQ(one.median, 7.0);
+  EXPECT_TRUE(std::isnan(one.std));
+  EXPECT_TRUE(std::isnan(one.ci95_half_width));
+  EXPECT_EQ(Describe({}).n, 0u);
+}
+
+TEST(SweepStatsTest, AggregatesAreTakenOverOkCellsAndSuccessIsARate) {
+  const FakeSweep f = MakeFakeSweep();
+  const SweepSummary s = BuildSweepSummary(f.plan, f.cells, "/abs/sweep");
+  const std::vector<GroupStats> groups = AggregateSweep(f.plan, s);
+  ASSERT_EQ(groups.size(), 1u);
+  EXPECT_EQ(groups[0].cells, 3u);
+  EXPECT_EQ(groups[0].ok, 2u);
+  const SampleStats* ate = groups[0].Find("estimators_fused_ate_rmse_m");
+  ASSERT_NE(ate, nullptr);
+  EXPECT_EQ(ate->n, 2u);
+  EXPECT_DOUBLE_EQ(ate->mean, 0.2);
+  const SampleStats* success = groups[0].Find("navigation_success");
+  ASSERT_NE(success, nullptr);
+  EXPECT_DOUBLE_EQ(success->mean, 0.5);
+  EXPECT_EQ(groups[0].Find("estimators_fused_rpe_trans_pct"), nullptr);  // all null
+  EXPECT_EQ(groups[0].Find("seed"), nullptr);
+  const std::string csv = AggregatesCsv(f.plan, groups);
+  EXPECT_EQ(csv.substr(0, csv.find('\n')),
+            "group,scenario,vary_navigation_method,cells,ok,metric,n,mean,std,ci95_half_width,"
+            "median,min,max");
+  EXPECT_NE(csv.find("nav_paper_left__method-dwa,nav_paper_left.yaml,dwa,3,2,navigation_success,2,"
+                     "0.5,"),
+            std::string::npos)
+      << csv;
+  const std::string md = SweepReportMarkdown(f.plan, s, groups, {});
+  EXPECT_NE(md.find("| nav_paper_left__method-dwa | nav_paper_left.yaml | dwa | 2/3 | 0.200 ± "
+                    "0.141 | fused |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| 2/3 | 1/2 (50 %) |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| nav_paper_left__method-dwa__seed-3 | failed |"), std::string::npos) << md;
+}
+
+TEST(SweepShippedTest, ShippedSweepsLoadAndEveryCellValidates) {
+  int sweeps = 0;
+  for (const auto& entry : fs::directory_iterator(kScenes / "sweeps")) {
+    if (entry.path().extension() != ".yaml") continue;
+    ++sweeps;
+    const SweepPlan plan = MakeSweepPlan(LoadSweep(entry.path()));
+    EXPECT_FALSE(plan.cells.empty()) << entry.path();
+    for (const SweepCell& cell : plan.cells) {
+      EXPECT_EQ(ValidateCell(cell), std::nullopt) << entry.path() << ": " << cell.name;
+    }
+  }
+  EXPECT_GE(sweeps, 3);
+  const SweepPlan cvo = MakeSweepPlan(LoadSweep(kScenes / "sweeps" / "corridor_vs_outdoor.yaml"));
+  EXPECT_EQ(cvo.cells.size(), 20u);
+  EXPECT_EQ(cvo.cells[0].name, "corridor__seed-1");
+  EXPECT_EQ(cvo.cells[19].name, "outdoor__seed-10");
+}
+
+}  // namespace
+}  // namespace trackbed::scenes
