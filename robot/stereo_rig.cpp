@@ -78,16 +78,28 @@ void ApplySensorModel(double exposure, double noise_std, std::uint64_t seed, std
   // four uniforms (zero mean, unit variance: close to Gaussian), indexed by a
   // xorshift64* stream keyed by (seed, frame, camera): 16 bits per pixel.
   // Cheap enough for 640 × 480 at hundreds of frames per second.
+  // The table depends on (seed, noise_std) only: built once per thread and kept.
   constexpr int kTable = 1 << 16;
-  std::vector<float> table(kTable);
-  std::uint64_t state = Mix(seed ^ 0x5eed5eedULL);
-  const double norm = 1.0 / (65536.0 * std::sqrt(4.0 / 12.0));
-  for (float& t : table) {
-    state = Mix(state);
-    const double sum = static_cast<double>((state & 0xffff) + ((state >> 16) & 0xffff) +
-                                           ((state >> 32) & 0xffff) + (state >> 48));
-    t = static_cast<float>(noise_std * (sum - 2.0 * 65535.0) * norm);
+  struct NoiseTable {
+    std::uint64_t seed = 0;
+    double noise_std = -1.0;
+    std::vector<float> values;
+  };
+  thread_local NoiseTable cached;
+  if (cached.values.empty() || cached.seed != seed || cached.noise_std != noise_std) {
+    cached.seed = seed;
+    cached.noise_std = noise_std;
+    cached.values.resize(kTable);
+    std::uint64_t state = Mix(seed ^ 0x5eed5eedULL);
+    const double norm = 1.0 / (65536.0 * std::sqrt(4.0 / 12.0));
+    for (float& t : cached.values) {
+      state = Mix(state);
+      const double sum = static_cast<double>((state & 0xffff) + ((state >> 16) & 0xffff) +
+                                             ((state >> 32) & 0xffff) + (state >> 48));
+      t = static_cast<float>(noise_std * (sum - 2.0 * 65535.0) * norm);
+    }
   }
+  const std::vector<float>& table = cached.values;
   std::uint64_t x = Mix(seed ^ Mix(frame * 2 + static_cast<std::uint64_t>(camera))) | 1;
   std::uint64_t bits = 0;
   const float gain = static_cast<float>(exposure);
