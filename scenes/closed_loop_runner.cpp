@@ -1,6 +1,8 @@
 // The closed-loop runner (see closed_loop_runner.h).
 #include "trackbed/scenes/closed_loop_runner.h"
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -102,11 +104,56 @@ LocalizationFrame LocalizeStereoFrame(estimation::LocalizationStack& stack, doub
   return lf;
 }
 
+// Peak resident set size of this process so far [MB].
+double PeakRssMb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
+}
+
+// Wall-clock seconds of the main thread's stages.
+struct StageTimes {
+  double physics_s = 0.0, control_s = 0.0, sensing_s = 0.0, io_s = 0.0;
+};
+
+// Runs `f`, adding its wall-clock time to *seconds.
+template <class F>
+auto Timed(double* seconds, F&& f) {
+  const auto start = std::chrono::steady_clock::now();
+  struct Add {
+    double* seconds;
+    std::chrono::steady_clock::time_point start;
+    ~Add() {
+      *seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+  } add{seconds, start};
+  return f();
+}
+
+// The observers, each call's time added to *io_s (they write the run folder).
+RunObservers TimedObservers(const RunObservers& o, double* io_s) {
+  RunObservers t;
+  const auto wrap = [io_s](const auto& f) -> std::decay_t<decltype(f)> {
+    if (!f) return {};
+    return [f, io_s](const auto& x) { Timed(io_s, [&] { f(x); }); };
+  };
+  t.on_localization_frame = wrap(o.on_localization_frame);
+  t.on_stereo = wrap(o.on_stereo);
+  t.on_sample = wrap(o.on_sample);
+  t.on_imu = wrap(o.on_imu);
+  t.on_navigation_step = wrap(o.on_navigation_step);
+  return t;
+}
+
 }  // namespace
 
-RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers) {
+RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& given_observers) {
   scenario.Validate();
   const auto wall_start = std::chrono::steady_clock::now();
+  // Wall-clock seconds per stage (metrics.json `timing`), on this thread; the
+  // localization stack's own time is the worker's busy time.
+  StageTimes times;
+  const RunObservers observers = TimedObservers(given_observers, &times.io_s);
 
   sim::World world(scenario.scene.world,
                    sim::Terrain(scenario.scene.terrain, StreamSeed(scenario.seed, 0)),
@@ -297,8 +344,9 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers
       }
     }
     if (range_sensor && clock.Fires(scan_period)) {
-      const robot::RangeScanSample scan =
-          range_sensor->Scan(world, truth.T_world_body, clock.now_s(), scan_index++);
+      const robot::RangeScanSample scan = Timed(&times.sensing_s, [&] {
+        return range_sensor->Scan(world, truth.T_world_body, clock.now_s(), scan_index++);
+      });
       if (navigator) navigator->AddScan(scan);
     }
     if (clock.steps() >= end_step) {
@@ -314,8 +362,9 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers
                 : estimation::PlanarPose(scenario.navigation.pose_source == "fused"
                                              ? stack->fused()
                                              : stack->wheel_odometry());
-        const estimation::TrackSpeeds cmd =
-            navigator->Update(clock.now_s(), believed, truth.T_world_body, world.objects());
+        const estimation::TrackSpeeds cmd = Timed(&times.control_s, [&] {
+          return navigator->Update(clock.now_s(), believed, truth.T_world_body, world.objects());
+        });
         if (observers.on_navigation_step) observers.on_navigation_step(navigator->last_entry());
         vehicle.CommandTrackSpeeds(cmd.left_mps, cmd.right_mps);
         if (navigator->finished()) {
@@ -325,15 +374,18 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers
       }
     } else if (clock.Fires(drive_period)) {
       bool finished = false;
-      const estimation::TrackSpeeds cmd = driver->Update(clock.now_s(), truth, &finished);
+      const estimation::TrackSpeeds cmd =
+          Timed(&times.control_s, [&] { return driver->Update(clock.now_s(), truth, &finished); });
       vehicle.CommandTrackSpeeds(cmd.left_mps, cmd.right_mps);
       if (finished) {
         stop_reason = "path finished";
         break;
       }
     }
-    vehicle.ApplyForces(dt);
-    world.Step();
+    Timed(&times.physics_s, [&] {
+      vehicle.ApplyForces(dt);
+      world.Step();
+    });
     clock.Tick();
   }
 
@@ -346,6 +398,11 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers
   m.stereo_frames = stereo_index;
   m.render_wall_s = render_wall_s;
   m.estimation_wall_s = estimation_wall_s;
+  m.physics_wall_s = times.physics_s;
+  m.control_wall_s = times.control_s;
+  m.sensing_wall_s = times.sensing_s;
+  m.io_wall_s = times.io_s;
+  m.peak_rss_mb = PeakRssMb();
   m.estimators = estimates.Metrics(m.distance_m);
   m.localization = estimates.Summary();
   m.stop_reason = stop_reason;

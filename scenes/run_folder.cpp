@@ -194,7 +194,10 @@ std::string MetricsJson(const RunMetrics& m) {
       {"vo_frames", loc.vo_frames},         {"camera_blackout_frames", loc.camera_blackout_frames},
       {"vo_failures", loc.vo_failures},     {"mean_inliers", loc.mean_inliers},
       {"mean_fusion_w", loc.mean_fusion_w}, {"slip_estimate_rmse_mps", loc.slip_estimate_rmse_mps}};
-  j["timing"] = {{"render_s", m.render_wall_s}, {"estimation_s", m.estimation_wall_s}};
+  j["timing"] = {{"render_s", m.render_wall_s},   {"estimation_s", m.estimation_wall_s},
+                 {"physics_s", m.physics_wall_s}, {"control_s", m.control_wall_s},
+                 {"sensing_s", m.sensing_wall_s}, {"io_s", m.io_wall_s}};
+  j["memory"] = {{"peak_rss_mb", m.peak_rss_mb}};
   if (m.navigation) {
     const navigation::NavigationMetrics& n = *m.navigation;
     const auto finite_or_null = [](double v) {

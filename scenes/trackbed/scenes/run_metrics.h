@@ -60,8 +60,15 @@ struct RunMetrics {
   /// Stereo pairs rendered, and the wall-clock time spent rendering them [s].
   long long stereo_frames = 0;
   double render_wall_s = 0.0;
-  /// Wall-clock time spent in the localization stack [s].
+  /// Wall-clock time spent in the localization stack [s] (on its own thread when the
+  /// camera is on).
   double estimation_wall_s = 0.0;
+  /// Wall-clock time of the main thread's other stages [s]: physics (forces and the
+  /// Bullet step), control (driver or navigator), sensing (the range sensor) and the
+  /// observers' file output.
+  double physics_wall_s = 0.0, control_wall_s = 0.0, sensing_wall_s = 0.0, io_wall_s = 0.0;
+  /// Peak resident memory of the process at the end of the run [MB].
+  double peak_rss_mb = 0.0;
   /// Per estimator (wheel_odometry, wheel_odometry_noslip, visual_odometry, fused).
   std::map<std::string, EstimatorMetrics> estimators;
   LocalizationSummary localization;
