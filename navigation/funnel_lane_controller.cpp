@@ -207,6 +207,18 @@ std::vector<cv::Point2f> ShiftedGuesses(const Milestone& previous,
   return guesses;
 }
 
+void CheckRepeatInput(const char* who, const TeachMap& map, const cv::Mat& gray, double t_s,
+                      bool started, double last_t_s) {
+  if (gray.empty() || gray.type() != CV_8UC1 || gray.size() != map.camera.size()) {
+    throw std::invalid_argument(std::string(who) + ": needs a CV_8UC1 image of " +
+                                std::to_string(map.camera.width) + "x" +
+                                std::to_string(map.camera.height) + " px");
+  }
+  if (!std::isfinite(t_s) || (started && t_s < last_t_s)) {
+    throw std::invalid_argument(std::string(who) + ": time must be finite and not decreasing");
+  }
+}
+
 std::vector<cv::Point2f> StartGuesses(const Milestone& m, const cv::Mat& gray) {
   const cv::Point2f shift = EstimateImageShift(m.key_image, gray);
   std::vector<cv::Point2f> guesses;
@@ -243,15 +255,7 @@ void FunnelLaneRepeater::StartMilestone(int index, const std::vector<cv::Point2f
 }
 
 RepeatCommand FunnelLaneRepeater::Update(const cv::Mat& gray, double t_s) {
-  if (gray.empty() || gray.type() != CV_8UC1 || gray.size() != map_.camera.size()) {
-    throw std::invalid_argument("FunnelLaneRepeater::Update: needs a CV_8UC1 image of " +
-                                std::to_string(map_.camera.width) + "x" +
-                                std::to_string(map_.camera.height) + " px");
-  }
-  if (!std::isfinite(t_s) || (started_ && t_s < last_t_s_)) {
-    throw std::invalid_argument(
-        "FunnelLaneRepeater::Update: time must be finite and not decreasing");
-  }
+  detail::CheckRepeatInput("FunnelLaneRepeater::Update", map_, gray, t_s, started_, last_t_s_);
   last_t_s_ = t_s;
   RepeatCommand cmd;
   cmd.milestone = milestone_;

@@ -294,15 +294,7 @@ int MilestoneLocalizer3d::Recover(const cv::Mat& gray) {
 }
 
 RepeatCommand MilestoneLocalizer3d::Update(const cv::Mat& gray, double t_s) {
-  if (gray.empty() || gray.type() != CV_8UC1 || gray.size() != map_.camera.size()) {
-    throw std::invalid_argument("MilestoneLocalizer3d::Update: needs a CV_8UC1 image of " +
-                                std::to_string(map_.camera.width) + "x" +
-                                std::to_string(map_.camera.height) + " px");
-  }
-  if (!std::isfinite(t_s) || (started_ && t_s < last_t_s_)) {
-    throw std::invalid_argument(
-        "MilestoneLocalizer3d::Update: time must be finite and not decreasing");
-  }
+  detail::CheckRepeatInput("MilestoneLocalizer3d::Update", map_, gray, t_s, started_, last_t_s_);
   last_t_s_ = t_s;
   RepeatCommand cmd;
   cmd.milestone = milestone_;

@@ -218,6 +218,11 @@ class MilestoneSwitch {
   std::vector<double> last_error_, last_outward_;
 };
 
+/// Throws std::invalid_argument, naming `who`, unless `gray` is a CV_8UC1 image of the
+/// map's camera size and `t_s` is finite and, once started, not before `last_t_s`.
+void CheckRepeatInput(const char* who, const TeachMap& map, const cv::Mat& gray, double t_s,
+                      bool started, double last_t_s);
+
 /// Guesses for the first milestone of a repeat: the key-image positions moved by the
 /// global shift between the key image and the current one (EstimateImageShift).
 std::vector<cv::Point2f> StartGuesses(const Milestone& m, const cv::Mat& gray);

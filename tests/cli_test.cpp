@@ -14,41 +14,23 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "cli_runner.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int exit_code = -1;
-  std::string stdout_text, stderr_text;
-};
-
-std::string Slurp(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+using trackbed::testing_cli::CliResult;
+using Result = CliResult;
+using trackbed::testing_cli::Slurp;
 
 fs::path TempDir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("trackbed_cli_test_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return trackbed::testing_cli::FreshTempDir("trackbed_cli_test_", name);
 }
 
 // Runs `trackbed ARGS` from the source directory, capturing both streams.
 Result Trackbed(const std::string& args, const std::string& tag) {
-  const fs::path dir = TempDir("io_" + tag);
-  const std::string cmd = std::string("cd '") + TRACKBED_SOURCE_DIR + "' && '" + TRACKBED_BINARY +
-                          "' " + args + " >'" + (dir / "out").string() + "' 2>'" +
-                          (dir / "err").string() + "'";
-  const int status = std::system(cmd.c_str());
-  Result r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.stdout_text = Slurp(dir / "out");
-  r.stderr_text = Slurp(dir / "err");
-  return r;
+  return trackbed::testing_cli::RunTrackbed(args, TempDir("io_" + tag));
 }
 
 nlohmann::json Metrics(const fs::path& run) {

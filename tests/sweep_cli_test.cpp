@@ -22,42 +22,24 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "cli_runner.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
 const fs::path kSource = TRACKBED_SOURCE_DIR;
 
-struct Result {
-  int exit_code = -1;
-  std::string stdout_text, stderr_text;
-};
-
-std::string Slurp(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+using Result = trackbed::testing_cli::CliResult;
+using trackbed::testing_cli::Slurp;
 
 fs::path TempDir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("trackbed_sweep_cli_test_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return trackbed::testing_cli::FreshTempDir("trackbed_sweep_cli_test_", name);
 }
 
 // Runs `trackbed ARGS` from the source folder, capturing both streams.
 Result Trackbed(const std::string& args, const fs::path& io) {
-  fs::create_directories(io);
-  const std::string cmd = "cd '" + kSource.string() + "' && '" + TRACKBED_BINARY + "' " + args +
-                          " >'" + (io / "out").string() + "' 2>'" + (io / "err").string() + "'";
-  const int status = std::system(cmd.c_str());
-  Result r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.stdout_text = Slurp(io / "out");
-  r.stderr_text = Slurp(io / "err");
-  return r;
+  return trackbed::testing_cli::RunTrackbed(args, io);
 }
 
 nlohmann::json CellJson(const fs::path& sweep, const std::string& cell) {
