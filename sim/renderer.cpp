@@ -49,18 +49,7 @@ std::uint64_t HashName(const std::string& s) {
 struct Drawable {
   GLuint list = 0;
   Eigen::AlignedBox3d box;  // world-frame bounds, for culling
-  // Terrain chunks also carry coarser versions (every 2nd and every 4th grid vertex),
-  // drawn when the chunk is far: far terrain triangles are a few pixels wide and
-  // their number, not their pixels, bounds llvmpipe there.
-  GLuint coarse_lists[2] = {0, 0};
 };
-
-// Distances [m] from the camera to a terrain chunk beyond which its 2× and 4× coarser
-// versions are drawn (a 0.4 m triangle at 12 m spans 13 px).
-constexpr double kLodDistanceM[2] = {6.0, 12.0};
-// Depth of the skirts hanging from coarse chunks' borders [m]: they hide the cracks
-// where a coarse edge skips the vertices of its finer neighbour.
-constexpr double kSkirtDepthM = 0.08;
 
 // A texture as uploaded: GL name and world size of one repeat.
 struct GlTexture {
@@ -182,60 +171,25 @@ struct Renderer::Gl {
           d.box = Eigen::AlignedBox3d(
               Eigen::Vector3d(t.x_min() + i0 * cell, t.y_min() + j0 * cell, lo),
               Eigen::Vector3d(t.x_min() + i1 * cell, t.y_min() + j1 * cell, hi));
-          const double r = tex.meters_per_repeat;
-          // One list per level of detail: cells of `step` × `step` grid cells, each
-          // taking the material of its first fine cell.
-          const auto compile = [&](int step) {
-            const GLuint list = glGenLists(1);
-            glNewList(list, GL_COMPILE);
-            glBindTexture(GL_TEXTURE_2D, tex.name);
-            glBegin(GL_TRIANGLES);
-            for (int j = j0; j < j1; j += step) {
-              const int jn = std::min(j + step, j1);
-              for (int i = i0; i < i1; i += step) {
-                if (cell_material[static_cast<std::size_t>(j) * (cols - 1) + i] != m) continue;
-                const int in = std::min(i + step, i1);
-                // The diagonal (i, j)–(i+1, j+1), as Terrain and Bullet split the cell.
-                vertex(i, j, r);
-                vertex(in, j, r);
-                vertex(in, jn, r);
-                vertex(i, j, r);
-                vertex(in, jn, r);
-                vertex(i, jn, r);
-              }
+          d.list = glGenLists(1);
+          glNewList(d.list, GL_COMPILE);
+          glBindTexture(GL_TEXTURE_2D, tex.name);
+          glBegin(GL_TRIANGLES);
+          for (int j = j0; j < j1; ++j) {
+            for (int i = i0; i < i1; ++i) {
+              if (cell_material[static_cast<std::size_t>(j) * (cols - 1) + i] != m) continue;
+              // The diagonal (i, j)–(i+1, j+1), as Terrain and Bullet split the cell.
+              const double r = tex.meters_per_repeat;
+              vertex(i, j, r);
+              vertex(i + 1, j, r);
+              vertex(i + 1, j + 1, r);
+              vertex(i, j, r);
+              vertex(i + 1, j + 1, r);
+              vertex(i, j + 1, r);
             }
-            glEnd();
-            if (step > 1) {
-              // Skirts along the chunk's border, hanging below the surface.
-              const auto skirt = [&](int ia, int ja, int ib, int jb) {
-                const auto at = [&](int i, int j, double dz) {
-                  const double x = t.x_min() + i * cell, y = t.y_min() + j * cell;
-                  glNormal3d(0, 0, 1);
-                  glTexCoord2d(x / r, y / r);
-                  glVertex3d(x, y, H(i, j) + dz);
-                };
-                glBegin(GL_QUAD_STRIP);
-                const int n = std::max(std::abs(ib - ia), std::abs(jb - ja));
-                for (int k = 0;; k = std::min(k + step, n)) {
-                  const int i = ia + (n > 0 ? (ib - ia) * k / n : 0);
-                  const int j = ja + (n > 0 ? (jb - ja) * k / n : 0);
-                  at(i, j, 0.0);
-                  at(i, j, -kSkirtDepthM);
-                  if (k == n) break;
-                }
-                glEnd();
-              };
-              skirt(i0, j0, i1, j0);
-              skirt(i1, j0, i1, j1);
-              skirt(i1, j1, i0, j1);
-              skirt(i0, j1, i0, j0);
-            }
-            glEndList();
-            return list;
-          };
-          d.list = compile(1);
-          d.coarse_lists[0] = compile(2);
-          d.coarse_lists[1] = compile(4);
+          }
+          glEnd();
+          glEndList();
           drawables.push_back(d);
         }
       }
@@ -518,19 +472,8 @@ void Renderer::Render(const PinholeIntrinsics& K, const Eigen::Isometry3d& T_wor
   // before they are textured.
   std::vector<std::pair<double, GLuint>>& order = g.draw_order;
   order.clear();
-  const Eigen::Vector3d p_camera_world = T_world_camera.translation();
   for (const Drawable& d : g.drawables) {
-    if (!visible(d.box)) continue;
-    GLuint list = d.list;
-    if (d.coarse_lists[0] != 0) {
-      const double distance = d.box.exteriorDistance(p_camera_world);
-      if (distance > kLodDistanceM[1]) {
-        list = d.coarse_lists[1];
-      } else if (distance > kLodDistanceM[0]) {
-        list = d.coarse_lists[0];
-      }
-    }
-    order.emplace_back((R * d.box.center() + tr).squaredNorm(), list);
+    if (visible(d.box)) order.emplace_back((R * d.box.center() + tr).squaredNorm(), d.list);
   }
   std::sort(order.begin(), order.end());
   for (const auto& [distance, list] : order) glCallList(list);
