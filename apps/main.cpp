@@ -65,6 +65,15 @@ int Run(const std::string& scenario_path, const std::string& out_dir,
                   e.final_error_pct, drift);
     }
   }
+  if (m.teach_repeat) {
+    const trackbed::scenes::TeachRepeatMetrics& t = *m.teach_repeat;
+    std::printf(
+        "teach & repeat (%s): %s; %d milestones from %d teach images; lateral error RMS %.3f m, "
+        "max %.3f m; end point %.3f m; autonomy %.2f; features lost %lld, recovered %lld\n",
+        t.method.c_str(), t.status.c_str(), t.milestones, t.teach_images, t.lateral_rms_m,
+        t.lateral_max_m, t.end_point_error_m, t.autonomy, static_cast<long long>(t.features_lost),
+        static_cast<long long>(t.features_recovered));
+  }
   if (m.icr.samples_used >= 100) {
     // Turning runs (scenes/calibration/icr_turns.yaml) calibrate the effective gauge.
     std::printf("ICR expansion chi = %.3f (B_eff = chi * B, fitted on %d turning samples)\n",

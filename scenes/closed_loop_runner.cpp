@@ -147,7 +147,8 @@ RunObservers TimedObservers(const RunObservers& o, double* io_s) {
 
 }  // namespace
 
-RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& given_observers) {
+RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& given_observers,
+                         navigation::Repeater* repeater) {
   scenario.Validate();
   const auto wall_start = std::chrono::steady_clock::now();
   // Wall-clock seconds per stage (metrics.json `timing`), on this thread; the
@@ -163,7 +164,12 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& given_obs
                                 rs.start.yaw_deg * M_PI / 180.0);
   robot::Imu imu(rs.imu, scenario.scene.world.gravity_mps2, StreamSeed(scenario.seed, 1));
   std::optional<Driver> driver;  // the drive, unless navigation drives
-  if (!scenario.navigation.enabled) driver.emplace(scenario.drive, rs.vehicle.track_gauge_m);
+  if (!scenario.navigation.enabled && !repeater) {
+    driver.emplace(scenario.drive, rs.vehicle.track_gauge_m);
+  }
+  const double gauge_eff_m = scenario.estimation.icr_expansion * rs.vehicle.track_gauge_m;
+  std::int64_t last_ticks[2] = {0, 0};
+  std::int64_t repeat_features_lost = 0, repeat_features_recovered = 0;
   std::optional<robot::StereoRig> rig;
   std::unique_ptr<sim::Renderer> renderer;
   if (rs.stereo.enabled) {
@@ -263,6 +269,8 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& given_obs
         break;
       }
       metrics.Add(s, g.height_m);
+      last_ticks[0] = s.ticks[0];
+      last_ticks[1] = s.ticks[1];
       if (worker) {
         worker->Submit([&, s] {
           const EstimateSample e = EstimateAfterEncoders(*stack, s, rig.has_value());
@@ -308,7 +316,24 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& given_obs
       frame.left = &left_image;
       frame.right = &right_image;
       frame.rig = &*rig;
+      frame.ticks[0] = last_ticks[0];
+      frame.ticks[1] = last_ticks[1];
       if (observers.on_stereo) observers.on_stereo(frame);
+      if (repeater) {
+        // Teach & repeat steers from this image alone.
+        const cv::Mat left(left_image.height, left_image.width, CV_8UC1,
+                           const_cast<std::uint8_t*>(left_image.pixels.data()));
+        const navigation::RepeatCommand c =
+            Timed(&times.control_s, [&] { return repeater->Update(left, frame.t_s); });
+        repeat_features_lost = c.features_lost;
+        repeat_features_recovered = c.features_recovered;
+        const estimation::TrackSpeeds cmd = estimation::TrackSpeedsFromTwist(c.twist, gauge_eff_m);
+        vehicle.CommandTrackSpeeds(cmd.left_mps, cmd.right_mps);
+        if (c.status != navigation::RepeatStatus::kDriving) {
+          stop_reason = std::string("repeat ") + navigation::ToString(c.status);
+          break;
+        }
+      }
       if (worker) {
         // The worker owns copies of the pair: the main thread renders the next one into
         // the same buffers while visual odometry runs on this one.
@@ -372,7 +397,7 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& given_obs
           break;
         }
       }
-    } else if (clock.Fires(drive_period)) {
+    } else if (driver && clock.Fires(drive_period)) {
       bool finished = false;
       const estimation::TrackSpeeds cmd =
           Timed(&times.control_s, [&] { return driver->Update(clock.now_s(), truth, &finished); });
@@ -403,6 +428,8 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& given_obs
   m.sensing_wall_s = times.sensing_s;
   m.io_wall_s = times.io_s;
   m.peak_rss_mb = PeakRssMb();
+  m.repeat_features_lost = repeat_features_lost;
+  m.repeat_features_recovered = repeat_features_recovered;
   m.estimators = estimates.Metrics(m.distance_m);
   m.localization = estimates.Summary();
   m.stop_reason = stop_reason;

@@ -22,6 +22,7 @@
 #include "trackbed/scenes/navigation_scenario.h"
 #include "trackbed/scenes/run_plots.h"
 #include "trackbed/scenes/scenario_yaml.h"
+#include "trackbed/scenes/teach_repeat_run.h"
 
 namespace trackbed::scenes {
 namespace {
@@ -198,6 +199,25 @@ std::string MetricsJson(const RunMetrics& m) {
                  {"physics_s", m.physics_wall_s}, {"control_s", m.control_wall_s},
                  {"sensing_s", m.sensing_wall_s}, {"io_s", m.io_wall_s}};
   j["memory"] = {{"peak_rss_mb", m.peak_rss_mb}};
+  if (m.teach_repeat) {
+    const TeachRepeatMetrics& t = *m.teach_repeat;
+    const auto finite_or_null = [](double v) {
+      return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json();
+    };
+    j["teach_repeat"] = {{"method", t.method},
+                         {"status", t.status},
+                         {"completed", t.completed},
+                         {"autonomy", t.autonomy},
+                         {"end_point_error_m", t.end_point_error_m},
+                         {"lateral_rms_m", t.lateral_rms_m},
+                         {"lateral_max_m", t.lateral_max_m},
+                         {"taught_length_m", t.taught_length_m},
+                         {"features_lost", t.features_lost},
+                         {"features_recovered", t.features_recovered},
+                         {"recovery_rate", finite_or_null(t.recovery_rate)},
+                         {"milestones", t.milestones},
+                         {"teach_images", t.teach_images}};
+  }
   if (m.navigation) {
     const navigation::NavigationMetrics& n = *m.navigation;
     const auto finite_or_null = [](double v) {
@@ -223,6 +243,25 @@ std::string MetricsJson(const RunMetrics& m) {
 }
 
 namespace {
+
+// Observers that call `a`'s and then `b`'s.
+RunObservers Chained(const RunObservers& a, const RunObservers& b) {
+  const auto chain = [](const auto& f, const auto& g) -> std::decay_t<decltype(f)> {
+    if (!f) return g;
+    if (!g) return f;
+    return [f, g](const auto& x) {
+      f(x);
+      g(x);
+    };
+  };
+  RunObservers c;
+  c.on_localization_frame = chain(a.on_localization_frame, b.on_localization_frame);
+  c.on_stereo = chain(a.on_stereo, b.on_stereo);
+  c.on_sample = chain(a.on_sample, b.on_sample);
+  c.on_imu = chain(a.on_imu, b.on_imu);
+  c.on_navigation_step = chain(a.on_navigation_step, b.on_navigation_step);
+  return c;
+}
 
 constexpr char kNavigationCsvHeader[] =
     "t,x_m,y_m,yaw_rad,v_mps,yaw_rate_radps,left_radps,right_radps,target_x_m,target_y_m,"
@@ -328,6 +367,12 @@ RunMetrics RunKinematicNavigation(const Scenario& scenario, const fs::path& dir)
 }  // namespace
 
 RunMetrics RunToFolder(const Scenario& scenario, const fs::path& dir) {
+  if (scenario.teach_repeat.enabled) return RunTeachRepeat(scenario, dir);
+  return RunToFolderWith(scenario, dir, {}, nullptr);
+}
+
+RunMetrics RunToFolderWith(const Scenario& scenario, const fs::path& dir, const RunObservers& extra,
+                           navigation::Repeater* repeater) {
   scenario.Validate();
   fs::create_directories(dir);
   fs::remove(dir / "metrics.json");  // no stale result may pass for this run's
@@ -457,7 +502,7 @@ RunMetrics RunToFolder(const Scenario& scenario, const fs::path& dir) {
         navigation_log.push_back(e);
       };
     }
-    metrics = RunClosedLoop(scenario, observers);
+    metrics = RunClosedLoop(scenario, Chained(observers, extra), repeater);
     if (navigation_csv) {
       navigation_csv->Close();
       const navigation::NavigationScene scene = NavigationSceneOf(scenario);

@@ -153,6 +153,15 @@ void NavigationSpec::Validate() const {
   option_check::InRange("stop_heading_tolerance_deg", stop_heading_tolerance_deg, 1e-3, 180.0);
 }
 
+void TeachRepeatSpec::Validate() const {
+  OneOf("method", method, {"2d", "3d"});
+  option_check::Positive("repeat_speed_mps", repeat_speed_mps);
+  option_check::Positive("repeat_turn_rate_deg_s", repeat_turn_rate_deg_s);
+  Finite("start_offset.x_m", start_offset.x_m);
+  Finite("start_offset.y_m", start_offset.y_m);
+  Finite("start_offset.yaw_deg", start_offset.yaw_deg);
+}
+
 void OutputsSpec::Validate() const {
   if (save_images != "none" && save_images != "kitti") {
     throw OptionError("save_images", "must be none or kitti (got '" + save_images + "')");
@@ -170,6 +179,15 @@ void Scenario::Validate() const {
   if (!navigation.enabled) option_check::Nested("drive", drive);
   option_check::Nested("estimation", estimation);
   option_check::Nested("navigation", navigation);
+  option_check::Nested("teach_repeat", teach_repeat);
+  if (teach_repeat.enabled) {
+    if (!robot.stereo.enabled) {
+      throw OptionError("teach_repeat.enabled", "teach & repeat needs robot.stereo.enabled: true");
+    }
+    if (navigation.enabled) {
+      throw OptionError("teach_repeat.enabled", "teach & repeat and navigation exclude each other");
+    }
+  }
   option_check::Nested("outputs", outputs);
   if (navigation.enabled && navigation.mode == NavigationSpec::Mode::kClosedLoop) {
     if (!robot.range_sensor.enabled) {

@@ -441,6 +441,17 @@ void Visit(V& v, NavigationSpec& o) {
 }
 
 template <class V>
+void Visit(V& v, TeachRepeatSpec& o) {
+  v("enabled", o.enabled);
+  v("method", o.method);
+  v("map", o.map);
+  v("repeat_speed_mps", o.repeat_speed_mps);
+  v("repeat_turn_rate_deg_s", o.repeat_turn_rate_deg_s);
+  v("start_offset", o.start_offset);
+  v("start_perturbation", o.start_perturbation);
+}
+
+template <class V>
 void Visit(V& v, OutputsSpec& o) {
   v("save_images", o.save_images);
 }
@@ -454,6 +465,7 @@ void Visit(V& v, Scenario& o) {
   v("drive", o.drive);
   v("estimation", o.estimation);
   v("navigation", o.navigation);
+  v("teach_repeat", o.teach_repeat);
   v("outputs", o.outputs);
 }
 
@@ -1029,17 +1041,19 @@ Scenario LoadScenario(const std::string& path, const std::vector<Override>& over
   Scenario scenario = ParseScenario(text, path, overrides);
   // Files a scenario names are relative to the scenario file, and stored
   // absolute, so that the resolved scenario.yaml in a run folder still finds them.
-  std::string& rules = scenario.estimation.fusion_rules;
-  if (!rules.empty()) {
-    std::filesystem::path p(rules);
+  const auto resolve = [&path](const char* key, std::string* value, bool folder) {
+    if (value->empty()) return;
+    std::filesystem::path p(*value);
     if (p.is_relative())
       p = std::filesystem::absolute(std::filesystem::path(path).parent_path() / p);
     p = p.lexically_normal();
-    if (!std::filesystem::is_regular_file(p)) {
-      throw ScenarioError(path, "estimation.fusion_rules", "no such file: " + p.string());
+    if (folder ? !std::filesystem::is_directory(p) : !std::filesystem::is_regular_file(p)) {
+      throw ScenarioError(path, key, (folder ? "no such folder: " : "no such file: ") + p.string());
     }
-    rules = p.string();
-  }
+    *value = p.string();
+  };
+  resolve("estimation.fusion_rules", &scenario.estimation.fusion_rules, false);
+  resolve("teach_repeat.map", &scenario.teach_repeat.map, true);
   return scenario;
 }
 

@@ -187,7 +187,7 @@ TEST(ScenarioYamlTest, TypedDegreesAreWrittenAsTyped) {
 TEST(ScenarioYamlTest, UnknownKeyNamesFileAndDottedKey) {
   EXPECT_EQ(ErrorOf(std::string(kMinimal) + "sede: 3\n"),
             "test.yaml: sede: unknown key (allowed: seed, duration_s, scene, robot, drive, "
-            "estimation, navigation, outputs)");
+            "estimation, navigation, teach_repeat, outputs)");
   const std::string nested = ErrorOf(std::string(kMinimal) + "robot:\n  vehicle:\n    mas_kg: 3\n");
   EXPECT_EQ(nested.rfind("test.yaml: robot.vehicle.mas_kg: unknown key (allowed: mass_kg, ", 0), 0u)
       << nested;

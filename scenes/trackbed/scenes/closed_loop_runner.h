@@ -8,6 +8,7 @@
 
 #include "trackbed/estimation/localization.h"
 #include "trackbed/navigation/navigation_metrics.h"
+#include "trackbed/navigation/teach_repeat.h"
 #include "trackbed/robot/imu.h"
 #include "trackbed/robot/stereo_rig.h"
 #include "trackbed/scenes/run_metrics.h"
@@ -25,6 +26,8 @@ struct StereoFrame {
   Eigen::Isometry3d T_world_right;
   const robot::StereoRig* rig = nullptr;
   bool blackout = false;  ///< A camera fault blanked this pair (robot.stereo.blackouts_s).
+  /// The encoders' last reading (counts since start), taken with this pair.
+  std::int64_t ticks[2] = {0, 0};
 };
 
 /// The localization stack's estimates at one encoder sample (all T_world_body).
@@ -57,10 +60,13 @@ struct RunObservers {
   std::function<void(const navigation::NavigationLogEntry&)> on_navigation_step;
 };
 
-/// Runs one scenario in closed loop. Throws std::invalid_argument for an
+/// Runs one scenario in closed loop. With `repeater`, the repeat of teach & repeat
+/// drives: it gets every left image and its command is held until the next one; the
+/// run ends when it reports finished or lost. Throws std::invalid_argument for an
 /// invalid scenario; a simulation that diverges (NaN, chassis through the
 /// ground) ends early with completed = false and the reason, keeping what
 /// was measured until then.
-RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers = {});
+RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& observers = {},
+                         navigation::Repeater* repeater = nullptr);
 
 }  // namespace trackbed::scenes

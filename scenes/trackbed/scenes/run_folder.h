@@ -6,6 +6,7 @@
 
 #include <filesystem>
 
+#include "trackbed/scenes/closed_loop_runner.h"
 #include "trackbed/scenes/run_metrics.h"
 #include "trackbed/scenes/scenario.h"
 
@@ -16,6 +17,12 @@ namespace trackbed::scenes {
 /// std::runtime_error when a file cannot be written (metrics.json then still
 /// records the failure when it can).
 RunMetrics RunToFolder(const Scenario& scenario, const std::filesystem::path& dir);
+
+/// RunToFolder's closed loop with `extra` observers called after the folder's own, and
+/// an optional teach & repeat `repeater` driving (see RunClosedLoop). Used by the teach
+/// & repeat run, which writes one such folder per pass.
+RunMetrics RunToFolderWith(const Scenario& scenario, const std::filesystem::path& dir,
+                           const RunObservers& extra, navigation::Repeater* repeater);
 
 /// The metrics.json document of a run, as text.
 std::string MetricsJson(const RunMetrics& metrics);

@@ -41,6 +41,24 @@ struct SlipStats {
   double mean_abs_velocity_mps() const { return samples ? sum_abs_velocity_mps / samples : 0.0; }
 };
 
+/// How a teach & repeat run did (metrics.json `teach_repeat`): the repeat's ground
+/// truth against the taught route's.
+struct TeachRepeatMetrics {
+  std::string method;
+  /// How the repeat ended: finished, lost, or the run's stop reason.
+  std::string status;
+  bool completed = false;
+  double autonomy = 0.0;  ///< fraction of the taught route covered before a failure
+  double end_point_error_m = 0.0;
+  double lateral_rms_m = 0.0, lateral_max_m = 0.0;
+  double taught_length_m = 0.0;
+  std::int64_t features_lost = 0, features_recovered = 0;
+  /// recovered / lost over the repeat (NaN when nothing was lost).
+  double recovery_rate = 0.0;
+  int milestones = 0;
+  int teach_images = 0;
+};
+
 struct RunMetrics {
   bool completed = false;
   /// Why the run ended: "duration reached", "path finished", or the failure.
@@ -78,6 +96,10 @@ struct RunMetrics {
   std::optional<navigation::NavigationMetrics> navigation;
   /// The sub-goals the navigator created (for the map plot).
   std::vector<navigation::SubgoalRecord> navigation_subgoals;
+  /// Teach & repeat runs (scenario `teach_repeat.enabled`).
+  std::optional<TeachRepeatMetrics> teach_repeat;
+  /// A repeat pass: features its repeater lost and recovered, in all.
+  std::int64_t repeat_features_lost = 0, repeat_features_recovered = 0;
 
   double real_time_factor() const { return wall_time_s > 0 ? sim_time_s / wall_time_s : 0.0; }
 };

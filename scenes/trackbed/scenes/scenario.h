@@ -182,6 +182,28 @@ struct NavigationSpec {
   void Validate() const;
 };
 
+/// Visual teach & repeat (Choi & Ha 2011; design.md §1.3). With `enabled`, one run
+/// teaches (drives `drive`'s path, the "manual" drive, recording left images into a
+/// teach map) and then repeats the route from the images alone.
+struct TeachRepeatSpec {
+  bool enabled = false;
+  /// 2d (Chen & Birchfield 2006, funnel lane) or 3d (Diosi et al. 2007).
+  std::string method = "2d";
+  /// A teach map folder (a run folder's teach_map/) to repeat instead of teaching,
+  /// relative to the scenario file; empty: teach first.
+  std::string map;
+  /// Repeat: constant forward speed [m/s] and turn rate [deg/s], > 0 (paper's lab:
+  /// 0.05 m/s, 4°/s).
+  double repeat_speed_mps = 0.05;
+  double repeat_turn_rate_deg_s = 4.0;
+  /// The repeat starts at robot.start moved by this offset (in the start's frame) …
+  StartPose start_offset;
+  /// … and by a seeded perturbation of up to 5 cm and 2° (false: none).
+  bool start_perturbation = true;
+
+  void Validate() const;
+};
+
 struct OutputsSpec {
   /// Camera images to save: none, or kitti (KITTI odometry layout in images/;
   /// needs robot.stereo.enabled).
@@ -199,6 +221,7 @@ struct Scenario {
   DriveSpec drive;
   EstimationSpec estimation;
   NavigationSpec navigation;
+  TeachRepeatSpec teach_repeat;
   OutputsSpec outputs;
 
   void Validate() const;
