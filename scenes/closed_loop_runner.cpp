@@ -142,6 +142,7 @@ RunObservers TimedObservers(const RunObservers& o, double* io_s) {
   t.on_sample = wrap(o.on_sample);
   t.on_imu = wrap(o.on_imu);
   t.on_navigation_step = wrap(o.on_navigation_step);
+  t.on_repeat_step = wrap(o.on_repeat_step);
   return t;
 }
 
@@ -325,6 +326,7 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& given_obs
                            const_cast<std::uint8_t*>(left_image.pixels.data()));
         const navigation::RepeatCommand c =
             Timed(&times.control_s, [&] { return repeater->Update(left, frame.t_s); });
+        if (observers.on_repeat_step) observers.on_repeat_step({frame.t_s, c});
         repeat_features_lost = c.features_lost;
         repeat_features_recovered = c.features_recovered;
         const estimation::TrackSpeeds cmd = estimation::TrackSpeedsFromTwist(c.twist, gauge_eff_m);

@@ -260,6 +260,7 @@ RunObservers Chained(const RunObservers& a, const RunObservers& b) {
   c.on_sample = chain(a.on_sample, b.on_sample);
   c.on_imu = chain(a.on_imu, b.on_imu);
   c.on_navigation_step = chain(a.on_navigation_step, b.on_navigation_step);
+  c.on_repeat_step = chain(a.on_repeat_step, b.on_repeat_step);
   return c;
 }
 

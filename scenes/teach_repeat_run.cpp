@@ -2,6 +2,7 @@
 #include "trackbed/scenes/teach_repeat_run.h"
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <limits>
 #include <random>
@@ -119,11 +120,29 @@ RunMetrics RunTeachRepeat(const Scenario& scenario, const fs::path& dir) {
       navigation::MakeRepeater(tr.method, std::move(map), o2, o3);
 
   std::vector<Eigen::Vector2d> repeated;
+  // teach_repeat.csv: what the repeater saw and did at every frame.
+  std::ofstream csv(dir / "teach_repeat.csv", std::ios::out | std::ios::trunc);
+  csv << "t,status,v_mps,yaw_rate_radps,milestone,switched,features,tracked,votes_left,"
+         "votes_right,votes_straight,mean_error_px,lost,recovered,lateral_offset_m,"
+         "heading_error_rad,fallback_2d\n";
   RunObservers extra;
+  extra.on_repeat_step = [&](const std::pair<double, navigation::RepeatCommand>& step) {
+    const navigation::RepeatCommand& c = step.second;
+    char line[512];
+    std::snprintf(line, sizeof(line),
+                  "%.6f,%s,%.6g,%.6g,%d,%d,%d,%d,%d,%d,%d,%.6g,%d,%d,%.6g,%.6g,%d\n", step.first,
+                  navigation::ToString(c.status), c.twist.v_mps, c.twist.yaw_rate_radps,
+                  c.milestone, c.switched ? 1 : 0, c.features, c.tracked, c.votes_left,
+                  c.votes_right, c.votes_straight, c.mean_error_px, c.lost, c.recovered,
+                  c.lateral_offset_m, c.heading_error_rad, c.fallback_2d ? 1 : 0);
+    csv << line;
+  };
   extra.on_sample = [&](const RunSample& s) {
     repeated.push_back(s.chassis.T_world_body.translation().head<2>());
   };
   RunMetrics m = RunToFolderWith(repeat, dir, extra, repeater.get());
+  csv.close();
+  if (!csv) throw std::runtime_error((dir / "teach_repeat.csv").string() + ": cannot write");
 
   TeachRepeatMetrics t;
   t.method = tr.method;

@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <memory>
+#include <utility>
 
 #include "trackbed/estimation/localization.h"
 #include "trackbed/navigation/navigation_metrics.h"
@@ -58,6 +59,8 @@ struct RunObservers {
   std::function<void(const robot::ImuSample&)> on_imu;
   /// Every control step of closed-loop navigation (ground-truth pose, command, target).
   std::function<void(const navigation::NavigationLogEntry&)> on_navigation_step;
+  /// Every camera frame of a teach & repeat repeat pass: its time and the command.
+  std::function<void(const std::pair<double, navigation::RepeatCommand>&)> on_repeat_step;
 };
 
 /// Runs one scenario in closed loop. With `repeater`, the repeat of teach & repeat
