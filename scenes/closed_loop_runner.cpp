@@ -132,18 +132,10 @@ auto Timed(double* seconds, F&& f) {
 
 // The observers, each call's time added to *io_s (they write the run folder).
 RunObservers TimedObservers(const RunObservers& o, double* io_s) {
-  RunObservers t;
-  const auto wrap = [io_s](const auto& f) -> std::decay_t<decltype(f)> {
+  return CombineObservers(o, o, [io_s](const auto& f, const auto&) -> std::decay_t<decltype(f)> {
     if (!f) return {};
     return [f, io_s](const auto& x) { Timed(io_s, [&] { f(x); }); };
-  };
-  t.on_localization_frame = wrap(o.on_localization_frame);
-  t.on_stereo = wrap(o.on_stereo);
-  t.on_sample = wrap(o.on_sample);
-  t.on_imu = wrap(o.on_imu);
-  t.on_navigation_step = wrap(o.on_navigation_step);
-  t.on_repeat_step = wrap(o.on_repeat_step);
-  return t;
+  });
 }
 
 }  // namespace

@@ -246,22 +246,14 @@ namespace {
 
 // Observers that call `a`'s and then `b`'s.
 RunObservers Chained(const RunObservers& a, const RunObservers& b) {
-  const auto chain = [](const auto& f, const auto& g) -> std::decay_t<decltype(f)> {
+  return CombineObservers(a, b, [](const auto& f, const auto& g) -> std::decay_t<decltype(f)> {
     if (!f) return g;
     if (!g) return f;
     return [f, g](const auto& x) {
       f(x);
       g(x);
     };
-  };
-  RunObservers c;
-  c.on_localization_frame = chain(a.on_localization_frame, b.on_localization_frame);
-  c.on_stereo = chain(a.on_stereo, b.on_stereo);
-  c.on_sample = chain(a.on_sample, b.on_sample);
-  c.on_imu = chain(a.on_imu, b.on_imu);
-  c.on_navigation_step = chain(a.on_navigation_step, b.on_navigation_step);
-  c.on_repeat_step = chain(a.on_repeat_step, b.on_repeat_step);
-  return c;
+  });
 }
 
 constexpr char kNavigationCsvHeader[] =
@@ -367,6 +359,10 @@ RunMetrics RunKinematicNavigation(const Scenario& scenario, const fs::path& dir)
 
 }  // namespace
 
+void WriteMetricsJson(const RunMetrics& metrics, const fs::path& dir) {
+  WriteAtomically(dir / "metrics.json", MetricsJson(metrics));
+}
+
 RunMetrics RunToFolder(const Scenario& scenario, const fs::path& dir) {
   if (scenario.teach_repeat.enabled) return RunTeachRepeat(scenario, dir);
   return RunToFolderWith(scenario, dir, {}, nullptr);
@@ -384,7 +380,7 @@ RunMetrics RunToFolderWith(const Scenario& scenario, const fs::path& dir, const 
     if (scenario.navigation.enabled &&
         scenario.navigation.mode == NavigationSpec::Mode::kKinematic) {
       metrics = RunKinematicNavigation(scenario, dir);
-      WriteAtomically(dir / "metrics.json", MetricsJson(metrics));
+      WriteMetricsJson(metrics, dir);
       return metrics;
     }
     LogFile truth(dir / "ground_truth.tum", "");
@@ -523,10 +519,10 @@ RunMetrics RunToFolderWith(const Scenario& scenario, const fs::path& dir, const 
   } catch (const std::exception& e) {
     metrics.completed = false;
     metrics.stop_reason = std::string("failed: ") + e.what();
-    WriteAtomically(dir / "metrics.json", MetricsJson(metrics));
+    WriteMetricsJson(metrics, dir);
     throw;
   }
-  WriteAtomically(dir / "metrics.json", MetricsJson(metrics));
+  WriteMetricsJson(metrics, dir);
   return metrics;
 }
 

@@ -169,14 +169,7 @@ RunMetrics RunTeachRepeat(const Scenario& scenario, const fs::path& dir) {
         {{"taught (ground truth)", taught}, {"repeated (ground truth)", repeated}});
   }
   m.teach_repeat = t;
-  // metrics.json again, now with the score.
-  const fs::path tmp = dir / "metrics.json.tmp";
-  {
-    std::ofstream f(tmp, std::ios::out | std::ios::trunc);
-    f << MetricsJson(m);
-    if (!f) throw std::runtime_error(tmp.string() + ": cannot write");
-  }
-  fs::rename(tmp, dir / "metrics.json");
+  WriteMetricsJson(m, dir);  // again, now with the score
   return m;
 }
 

@@ -63,6 +63,20 @@ struct RunObservers {
   std::function<void(const std::pair<double, navigation::RepeatCommand>&)> on_repeat_step;
 };
 
+/// Builds observers member by member: out.X = f(a.X, b.X) for every observer X. The
+/// one list of RunObservers' members, for code that wraps or combines observers.
+template <class F>
+RunObservers CombineObservers(const RunObservers& a, const RunObservers& b, F&& f) {
+  RunObservers out;
+  out.on_localization_frame = f(a.on_localization_frame, b.on_localization_frame);
+  out.on_stereo = f(a.on_stereo, b.on_stereo);
+  out.on_sample = f(a.on_sample, b.on_sample);
+  out.on_imu = f(a.on_imu, b.on_imu);
+  out.on_navigation_step = f(a.on_navigation_step, b.on_navigation_step);
+  out.on_repeat_step = f(a.on_repeat_step, b.on_repeat_step);
+  return out;
+}
+
 /// Runs one scenario in closed loop. With `repeater`, the repeat of teach & repeat
 /// drives: it gets every left image and its command is held until the next one; the
 /// run ends when it reports finished or lost. Throws std::invalid_argument for an

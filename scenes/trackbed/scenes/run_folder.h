@@ -27,4 +27,7 @@ RunMetrics RunToFolderWith(const Scenario& scenario, const std::filesystem::path
 /// The metrics.json document of a run, as text.
 std::string MetricsJson(const RunMetrics& metrics);
 
+/// Writes `dir`/metrics.json atomically (a temporary file renamed over it).
+void WriteMetricsJson(const RunMetrics& metrics, const std::filesystem::path& dir);
+
 }  // namespace trackbed::scenes
