@@ -32,6 +32,8 @@
 #include <string>
 #include <vector>
 
+#include "slurm_backend.h"
+#include "sweep_support.h"
 #include "trackbed/scenes/sweep.h"
 #include "trackbed/scenes/sweep_report.h"
 
@@ -39,221 +41,11 @@ namespace trackbed::apps {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
+using Clock = SweepClock;
 using scenes::CellOutcome;
 using scenes::CellStatus;
 using scenes::SweepCell;
 using scenes::SweepPlan;
-
-// Exit statuses (sweep_command.h).
-constexpr int kExitAllOk = 0;
-constexpr int kExitSomeFailed = 1;
-constexpr int kExitBadInput = 2;
-
-// What cell.json keeps of a run's stderr.
-constexpr std::size_t kTailLines = 20;
-constexpr std::size_t kTailBytes = 4000;
-
-std::string Hostname() {
-  char buf[256] = {};
-  if (::gethostname(buf, sizeof(buf) - 1) != 0) return "";
-  return buf;
-}
-
-std::string UtcNow() {
-  const auto now = std::chrono::system_clock::now();
-  const std::time_t t = std::chrono::system_clock::to_time_t(now);
-  const auto ms =
-      std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()).count() % 1000;
-  std::tm tm{};
-  ::gmtime_r(&t, &tm);
-  char buf[64];
-  std::strftime(buf, sizeof(buf), "%Y-%m-%dT%H:%M:%S", &tm);
-  char out[80];
-  std::snprintf(out, sizeof(out), "%s.%03lldZ", buf, static_cast<long long>(ms));
-  return out;
-}
-
-std::string ReplaceAll(std::string s, const std::string& from, const std::string& to) {
-  if (from.empty()) return s;
-  for (std::size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size())) {
-    s.replace(at, from.size(), to);
-  }
-  return s;
-}
-
-// The last `kTailLines` lines of a file, at most `kTailBytes`.
-std::string Tail(const fs::path& file) {
-  std::string text;
-  try {
-    text = scenes::ReadTextFile(file);
-  } catch (const std::exception&) {
-    return "";
-  }
-  if (text.size() > kTailBytes) text = text.substr(text.size() - kTailBytes);
-  std::size_t start = text.size(), lines = 0;
-  while (start > 0) {
-    const std::size_t nl = text.rfind('\n', start - 1);
-    if (nl == std::string::npos) {
-      start = 0;
-      break;
-    }
-    if (nl + 1 < text.size() && ++lines > kTailLines) break;
-    start = nl;
-  }
-  if (start < text.size() && text[start] == '\n') ++start;
-  return text.substr(start);
-}
-
-std::string LastLine(const std::string& text) {
-  std::size_t end = text.size();
-  while (end > 0 && (text[end - 1] == '\n' || text[end - 1] == '\r')) --end;
-  const std::size_t nl = text.rfind('\n', end == 0 ? 0 : end - 1);
-  return text.substr(nl == std::string::npos || end == 0 ? 0 : nl + 1,
-                     end - (nl == std::string::npos || end == 0 ? 0 : nl + 1));
-}
-
-std::string SignalText(int sig) {
-  const char* name = ::strsignal(sig);
-  return "signal " + std::to_string(sig) + (name ? std::string(" (") + name + ")" : "");
-}
-
-std::string Seconds(double s) {
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%.1f s", s);
-  return buf;
-}
-
-// Blocks the signals the sweep takes with sigtimedwait for its lifetime.
-class BlockedSignals {
- public:
-  BlockedSignals() {
-    sigemptyset(&set_);
-    for (int s : {SIGCHLD, SIGINT, SIGTERM, SIGHUP}) sigaddset(&set_, s);
-    ::pthread_sigmask(SIG_BLOCK, &set_, &old_);
-  }
-  ~BlockedSignals() { ::pthread_sigmask(SIG_SETMASK, &old_, nullptr); }
-  BlockedSignals(const BlockedSignals&) = delete;
-  BlockedSignals& operator=(const BlockedSignals&) = delete;
-
-  const sigset_t& set() const { return set_; }
-
-  /// Waits up to `timeout_s` for one of the signals; returns it, or 0. SIGCHLD is
-  /// returned as such (the caller reaps).
-  int Wait(double timeout_s) const {
-    timespec ts{};
-    ts.tv_sec = static_cast<time_t>(timeout_s);
-    ts.tv_nsec = static_cast<long>((timeout_s - static_cast<double>(ts.tv_sec)) * 1e9);
-    siginfo_t info{};
-    const int sig = ::sigtimedwait(&set_, &info, &ts);
-    return sig > 0 ? sig : 0;
-  }
-
-  /// A pending SIGINT, SIGTERM or SIGHUP (taken), or 0.
-  int TakeInterrupt() const {
-    sigset_t pending;
-    sigemptyset(&pending);
-    ::sigpending(&pending);
-    for (int s : {SIGINT, SIGTERM, SIGHUP}) {
-      if (sigismember(&pending, s)) {
-        sigset_t one;
-        sigemptyset(&one);
-        sigaddset(&one, s);
-        timespec zero{};
-        ::sigtimedwait(&one, nullptr, &zero);
-        return s;
-      }
-    }
-    return 0;
-  }
-
- private:
-  sigset_t set_, old_;
-};
-
-bool IsInterrupt(int sig) { return sig == SIGINT || sig == SIGTERM || sig == SIGHUP; }
-
-// Progress on stderr: a one-line bar on a terminal, else one line per finished cell.
-class Progress {
- public:
-  Progress(std::size_t total, std::size_t done, bool bar)
-      : total_(total), done_(done), bar_(bar), start_(Clock::now()) {}
-
-  void Finished(const SweepCell& cell, const CellOutcome& o) {
-    // An interrupted cell is not done: it reruns on resume.
-    if (o.status != CellStatus::kInterrupted) ++done_;
-    if (o.status == CellStatus::kOk) {
-      ++ok_;
-    } else if (o.status != CellStatus::kInterrupted) {
-      ++bad_;
-    }
-    if (bar_ && o.status == CellStatus::kOk) return;
-    char head[64];
-    const int width = static_cast<int>(std::to_string(total_).size());
-    std::snprintf(head, sizeof(head), "[%*zu/%zu] %-11s ", width, done_, total_,
-                  scenes::ToString(o.status));
-    std::string line = head + cell.name;
-    if (o.status != CellStatus::kFailed || o.exit_code) line += "  " + Seconds(o.wall_time_s);
-    if (!o.reason.empty()) line += ": " + o.reason;
-    Clear();
-    std::cerr << line << std::endl;
-    drawn_ = false;
-  }
-
-  void Message(const std::string& text) {
-    Clear();
-    std::cerr << text << std::endl;
-    drawn_ = false;
-  }
-
-  void Refresh(std::size_t running) {
-    if (!bar_) return;
-    constexpr int kWidth = 30;
-    const int filled =
-        total_ ? static_cast<int>(kWidth * static_cast<double>(done_) / static_cast<double>(total_))
-               : kWidth;
-    const long elapsed =
-        std::chrono::duration_cast<std::chrono::seconds>(Clock::now() - start_).count();
-    char buf[256];
-    std::snprintf(buf, sizeof(buf),
-                  "\r\033[K[%s%s] %zu/%zu cells  %zu ok  %zu not ok  %zu running  %ld:%02ld",
-                  std::string(static_cast<std::size_t>(filled), '#').c_str(),
-                  std::string(static_cast<std::size_t>(kWidth - filled), '.').c_str(), done_,
-                  total_, ok_, bad_, running, elapsed / 60, elapsed % 60);
-    std::cerr << buf << std::flush;
-    drawn_ = true;
-  }
-
-  void End() { Clear(); }
-
- private:
-  void Clear() {
-    if (bar_ && drawn_) std::cerr << "\r\033[K" << std::flush;
-    drawn_ = false;
-  }
-
-  std::size_t total_, done_, ok_ = 0, bad_ = 0;
-  bool bar_;
-  bool drawn_ = false;
-  Clock::time_point start_;
-};
-
-// Records a cell's outcome.
-void WriteOutcome(const fs::path& dir, const SweepCell& cell, const CellOutcome& o) {
-  fs::create_directories(scenes::CellDir(dir, cell));
-  scenes::WriteFileAtomically(scenes::CellJsonPath(dir, cell), scenes::CellOutcomeJson(cell, o));
-}
-
-// cell.json of a finished run whose outcome was never recorded (the sweep stopped
-// between the run's end and the record).
-CellOutcome RecoverOutcome(const fs::path& dir, const SweepCell& cell) {
-  CellOutcome o =
-      scenes::OutcomeFromMetrics(scenes::ReadTextFile(scenes::CellMetricsPath(dir, cell)));
-  o.host = Hostname();
-  o.stderr_tail = Tail(scenes::CellDir(dir, cell) / "stderr.txt");
-  WriteOutcome(dir, cell, o);
-  return o;
-}
 
 // Runs cells as child processes, `jobs` at a time.
 class CellRunner {
@@ -266,7 +58,8 @@ class CellRunner {
         timeout_s_(timeout_s),
         signals_(signals),
         progress_(progress),
-        host_(Hostname()) {}
+        host_(Hostname()),
+        slurm_job_(CurrentSlurmJob()) {}
 
   /// Runs `cells` in order; returns the interrupting signal, or 0. Interrupted cells get
   /// status interrupted; cells not started stay pending (no cell.json).
@@ -444,7 +237,8 @@ class CellRunner {
     Record(cell, o);
   }
 
-  void Record(const SweepCell& cell, const CellOutcome& o) {
+  void Record(const SweepCell& cell, CellOutcome o) {
+    o.slurm_job = slurm_job_;
     WriteOutcome(dir_, cell, o);
     last_ = o;
     progress_.Finished(cell, o);
@@ -457,70 +251,28 @@ class CellRunner {
   const BlockedSignals& signals_;
   Progress& progress_;
   std::string host_;
+  std::string slurm_job_;  // the Slurm array task this runs in, recorded in cell.json
   std::vector<Child> running_;
   CellOutcome last_;
 };
 
 // Takes an exclusive lock on the sweep folder for the life of the object, so that two
 // sweeps never write one folder.
-class FolderLock {
- public:
-  explicit FolderLock(const fs::path& dir) {
-    const fs::path path = dir / ".sweep.lock";
-    fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-    if (fd_ < 0) throw std::runtime_error(path.string() + ": cannot open: " + std::strerror(errno));
-    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
-      ::close(fd_);
-      throw std::runtime_error(dir.string() + ": another `trackbed sweep` is running there");
-    }
-  }
-  ~FolderLock() { ::close(fd_); }
-  FolderLock(const FolderLock&) = delete;
-  FolderLock& operator=(const FolderLock&) = delete;
-
- private:
-  int fd_ = -1;
-};
-
-bool UseBar() {
-  const char* term = std::getenv("TERM");
-  return ::isatty(STDERR_FILENO) && !(term && std::string(term) == "dumb");
-}
-
-// Cells whose scenario does not load fail here, without a process.
-std::vector<const SweepCell*> ValidateCells(const fs::path& dir,
-                                            const std::vector<const SweepCell*>& cells,
-                                            const BlockedSignals& signals, Progress& progress,
-                                            int& interrupt) {
-  std::vector<const SweepCell*> valid;
-  const std::string host = Hostname();
-  for (const SweepCell* cell : cells) {
-    if ((interrupt = signals.TakeInterrupt()) != 0) return {};
-    const std::optional<std::string> reason = scenes::ValidateCell(*cell);
-    if (!reason) {
-      valid.push_back(cell);
-      continue;
-    }
-    fs::remove_all(scenes::CellDir(dir, *cell));
-    CellOutcome o;
-    o.status = CellStatus::kFailed;
-    o.reason = "invalid scenario: " + *reason;
-    o.host = host;
-    o.started_utc = UtcNow();
-    WriteOutcome(dir, *cell, o);
-    progress.Finished(*cell, o);
-  }
-  return valid;
-}
 
 }  // namespace
 
 int RunSweep(const SweepArgs& args) {
-  if (args.backend != "local") {
-    throw std::invalid_argument("--backend " + args.backend +
-                                ": not available (only `local` so far)");
+  const bool slurm = args.backend == "slurm";
+  if (args.backend != "local" && !slurm) {
+    throw std::invalid_argument("--backend " + args.backend + ": must be local or slurm");
   }
   if (args.jobs < 1) throw std::invalid_argument("--jobs must be >= 1");
+  if (!slurm && (!args.slurm.partition.empty() || args.slurm.max_parallel != 0 ||
+                 !args.slurm.time_limit.empty() || args.slurm.wait)) {
+    throw std::invalid_argument(
+        "--partition, --max-parallel, --time-limit and --wait are for --backend slurm");
+  }
+  if (slurm) CheckSlurmAvailable();  // at once, before anything is written
   const scenes::SweepSpec spec = scenes::LoadSweep(args.sweep_file);
   const SweepPlan plan = scenes::MakeSweepPlan(spec);
   const fs::path dir = fs::absolute(args.out_dir).lexically_normal();
@@ -537,6 +289,8 @@ int RunSweep(const SweepArgs& args) {
   scenes::WriteFileAtomically(dir / "cells.json", scenes::SweepPlanJson(plan));
 
   const BlockedSignals signals;
+  if (slurm) return RunSlurmSweep(dir, plan, args.slurm, signals);
+
   std::vector<const SweepCell*> to_run;
   std::size_t finished = 0;
   for (const SweepCell& cell : plan.cells) {
@@ -575,9 +329,10 @@ int RunSweep(const SweepArgs& args) {
   return n.ok == n.total() ? kExitAllOk : kExitSomeFailed;
 }
 
-int RunSweepCell(const std::string& sweep_dir, std::size_t index) {
+int RunSweepCell(const std::string& sweep_dir, std::size_t index, const std::string& list_file) {
   const fs::path dir = fs::absolute(sweep_dir).lexically_normal();
   const SweepPlan plan = scenes::ReadSweepPlan(dir);
+  if (!list_file.empty()) index = CellIndexFromList(list_file, index);
   if (index >= plan.cells.size()) {
     throw std::invalid_argument("cell index " + std::to_string(index) + " out of range (" +
                                 std::to_string(plan.cells.size()) + " cells)");
@@ -600,7 +355,20 @@ int RunSweepCell(const std::string& sweep_dir, std::size_t index) {
     CellRunner runner(dir, 1, plan.timeout_s, signals, progress);
     interrupt = runner.Run(valid);
   }
-  if (interrupt != 0) return 128 + interrupt;
+  if (interrupt != 0) {
+    // Under Slurm a SIGTERM is Slurm stopping the task: record why, in Slurm's words.
+    o = scenes::ReadCellOutcome(dir, cell);
+    if (o.status == CellStatus::kInterrupted) {
+      if (const std::optional<CellOutcome> why = SlurmStopOutcome()) {
+        o.status = why->status;
+        o.reason = why->reason;
+        o.slurm_job = CurrentSlurmJob();
+        WriteOutcome(dir, cell, o);
+        std::cerr << "trackbed sweep-cell: " << cell.name << ": " << o.reason << std::endl;
+      }
+    }
+    return 128 + interrupt;
+  }
   o = scenes::ReadCellOutcome(dir, cell);
   return o.status == CellStatus::kOk ? kExitAllOk : kExitSomeFailed;
 }
@@ -614,10 +382,28 @@ void AddSweepCommand(CLI::App& app) {
   sweep->add_option("sweep", args->sweep_file, "Sweep file (YAML; docs/sweeps.md)")->required();
   sweep->add_option("--out", args->out_dir, "Sweep folder to write (or resume)")->required();
   sweep->add_option("--jobs,-j", args->jobs, "Cells run at once")->capture_default_str();
-  sweep->add_option("--backend", args->backend, "Where cells run: local")->capture_default_str();
+  sweep
+      ->add_option("--backend", args->backend,
+                   "Where cells run: local (child processes, --jobs at a time) or slurm (one "
+                   "sbatch array job; the folder must be on a filesystem the nodes share)")
+      ->check(CLI::IsMember({"local", "slurm"}))
+      ->capture_default_str();
+  sweep->add_option("--partition", args->slurm.partition,
+                    "slurm: partition to submit to (default: the cluster's default)");
+  sweep
+      ->add_option("--max-parallel", args->slurm.max_parallel,
+                   "slurm: at most N array tasks at once (0: as Slurm schedules)")
+      ->check(CLI::NonNegativeNumber);
+  sweep->add_option("--time-limit", args->slurm.time_limit,
+                    "slurm: time limit of each cell's task, as sbatch --time (minutes, H:MM:SS, "
+                    "D-HH:MM); default timeout_s + 1 min when the sweep has one");
+  sweep->add_flag("--wait", args->slurm.wait,
+                  "slurm: follow the job until every cell has ended (progress as the local "
+                  "backend's), then write the summary and report");
   sweep->footer(
-      "Exit status: 0 every cell ok; 1 some cell failed or timed out; 2 bad input; "
-      "130/143 interrupted by SIGINT/SIGTERM (rerun the same command to resume).");
+      "Exit status: 0 every cell ok (slurm without --wait: submitted); 1 some cell failed or "
+      "timed out; 2 bad input or Slurm refused the job; 130/143 interrupted by SIGINT/SIGTERM "
+      "(rerun the same command to resume; a Slurm job goes on).");
   sweep->callback([args]() {
     int status = kExitBadInput;
     try {
@@ -631,16 +417,20 @@ void AddSweepCommand(CLI::App& app) {
 
   auto cell_dir = std::make_shared<std::string>();
   auto cell_index = std::make_shared<std::size_t>(0);
+  auto cell_list = std::make_shared<std::string>();
   CLI::App* cell = app.add_subcommand(
       "sweep-cell",
       "Run one cell of a sweep folder written by `trackbed sweep` (what a batch scheduler's "
       "array task runs); `trackbed report DIR` then gathers the results");
   cell->add_option("dir", *cell_dir, "Sweep folder (holds cells.json)")->required();
   cell->add_option("index", *cell_index, "Cell index (0-based, as in cells.json)")->required();
-  cell->callback([cell_dir, cell_index]() {
+  cell->add_option("--list", *cell_list,
+                   "Take the cell index from line INDEX (0-based) of this file (a Slurm "
+                   "submission's DIR/slurm/submit-N.cells)");
+  cell->callback([cell_dir, cell_index, cell_list]() {
     int status = kExitBadInput;
     try {
-      status = RunSweepCell(*cell_dir, *cell_index);
+      status = RunSweepCell(*cell_dir, *cell_index, *cell_list);
     } catch (const std::exception& e) {
       std::cerr << "trackbed sweep-cell: " << e.what() << std::endl;
       throw CLI::RuntimeError(kExitBadInput);

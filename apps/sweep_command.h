@@ -1,7 +1,8 @@
 // `trackbed sweep SWEEP.yaml --out DIR [--jobs N]`: many closed-loop runs, each a
 // separate `trackbed run` process, N at a time, resumable (docs/sweeps.md); and
 // `trackbed sweep-cell DIR INDEX`, which runs one cell of a prepared sweep folder —
-// what a batch scheduler's array task runs (issue 8's Slurm backend).
+// what a batch scheduler's array task runs; `--backend slurm` submits the cells
+// as one Slurm array job of such tasks (slurm_backend.h).
 //
 // Exit status of `sweep`: 0 when every cell is ok; 1 when some cell failed or timed
 // out (the summary and report are written all the same); 2 on bad input (sweep file,
@@ -14,14 +15,17 @@
 
 #include <CLI/CLI.hpp>
 
+#include "slurm_backend.h"
+
 namespace trackbed::apps {
 
 /// The command line of `trackbed sweep`.
 struct SweepArgs {
   std::string sweep_file;
   std::string out_dir;
-  int jobs = 1;                   ///< cells run at once, >= 1
-  std::string backend = "local";  ///< local (the only backend so far)
+  int jobs = 1;                   ///< local: cells run at once, >= 1
+  std::string backend = "local";  ///< local (child processes) or slurm (an array job)
+  SlurmOptions slurm;             ///< with backend slurm
 };
 
 /// Runs the sweep and writes the summary and report; returns the exit status. Prints
@@ -30,9 +34,12 @@ struct SweepArgs {
 int RunSweep(const SweepArgs& args);
 
 /// Runs cell `index` of the sweep folder `sweep_dir` (unless it is finished) and
-/// records its cell.json; does not write the summary (`trackbed report` does).
-/// Returns 0 when the cell is ok, 1 when not, 128 + signal when interrupted.
-int RunSweepCell(const std::string& sweep_dir, std::size_t index);
+/// records its cell.json; does not write the summary (`trackbed report` does). With a
+/// `list_file` (a Slurm submission's cell list), the cell is the one on line `index`.
+/// Returns 0 when the cell is ok, 1 when not, 128 + signal when interrupted (under
+/// Slurm, the cell is then recorded with Slurm's reason for stopping it).
+int RunSweepCell(const std::string& sweep_dir, std::size_t index,
+                 const std::string& list_file = "");
 
 /// Registers the `sweep` and `sweep-cell` subcommands; like AddEvalCommand, they run in
 /// their CLI11 callbacks and end parsing by throwing CLI::RuntimeError with the exit

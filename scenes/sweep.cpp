@@ -749,6 +749,7 @@ std::string CellOutcomeJson(const SweepCell& cell, const CellOutcome& outcome) {
   j["wall_time_s"] = outcome.wall_time_s;
   j["host"] = outcome.host;
   j["started_utc"] = outcome.started_utc;
+  if (!outcome.slurm_job.empty()) j["slurm_job"] = outcome.slurm_job;
   return j.dump(2) + "\n";
 }
 
@@ -773,6 +774,7 @@ CellOutcome ParseCellOutcome(const std::string& json_text, const std::string& so
   o.wall_time_s = Get<double>(j, "wall_time_s", source_name, "");
   o.host = Get<std::string>(j, "host", source_name, "");
   o.started_utc = Get<std::string>(j, "started_utc", source_name, "");
+  if (j.contains("slurm_job")) o.slurm_job = Get<std::string>(j, "slurm_job", source_name, "");
   return o;
 }
 

@@ -10,6 +10,9 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
 
 namespace trackbed::testing_cli {
 
@@ -47,6 +50,45 @@ inline CliResult RunTrackbed(const std::string& args, const std::filesystem::pat
   r.stdout_text = Slurp(io / "out");
   r.stderr_text = Slurp(io / "err");
   return r;
+}
+
+// summary.csv without its machine-dependent columns (wall_, timing_, mem_, host…).
+inline std::string DeterministicColumns(const std::filesystem::path& csv) {
+  std::istringstream in(Slurp(csv));
+  std::string line, out;
+  std::vector<bool> keep;
+  // The summary's text fields here hold no commas inside quotes except reasons, which
+  // come before any machine-dependent column; split on commas outside quotes.
+  const auto split = [](const std::string& l) {
+    std::vector<std::string> fields(1);
+    bool quoted = false;
+    for (char c : l) {
+      if (c == '"') quoted = !quoted;
+      if (c == ',' && !quoted) {
+        fields.emplace_back();
+      } else {
+        fields.back().push_back(c);
+      }
+    }
+    return fields;
+  };
+  bool header = true;
+  while (std::getline(in, line)) {
+    const std::vector<std::string> fields = split(line);
+    if (header) {
+      for (const std::string& f : fields) {
+        keep.push_back(!(f.rfind("wall_", 0) == 0 || f.rfind("timing_", 0) == 0 ||
+                         f.rfind("mem_", 0) == 0 || f.rfind("host", 0) == 0));
+      }
+      header = false;
+    }
+    EXPECT_EQ(fields.size(), keep.size()) << line;
+    for (std::size_t k = 0; k < fields.size() && k < keep.size(); ++k) {
+      if (keep[k]) out += fields[k] + ",";
+    }
+    out += "\n";
+  }
+  return out;
 }
 
 }  // namespace trackbed::testing_cli

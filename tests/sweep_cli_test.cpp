@@ -31,6 +31,7 @@ namespace fs = std::filesystem;
 const fs::path kSource = TRACKBED_SOURCE_DIR;
 
 using Result = trackbed::testing_cli::CliResult;
+using trackbed::testing_cli::DeterministicColumns;
 using trackbed::testing_cli::Slurp;
 
 fs::path TempDir(const std::string& name) {
@@ -44,45 +45,6 @@ Result Trackbed(const std::string& args, const fs::path& io) {
 
 nlohmann::json CellJson(const fs::path& sweep, const std::string& cell) {
   return nlohmann::json::parse(Slurp(sweep / "cells" / cell / "cell.json"));
-}
-
-// summary.csv without its machine-dependent columns (wall_, timing_, mem_, host…).
-std::string DeterministicColumns(const fs::path& csv) {
-  std::istringstream in(Slurp(csv));
-  std::string line, out;
-  std::vector<bool> keep;
-  // The summary's text fields here hold no commas inside quotes except reasons, which
-  // come before any machine-dependent column; split on commas outside quotes.
-  const auto split = [](const std::string& l) {
-    std::vector<std::string> fields(1);
-    bool quoted = false;
-    for (char c : l) {
-      if (c == '"') quoted = !quoted;
-      if (c == ',' && !quoted) {
-        fields.emplace_back();
-      } else {
-        fields.back().push_back(c);
-      }
-    }
-    return fields;
-  };
-  bool header = true;
-  while (std::getline(in, line)) {
-    const std::vector<std::string> fields = split(line);
-    if (header) {
-      for (const std::string& f : fields) {
-        keep.push_back(!(f.rfind("wall_", 0) == 0 || f.rfind("timing_", 0) == 0 ||
-                         f.rfind("mem_", 0) == 0 || f.rfind("host", 0) == 0));
-      }
-      header = false;
-    }
-    EXPECT_EQ(fields.size(), keep.size()) << line;
-    for (std::size_t k = 0; k < fields.size() && k < keep.size(); ++k) {
-      if (keep[k]) out += fields[k] + ",";
-    }
-    out += "\n";
-  }
-  return out;
 }
 
 // A sweep of the paper's navigation scene over four methods, one of them unknown.
@@ -227,6 +189,36 @@ TEST(SweepCliTest, BadSweepFilesAndFoldersStopBeforeAnythingRuns) {
   const Result other = Trackbed("sweep " + nav.string() + " --out " + out.string(), dir / "io3");
   EXPECT_EQ(other.exit_code, 2);
   EXPECT_NE(other.stderr_text.find("holds another sweep"), std::string::npos) << other.stderr_text;
+}
+
+// Where Slurm is not installed (no sbatch, squeue, scontrol on PATH), `--backend slurm`
+// fails at once, says what is missing, and writes nothing.
+TEST(SweepCliTest, WithoutSlurmTheSlurmBackendFailsAtOnce) {
+  const fs::path dir = TempDir("no_slurm");
+  const fs::path empty_path = dir / "empty_path";
+  fs::create_directories(empty_path);
+  const fs::path out = dir / "sweep";
+  const std::string saved = std::getenv("PATH") ? std::getenv("PATH") : "";
+  ::setenv("PATH", empty_path.c_str(), 1);
+  const Result r = Trackbed(
+      "sweep " + WriteNavigationSweep(dir).string() + " --out " + out.string() + " --backend slurm",
+      dir / "io");
+  ::setenv("PATH", saved.c_str(), 1);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.stderr_text,
+            "trackbed sweep: --backend slurm: sbatch, squeue, scontrol not found on PATH; is "
+            "Slurm installed here (Debian: slurm-client)? Without Slurm, leave out --backend to "
+            "run the cells locally\n");
+  EXPECT_FALSE(fs::exists(out));
+
+  // Slurm's options without the Slurm backend are a mistake, not ignored.
+  const Result local =
+      Trackbed("sweep " + WriteNavigationSweep(dir).string() + " --out " + out.string() + " --wait",
+               dir / "io2");
+  EXPECT_EQ(local.exit_code, 2);
+  EXPECT_NE(local.stderr_text.find("are for --backend slurm"), std::string::npos)
+      << local.stderr_text;
+  EXPECT_FALSE(fs::exists(out));
 }
 
 TEST(SweepCliTest, ACellOverItsTimeLimitIsKilledAndReported) {

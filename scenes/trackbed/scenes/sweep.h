@@ -166,6 +166,7 @@ struct CellOutcome {
   double wall_time_s = 0.0;      ///< launch to exit [s]
   std::string host;              ///< machine that ran it
   std::string started_utc;       ///< ISO 8601 launch time
+  std::string slurm_job;         ///< the Slurm array task that ran it (`JOB_TASK`); "" locally
 };
 
 std::string CellOutcomeJson(const SweepCell& cell, const CellOutcome& outcome);
