@@ -269,7 +269,14 @@ bool WaitForFile(const fs::path& file, pid_t pid) {
 
 TEST(SweepCliTest, AnInterruptedSweepResumesToTheSameSummaryAsAnUninterruptedOne) {
   const fs::path dir = TempDir("interrupt");
-  const std::string ci = (kSource / "scenes/sweeps/ci.yaml").string();
+  // The corridor and the park for 3 simulated seconds, two seeds: about a second a cell.
+  const std::string ci = (dir / "short.yaml").string();
+  std::ofstream(ci) << "name: short\n"
+                    << "scenarios: [" << (kSource / "scenes/corridor.yaml").string() << ", "
+                    << (kSource / "scenes/outdoor.yaml").string() << "]\n"
+                    << "seeds: [1, 2]\n"
+                    << "set: [\"duration_s=3\"]\n"
+                    << "timeout_s: 300\n";
   const fs::path whole = dir / "whole", cut = dir / "cut";
   const Result uninterrupted =
       Trackbed("sweep " + ci + " --out " + whole.string() + " --jobs 2", dir / "io1");

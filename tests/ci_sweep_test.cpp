@@ -1,0 +1,75 @@
+// scenes/sweeps/ci.yaml end to end: the shipped CI sweep runs (two scenes, two seeds,
+// 25 s each) and every cell shows the orderings of Ham et al. 2012 that hold on
+// short routes, on ground-truth ATE read from the sweep's summary.csv.
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "cli_runner.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using trackbed::testing_cli::CliResult;
+using trackbed::testing_cli::RunTrackbed;
+using trackbed::testing_cli::Slurp;
+
+// summary.csv as rows of column -> value (its text fields here hold no commas).
+std::vector<std::map<std::string, std::string>> ReadSummary(const fs::path& csv) {
+  std::istringstream in(Slurp(csv));
+  std::vector<std::string> header;
+  std::vector<std::map<std::string, std::string>> rows;
+  std::string line;
+  while (std::getline(in, line)) {
+    std::vector<std::string> fields;
+    std::stringstream ls(line);
+    for (std::string f; std::getline(ls, f, ',');) fields.push_back(f);
+    if (header.empty()) {
+      header = fields;
+      continue;
+    }
+    std::map<std::string, std::string> row;
+    for (std::size_t k = 0; k < header.size() && k < fields.size(); ++k) row[header[k]] = fields[k];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+double Ate(const std::map<std::string, std::string>& row, const std::string& estimator) {
+  const auto it = row.find("estimators_" + estimator + "_ate_rmse_m");
+  EXPECT_NE(it, row.end()) << estimator;
+  return it == row.end() ? 0.0 : std::stod(it->second);
+}
+
+TEST(CiSweepTest, ThePapersOrderingsHoldInEveryCell) {
+  const fs::path dir = trackbed::testing_cli::FreshTempDir("trackbed_ci_sweep_test_", "ci");
+  const CliResult r = RunTrackbed(
+      "sweep scenes/sweeps/ci.yaml --out " + (dir / "sweep").string() + " --jobs 2", dir / "io");
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  const auto rows = ReadSummary(dir / "sweep/summary.csv");
+  ASSERT_EQ(rows.size(), 4u);
+  for (const auto& row : rows) {
+    SCOPED_TRACE(row.at("cell"));
+    ASSERT_EQ(row.at("cell_status"), "ok");
+    const double wheels = Ate(row, "wheel_odometry"), vo = Ate(row, "visual_odometry"),
+                 fused = Ate(row, "fused"), noslip = Ate(row, "wheel_odometry_noslip");
+    if (row.at("scenario") == "../corridor.yaml") {
+      // Plain walls: VO loses most of the motion; the wheels on the hard floor do not.
+      EXPECT_LT(10.0 * wheels, vo);
+      EXPECT_LT(10.0 * fused, vo);
+    } else {
+      ASSERT_EQ(row.at("scenario"), "../outdoor.yaml");
+      // Rough textured ground: the tracks slip, vision sees plenty.
+      EXPECT_LT(2.0 * vo, wheels);
+      EXPECT_LT(fused, wheels);
+      EXPECT_LT(2.0 * wheels, noslip);
+    }
+  }
+}
+
+}  // namespace
