@@ -215,8 +215,18 @@ std::string MetricsJson(const RunMetrics& m) {
                          {"features_lost", t.features_lost},
                          {"features_recovered", t.features_recovered},
                          {"recovery_rate", finite_or_null(t.recovery_rate)},
+                         {"recovery_rate_pooled", finite_or_null(t.recovery_rate_pooled)},
                          {"milestones", t.milestones},
                          {"teach_images", t.teach_images}};
+    nlohmann::ordered_json places = nlohmann::ordered_json::array();
+    for (const TeachRepeatMetrics::Place& p : t.places) {
+      places.push_back({{"start_s", p.start_s},
+                        {"end_s", p.end_s},
+                        {"lost", p.lost},
+                        {"recovered", p.recovered},
+                        {"rate", finite_or_null(p.rate)}});
+    }
+    j["teach_repeat"]["places"] = places;
   }
   if (m.navigation) {
     const navigation::NavigationMetrics& n = *m.navigation;

@@ -160,6 +160,14 @@ void TeachRepeatSpec::Validate() const {
   Finite("start_offset.x_m", start_offset.x_m);
   Finite("start_offset.y_m", start_offset.y_m);
   Finite("start_offset.yaw_deg", start_offset.yaw_deg);
+  for (std::size_t k = 0; k < occluders.size(); ++k) {
+    option_check::Nested(Indexed("occluders", k), occluders[k]);
+    if (occluders[k].back_and_forth) {
+      throw OptionError(Indexed("occluders", k) + ".back_and_forth",
+                        "must be false: a crossing is one walk, scored as one place");
+    }
+  }
+  option_check::NonNegative("recovery_window_s", recovery_window_s);
 }
 
 void OutputsSpec::Validate() const {

@@ -449,6 +449,9 @@ void Visit(V& v, TeachRepeatSpec& o) {
   v("repeat_turn_rate_deg_s", o.repeat_turn_rate_deg_s);
   v("start_offset", o.start_offset);
   v("start_perturbation", o.start_perturbation);
+  v("occluders", o.occluders);
+  v("recovery_window_s", o.recovery_window_s);
+  v("stop_for_crossings", o.stop_for_crossings);
 }
 
 template <class V>

@@ -1,6 +1,7 @@
 // The teach & repeat run (see teach_repeat_run.h).
 #include "trackbed/scenes/teach_repeat_run.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -8,6 +9,8 @@
 #include <random>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
 
 #include "trackbed/estimation/trajectory_io.h"
 #include "trackbed/estimation/wheel_odometry.h"
@@ -75,6 +78,90 @@ std::vector<Eigen::Vector2d> TaughtPathBeside(const fs::path& map_dir) {
   return path;
 }
 
+// The repeater's cumulative loss and recovery counts at one frame.
+struct CumulativeRecovery {
+  double t_s;
+  std::int64_t lost, recovered;
+};
+
+// The counts at the last frame at or before `t_s` (zero before the first frame).
+CumulativeRecovery CountsAt(const std::vector<CumulativeRecovery>& counts, double t_s) {
+  CumulativeRecovery c{t_s, 0, 0};
+  for (const CumulativeRecovery& f : counts) {
+    if (f.t_s > t_s) break;
+    c = f;
+  }
+  return c;
+}
+
+// The window of a crossing place: from the walk's start until recovery_window_s after
+// it ends [s].
+std::pair<double, double> PlaceWindow(const sim::OccluderSpec& o, double recovery_window_s) {
+  double length = 0.0;
+  for (std::size_t k = 1; k < o.waypoints.size(); ++k) {
+    length += (o.waypoints[k] - o.waypoints[k - 1]).norm();
+  }
+  return {o.start_s, o.start_s + length / o.speed_mps + recovery_window_s};
+}
+
+// The repeat as in the paper's experiment 1: the robot stands still while a person
+// crosses (the inner repeater sees every image and keeps tracking, losing and
+// recovering features; only its command is held at zero), then drives on.
+class StopsForCrossings final : public navigation::Repeater {
+ public:
+  StopsForCrossings(std::unique_ptr<navigation::Repeater> inner,
+                    std::vector<std::pair<double, double>> windows)
+      : inner_(std::move(inner)), windows_(std::move(windows)) {}
+
+  navigation::RepeatCommand Update(const cv::Mat& gray, double t_s) override {
+    navigation::RepeatCommand c = inner_->Update(gray, t_s);
+    for (const auto& [start, end] : windows_) {
+      if (t_s >= start && t_s < end) c.twist = {};
+    }
+    return c;
+  }
+  const char* method() const override { return inner_->method(); }
+  const navigation::TeachMap& map() const override { return inner_->map(); }
+
+ private:
+  std::unique_ptr<navigation::Repeater> inner_;
+  std::vector<std::pair<double, double>> windows_;
+};
+
+// Choi & Ha's experiment 1, scored: every crossing of teach_repeat.occluders is a place,
+// from its start until recovery_window_s after its walk ends; per place, the features
+// lost and recovered in that window. recovery_rate is the mean of the per-place rates
+// (the paper's 86.18 %), recovery_rate_pooled the pooled one; without crossings both
+// are the pooled rate over the whole repeat.
+void ScorePlaces(const TeachRepeatSpec& tr, const std::vector<CumulativeRecovery>& counts,
+                 TeachRepeatMetrics* t) {
+  std::vector<navigation::RecoveryCounts> places;
+  for (const sim::OccluderSpec& o : tr.occluders) {
+    TeachRepeatMetrics::Place p;
+    std::tie(p.start_s, p.end_s) = PlaceWindow(o, tr.recovery_window_s);
+    // Counts of frames strictly before the start belong to earlier places.
+    const CumulativeRecovery before =
+        CountsAt(counts, std::nextafter(p.start_s, -std::numeric_limits<double>::infinity()));
+    const CumulativeRecovery after = CountsAt(counts, p.end_s);
+    p.lost = after.lost - before.lost;
+    p.recovered = after.recovered - before.recovered;
+    places.push_back({p.lost, std::min(p.recovered, p.lost)});
+    t->places.push_back(p);
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (places.empty()) {
+    t->recovery_rate = t->features_lost > 0 ? static_cast<double>(t->features_recovered) /
+                                                  static_cast<double>(t->features_lost)
+                                            : nan;
+    t->recovery_rate_pooled = t->recovery_rate;
+    return;
+  }
+  const navigation::RecoveryMetrics r = navigation::EvaluateRecovery(places);
+  for (std::size_t k = 0; k < t->places.size(); ++k) t->places[k].rate = r.per_place_rate[k];
+  t->recovery_rate = r.mean_rate;
+  t->recovery_rate_pooled = r.pooled_rate;
+}
+
 }  // namespace
 
 RunMetrics RunTeachRepeat(const Scenario& scenario, const fs::path& dir) {
@@ -107,6 +194,9 @@ RunMetrics RunTeachRepeat(const Scenario& scenario, const fs::path& dir) {
   repeat.robot.start.x_m += std::cos(yaw0) * dx - std::sin(yaw0) * dy;
   repeat.robot.start.y_m += std::sin(yaw0) * dx + std::cos(yaw0) * dy;
   repeat.robot.start.yaw_deg += dyaw;
+  // The crossing people are there in the repeat only.
+  repeat.scene.occluders.insert(repeat.scene.occluders.end(), tr.occluders.begin(),
+                                tr.occluders.end());
 
   navigation::FunnelLaneOptions o2;
   o2.forward_speed_mps = tr.repeat_speed_mps;
@@ -116,8 +206,15 @@ RunMetrics RunTeachRepeat(const Scenario& scenario, const fs::path& dir) {
   o3.max_yaw_rate_radps = Radians(tr.repeat_turn_rate_deg_s);
   const int milestones = static_cast<int>(map.milestones.size());
   const int teach_images = static_cast<int>(map.images.size());
-  const std::unique_ptr<navigation::Repeater> repeater =
+  std::unique_ptr<navigation::Repeater> repeater =
       navigation::MakeRepeater(tr.method, std::move(map), o2, o3);
+  if (tr.stop_for_crossings && !tr.occluders.empty()) {
+    std::vector<std::pair<double, double>> windows;
+    for (const sim::OccluderSpec& o : tr.occluders) {
+      windows.push_back(PlaceWindow(o, tr.recovery_window_s));
+    }
+    repeater = std::make_unique<StopsForCrossings>(std::move(repeater), std::move(windows));
+  }
 
   std::vector<Eigen::Vector2d> repeated;
   // teach_repeat.csv: what the repeater saw and did at every frame.
@@ -126,8 +223,10 @@ RunMetrics RunTeachRepeat(const Scenario& scenario, const fs::path& dir) {
          "votes_right,votes_straight,mean_error_px,lost,recovered,lateral_offset_m,"
          "heading_error_rad,fallback_2d\n";
   RunObservers extra;
+  std::vector<CumulativeRecovery> counts;  // per repeat frame
   extra.on_repeat_step = [&](const std::pair<double, navigation::RepeatCommand>& step) {
     const navigation::RepeatCommand& c = step.second;
+    counts.push_back({step.first, c.features_lost, c.features_recovered});
     char line[512];
     std::snprintf(line, sizeof(line),
                   "%.6f,%s,%.6g,%.6g,%d,%d,%d,%d,%d,%d,%d,%.6g,%d,%d,%.6g,%.6g,%d\n", step.first,
@@ -151,9 +250,23 @@ RunMetrics RunTeachRepeat(const Scenario& scenario, const fs::path& dir) {
   t.teach_images = teach_images;
   t.features_lost = m.repeat_features_lost;
   t.features_recovered = m.repeat_features_recovered;
-  t.recovery_rate = t.features_lost > 0 ? static_cast<double>(t.features_recovered) /
-                                              static_cast<double>(t.features_lost)
-                                        : std::numeric_limits<double>::quiet_NaN();
+  ScorePlaces(tr, counts, &t);
+  if (!t.places.empty()) {
+    std::vector<BarValue> bars;
+    for (std::size_t k = 0; k < t.places.size(); ++k) {
+      const TeachRepeatMetrics::Place& p = t.places[k];
+      char label[64], note[64];
+      std::snprintf(label, sizeof(label), "place %zu (%.0f s)", k + 1, p.start_s);
+      std::snprintf(note, sizeof(note), "%lld of %lld", static_cast<long long>(p.recovered),
+                    static_cast<long long>(p.lost));
+      bars.push_back({label, std::isfinite(p.rate) ? 100.0 * p.rate : 0.0, note});
+    }
+    char title[160];
+    std::snprintf(title, sizeof(title), "%s: features recovered per crossing (%s; mean %.1f %%)",
+                  scenario.scene.name.c_str(), tr.method.c_str(),
+                  std::isfinite(t.recovery_rate) ? 100.0 * t.recovery_rate : 0.0);
+    WriteBarPlot(dir / "teach_repeat_recovery.png", title, "recovered of lost [%]", bars, 100.0);
+  }
   if (!taught.empty() && !repeated.empty()) {
     const navigation::RepeatPathMetrics p =
         navigation::EvaluateRepeatPath(taught, repeated, t.status == "finished");

@@ -53,8 +53,21 @@ struct TeachRepeatMetrics {
   double lateral_rms_m = 0.0, lateral_max_m = 0.0;
   double taught_length_m = 0.0;
   std::int64_t features_lost = 0, features_recovered = 0;
-  /// recovered / lost over the repeat (NaN when nothing was lost).
+  /// With crossing places (teach_repeat.occluders): the mean of the per-place rates
+  /// recovered / lost over places with losses (Choi & Ha's 86.18 %); without, the
+  /// pooled rate over the whole repeat. NaN when nothing was lost.
   double recovery_rate = 0.0;
+  /// Σ recovered / Σ lost over the places (without places: over the repeat); NaN when
+  /// nothing was lost.
+  double recovery_rate_pooled = 0.0;
+  /// One crossing place: its time window in the repeat [s] and what it lost and
+  /// recovered (rate NaN when it lost nothing).
+  struct Place {
+    double start_s = 0.0, end_s = 0.0;
+    std::int64_t lost = 0, recovered = 0;
+    double rate = 0.0;
+  };
+  std::vector<Place> places;
   int milestones = 0;
   int teach_images = 0;
 };

@@ -200,6 +200,16 @@ struct TeachRepeatSpec {
   StartPose start_offset;
   /// … and by a seeded perturbation of up to 5 cm and 2° (false: none).
   bool start_perturbation = true;
+  /// People crossing the view in the repeat only (the teach pass does not see them):
+  /// each is one place of Choi & Ha's experiment 1, where features lost and recovered
+  /// are counted from its start_s until `recovery_window_s` after its walk ends.
+  /// Same keys as scene.occluders; back_and_forth must be false (a walk that ends).
+  std::vector<sim::OccluderSpec> occluders;
+  /// How long after a crossing's walk ends its place still counts recoveries [s], >= 0.
+  double recovery_window_s = 3.0;
+  /// The robot stands still through each crossing's window, as in the paper's
+  /// experiment 1 (its vision runs on); false: it drives on while people cross.
+  bool stop_for_crossings = true;
 
   void Validate() const;
 };
