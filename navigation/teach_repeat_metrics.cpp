@@ -81,12 +81,23 @@ RepeatPathMetrics EvaluateRepeatPath(const std::vector<Eigen::Vector2d>& taught,
   m.completed = completed;
   m.taught_length_m = PolylineLength(taught);
   double sum_sq = 0.0;
-  for (const PathProjection& p : ProjectOntoPath(taught, repeated, options)) {
+  const std::vector<PathProjection> projections = ProjectOntoPath(taught, repeated, options);
+  for (const PathProjection& p : projections) {
     sum_sq += p.lateral_m * p.lateral_m;
     m.lateral_max_m = std::max(m.lateral_max_m, std::abs(p.lateral_m));
     m.covered_m = std::max(m.covered_m, p.arc_length_m);
   }
   m.lateral_rms_m = std::sqrt(sum_sq / static_cast<double>(repeated.size()));
+  m.lateral_start_m = projections.front().lateral_m;
+  double end_sq = 0.0;
+  std::size_t end_n = 0;
+  for (const PathProjection& p : projections) {
+    if (p.arc_length_m >= m.covered_m - RepeatPathMetrics::kEndWindowM) {
+      end_sq += p.lateral_m * p.lateral_m;
+      ++end_n;
+    }
+  }
+  m.lateral_end_rms_m = std::sqrt(end_sq / static_cast<double>(end_n));
   m.end_point_error_m = (repeated.back() - taught.back()).norm();
   if (completed) {
     m.autonomy = 1.0;

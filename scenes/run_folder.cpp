@@ -211,6 +211,8 @@ std::string MetricsJson(const RunMetrics& m) {
                          {"end_point_error_m", t.end_point_error_m},
                          {"lateral_rms_m", t.lateral_rms_m},
                          {"lateral_max_m", t.lateral_max_m},
+                         {"lateral_start_m", t.lateral_start_m},
+                         {"lateral_end_rms_m", t.lateral_end_rms_m},
                          {"taught_length_m", t.taught_length_m},
                          {"features_lost", t.features_lost},
                          {"features_recovered", t.features_recovered},

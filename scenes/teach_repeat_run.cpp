@@ -275,6 +275,8 @@ RunMetrics RunTeachRepeat(const Scenario& scenario, const fs::path& dir) {
     t.end_point_error_m = p.end_point_error_m;
     t.lateral_rms_m = p.lateral_rms_m;
     t.lateral_max_m = p.lateral_max_m;
+    t.lateral_start_m = p.lateral_start_m;
+    t.lateral_end_rms_m = p.lateral_end_rms_m;
     t.taught_length_m = p.taught_length_m;
     WriteTrajectoryPlot(
         dir / "teach_repeat.png",

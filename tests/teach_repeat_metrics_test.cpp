@@ -49,6 +49,9 @@ TEST(RepeatPathMetricsTest, RmsMaxAndEndPointOfAConvergingRepeat) {
   EXPECT_NEAR(m.lateral_rms_m, std::sqrt((0.04 + 0.01 + 0.0 + 0.01) / 4.0), 1e-12);
   EXPECT_NEAR(m.lateral_max_m, 0.2, 1e-12);
   EXPECT_NEAR(m.end_point_error_m, std::hypot(0.2, 0.1), 1e-12);
+  // Started 0.2 m left; over the last metre reached (x >= 1.8): 0.0 and -0.1.
+  EXPECT_NEAR(m.lateral_start_m, 0.2, 1e-12);
+  EXPECT_NEAR(m.lateral_end_rms_m, std::sqrt((0.0 + 0.01) / 2.0), 1e-12);
 }
 
 TEST(RepeatPathMetricsTest, AutonomyIsTheFractionCoveredBeforeAFailure) {

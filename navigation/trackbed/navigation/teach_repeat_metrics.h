@@ -54,7 +54,14 @@ struct RepeatPathMetrics {
   double lateral_rms_m = 0.0;      ///< RMS of the lateral errors
   double lateral_max_m = 0.0;      ///< largest |lateral error|
   double end_point_error_m = 0.0;  ///< |last repeated position − last taught position|
-  double covered_m = 0.0;          ///< largest arc length reached along the taught path
+  /// Signed lateral error of the first repeated position [m]: the offset the repeat
+  /// starts with.
+  double lateral_start_m = 0.0;
+  /// RMS lateral error over the last `kEndWindowM` of arc length reached [m]: where the
+  /// repeat has got to; below |lateral_start_m| when an initial offset shrank.
+  double lateral_end_rms_m = 0.0;
+  static constexpr double kEndWindowM = 1.0;
+  double covered_m = 0.0;  ///< largest arc length reached along the taught path
   /// completed ? 1 : covered_m / taught_length_m, in [0, 1].
   double autonomy = 0.0;
   bool completed = false;
