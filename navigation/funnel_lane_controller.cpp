@@ -376,9 +376,18 @@ FunnelLaneRepeater::~FunnelLaneRepeater() = default;
 
 void FunnelLaneRepeater::StartMilestone(int index, const std::vector<cv::Point2f>& guesses) {
   milestone_ = index;
-  tracks_->Start(map_.milestones[static_cast<std::size_t>(index)], curr_pyramid_, guesses);
+  const Milestone& m = map_.milestones[static_cast<std::size_t>(index)];
+  tracks_->Start(m, curr_pyramid_, guesses);
   switch_->Reset();
   frames_in_milestone_ = 0;
+  // Whether the images can tell where the robot is in this milestone at all: the fit
+  // of its own destination positions.
+  std::vector<cv::Point2f> last;
+  for (const MilestoneFeature& f : m.features) last.push_back(f.last_px);
+  taught_flow_measurable_ =
+      EstimateMilestoneProgress(map_.camera, m, last, std::vector<bool>(last.size(), true),
+                                options_.progress)
+          .valid;
 }
 
 RepeatCommand FunnelLaneRepeater::Update(const cv::Mat& gray, double t_s) {
@@ -413,10 +422,16 @@ RepeatCommand FunnelLaneRepeater::Update(const cv::Mat& gray, double t_s) {
   const bool passed_minimum = switch_->Update(frame);
   MilestoneProgress progress =
       detail::ProgressOf(map_.camera, *m, tracks_->tracks(), options_.progress);
-  const bool passed =
-      (options_.switch_by_progress && progress.valid ? progress.progress >= options_.switch_progress
-                                                     : passed_minimum) &&
-      frames_in_milestone_ > options_.min_frames_per_milestone;
+  bool passed_progress = passed_minimum;
+  if (options_.switch_by_progress) {
+    // A milestone without measurable taught flow (a few images cut short by too few
+    // features, or a turn in place) is, as far as its images tell, reached at its key
+    // image: its error has no minimum to wait for.
+    passed_progress =
+        !taught_flow_measurable_ ||
+        (progress.valid ? progress.progress >= options_.switch_progress : passed_minimum);
+  }
+  const bool passed = passed_progress && frames_in_milestone_ > options_.min_frames_per_milestone;
   cmd.mean_error_px = switch_->error_px();
   if (passed) {
     if (milestone_ + 1 >= static_cast<int>(map_.milestones.size())) {

@@ -61,8 +61,11 @@
 //   cylindrical (azimuth and elevation, in pixels at the centre), so that a yaw shifts
 //   x alike everywhere and leaves y alone; y carries the approach alone, x the approach
 //   and the turns of the teach. The milestone is passed when p reaches
-//   `switch_progress`; when the flow is too small to measure p (a milestone taught
-//   turning in place) the error minimum decides.
+//   `switch_progress`; when the flow of the tracked features is too small to measure p
+//   the error minimum decides, and a milestone whose own taught flow is too small (a
+//   few images cut short by too few features, a turn in place) is passed after
+//   `min_frames_per_milestone` frames: its images cannot tell where in it the robot is,
+//   and its error has no minimum to wait for.
 // * Heading (ours, default). The funnel-lane rules only see a feature leave its lane on
 //   its own side: a robot turned away from the inside of a curve whose features are all
 //   on the outside sees every feature between the centre and its destination, votes
@@ -236,6 +239,7 @@ class FunnelLaneRepeater : public Repeater {
   double last_t_s_ = 0.0;
   int milestone_ = 0;
   int frames_in_milestone_ = 0;
+  bool taught_flow_measurable_ = true;
   int too_few_frames_ = 0;
   RepeatStatus status_ = RepeatStatus::kDriving;
   std::int64_t lost_total_ = 0;
