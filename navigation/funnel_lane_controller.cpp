@@ -63,6 +63,113 @@ bool ErrorMinimumDetector::Update(double error) {
   return passed_;
 }
 
+void MilestoneProgressOptions::Validate() const {
+  option_check::Positive("min_flow_spread_px", min_flow_spread_px);
+  option_check::Positive("outlier_px", outlier_px);
+  AtLeast("min_features", min_features, 3);
+}
+
+namespace {
+
+/// One feature's taught flow F and current displacement D, x in bearing pixels.
+struct FlowSample {
+  double fx, fy, dx, dy;
+};
+
+/// Least squares of D = p·F + (c, b) over `samples` with weights `use` (file comment):
+/// the offsets eliminated, p = Σ(F − F̄)·(D − D̄) / Σ|F − F̄|².
+bool FitProgress(const std::vector<FlowSample>& samples, const std::vector<bool>& use,
+                 double min_spread_px, MilestoneProgress* out) {
+  double n = 0.0, mfx = 0.0, mfy = 0.0, mdx = 0.0, mdy = 0.0;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    if (!use[i]) continue;
+    const FlowSample& s = samples[i];
+    n += 1.0;
+    mfx += s.fx;
+    mfy += s.fy;
+    mdx += s.dx;
+    mdy += s.dy;
+  }
+  if (n < 3.0) return false;
+  mfx /= n;
+  mfy /= n;
+  mdx /= n;
+  mdy /= n;
+  double sff = 0.0, sfd = 0.0;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    if (!use[i]) continue;
+    const FlowSample& s = samples[i];
+    sff += (s.fx - mfx) * (s.fx - mfx) + (s.fy - mfy) * (s.fy - mfy);
+    sfd += (s.fx - mfx) * (s.dx - mdx) + (s.fy - mfy) * (s.dy - mdy);
+  }
+  if (!(std::sqrt(sff / n) >= min_spread_px)) return false;
+  out->progress = sfd / sff;
+  out->heading_px = mdx - out->progress * mfx;
+  out->pitch_px = mdy - out->progress * mfy;
+  out->features = static_cast<int>(n);
+  return true;
+}
+
+double Residual(const FlowSample& s, const MilestoneProgress& p) {
+  return std::hypot(s.dx - p.progress * s.fx - p.heading_px, s.dy - p.progress * s.fy - p.pitch_px);
+}
+
+}  // namespace
+
+MilestoneProgress EstimateMilestoneProgress(const CameraIntrinsics& camera, const Milestone& m,
+                                            const std::vector<cv::Point2f>& current_px,
+                                            const std::vector<bool>& tracked,
+                                            const MilestoneProgressOptions& options) {
+  if (current_px.size() != m.features.size() || tracked.size() != m.features.size()) {
+    throw std::invalid_argument(
+        "EstimateMilestoneProgress: one current position and flag per milestone feature");
+  }
+  // Cylindrical coordinates in pixels at the centre: azimuth fx·atan(x/fx), which a yaw
+  // shifts alike everywhere, and fy·tan(elevation), which a yaw leaves alone (the image
+  // y of a point off the centre changes with a yaw, by ~y·x·yaw/fx: with features on one
+  // side that would read as progress).
+  const auto cylinder = [&camera](const cv::Point2f& q) {
+    const double x = (static_cast<double>(q.x) - camera.cx) / camera.fx;
+    const double y = static_cast<double>(q.y) - camera.cy;
+    return cv::Point2d(camera.fx * std::atan(x), y / std::sqrt(1.0 + x * x));
+  };
+  std::vector<FlowSample> samples;
+  samples.reserve(m.features.size());
+  for (std::size_t i = 0; i < m.features.size(); ++i) {
+    if (!tracked[i]) continue;
+    const MilestoneFeature& f = m.features[i];
+    const cv::Point2d a = cylinder(f.first_px), b = cylinder(f.last_px),
+                      c = cylinder(current_px[i]);
+    samples.push_back({b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y});
+  }
+  MilestoneProgress result;
+  if (static_cast<int>(samples.size()) < options.min_features) return result;
+  std::vector<bool> use(samples.size(), true);
+  MilestoneProgress first;
+  if (!FitProgress(samples, use, options.min_flow_spread_px, &first)) return result;
+  // Second fit without the features far from the first (a KLT track slid onto an
+  // occluder, a feature on a moving object).
+  std::vector<double> residuals;
+  for (const FlowSample& s : samples) residuals.push_back(Residual(s, first));
+  std::vector<double> sorted = residuals;
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2),
+                   sorted.end());
+  const double bound = std::max(options.outlier_px, 3.0 * sorted[sorted.size() / 2]);
+  for (std::size_t i = 0; i < samples.size(); ++i) use[i] = residuals[i] <= bound;
+  MilestoneProgress second;
+  if (!FitProgress(samples, use, options.min_flow_spread_px, &second) ||
+      second.features < options.min_features) {
+    return result;
+  }
+  double sum_sq = 0.0;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    if (use[i]) sum_sq += Residual(samples[i], second) * Residual(samples[i], second);
+  }
+  second.rms_px = std::sqrt(sum_sq / second.features);
+  second.valid = true;
+  return second;
+}
+
 perception::FeatureTrackerOptions DefaultRepeatTrackerOptions() {
   perception::FeatureTrackerOptions o;
   o.window_px = 21;
@@ -82,6 +189,12 @@ void FunnelLaneOptions::Validate() const {
   AtLeast("min_features", min_features, 1);
   AtLeast("lost_patience_frames", lost_patience_frames, 1);
   AtLeast("start_milestone", start_milestone, 0);
+  if (!(switch_progress > 0.0 && switch_progress <= 2.0)) {
+    throw OptionError("switch_progress",
+                      "must be in (0, 2] (got " + option_check::Describe(switch_progress) + ")");
+  }
+  option_check::NonNegative("heading_deadband_px", heading_deadband_px);
+  option_check::Nested("progress", progress);
   option_check::Nested("tracker", tracker);
 }
 
@@ -185,6 +298,20 @@ double MilestoneSwitch::error_px() const {
   return mode_ == SwitchError::kMeanAbsolute ? accumulated_ : std::abs(accumulated_);
 }
 
+MilestoneProgress ProgressOf(const CameraIntrinsics& camera, const Milestone& m,
+                             const std::vector<FeatureTrack>& tracks,
+                             const MilestoneProgressOptions& options) {
+  std::vector<cv::Point2f> positions;
+  std::vector<bool> tracked;
+  positions.reserve(tracks.size());
+  tracked.reserve(tracks.size());
+  for (const FeatureTrack& t : tracks) {
+    positions.push_back(t.position);
+    tracked.push_back(t.tracked);
+  }
+  return EstimateMilestoneProgress(camera, m, positions, tracked, options);
+}
+
 std::vector<cv::Point2f> ShiftedGuesses(const Milestone& previous,
                                         const std::vector<FeatureTrack>& tracks,
                                         const Milestone& next) {
@@ -249,9 +376,18 @@ FunnelLaneRepeater::~FunnelLaneRepeater() = default;
 
 void FunnelLaneRepeater::StartMilestone(int index, const std::vector<cv::Point2f>& guesses) {
   milestone_ = index;
-  tracks_->Start(map_.milestones[static_cast<std::size_t>(index)], curr_pyramid_, guesses);
+  const Milestone& m = map_.milestones[static_cast<std::size_t>(index)];
+  tracks_->Start(m, curr_pyramid_, guesses);
   switch_->Reset();
   frames_in_milestone_ = 0;
+  // Whether the images can tell where the robot is in this milestone at all: the fit
+  // of its own destination positions.
+  std::vector<cv::Point2f> last;
+  for (const MilestoneFeature& f : m.features) last.push_back(f.last_px);
+  taught_flow_measurable_ =
+      EstimateMilestoneProgress(map_.camera, m, last, std::vector<bool>(last.size(), true),
+                                options_.progress)
+          .valid;
 }
 
 RepeatCommand FunnelLaneRepeater::Update(const cv::Mat& gray, double t_s) {
@@ -281,8 +417,21 @@ RepeatCommand FunnelLaneRepeater::Update(const cv::Mat& gray, double t_s) {
   const Milestone* m = &map_.milestones[static_cast<std::size_t>(milestone_)];
   detail::FunnelFrame frame =
       detail::EvaluateFunnel(map_.camera, *m, tracks_->tracks(), options_.remove_rotation);
-  const bool passed =
-      switch_->Update(frame) && frames_in_milestone_ > options_.min_frames_per_milestone;
+  // The error minimum is followed every frame, so that it is ready when the progress
+  // cannot be measured.
+  const bool passed_minimum = switch_->Update(frame);
+  MilestoneProgress progress =
+      detail::ProgressOf(map_.camera, *m, tracks_->tracks(), options_.progress);
+  bool passed_progress = passed_minimum;
+  if (options_.switch_by_progress) {
+    // A milestone without measurable taught flow (a few images cut short by too few
+    // features, or a turn in place) is, as far as its images tell, reached at its key
+    // image: its error has no minimum to wait for.
+    passed_progress =
+        !taught_flow_measurable_ ||
+        (progress.valid ? progress.progress >= options_.switch_progress : passed_minimum);
+  }
+  const bool passed = passed_progress && frames_in_milestone_ > options_.min_frames_per_milestone;
   cmd.mean_error_px = switch_->error_px();
   if (passed) {
     if (milestone_ + 1 >= static_cast<int>(map_.milestones.size())) {
@@ -300,6 +449,11 @@ RepeatCommand FunnelLaneRepeater::Update(const cv::Mat& gray, double t_s) {
     frame = detail::EvaluateFunnel(map_.camera, *m, tracks_->tracks(), options_.remove_rotation);
     switch_->Update(frame);
     cmd.mean_error_px = switch_->error_px();
+    progress = detail::ProgressOf(map_.camera, *m, tracks_->tracks(), options_.progress);
+  }
+  if (progress.valid) {
+    cmd.progress = progress.progress;
+    cmd.heading_error_rad = progress.heading_px / map_.camera.fx;  // > 0: turned left
   }
 
   cmd.milestone = milestone_;
@@ -321,6 +475,10 @@ RepeatCommand FunnelLaneRepeater::Update(const cv::Mat& gray, double t_s) {
   } else {
     too_few_frames_ = 0;
     cmd.decision = DecideTurn(frame.tally, options_.min_net_vote);
+    if (cmd.decision == TurnVote::kStraight && options_.heading_correction && progress.valid &&
+        std::abs(progress.heading_px) > options_.heading_deadband_px) {
+      cmd.decision = progress.heading_px > 0.0 ? TurnVote::kRight : TurnVote::kLeft;
+    }
     cmd.twist.v_mps = options_.forward_speed_mps;
     cmd.twist.yaw_rate_radps =
         static_cast<double>(static_cast<int>(cmd.decision)) * options_.turn_rate_radps;

@@ -81,9 +81,10 @@ bool RefinePnP(const CameraIntrinsics& camera, const Milestone& m,
 }  // namespace
 
 double PathFollowingYawRate(double lateral_m, double heading_rad, double v_mps,
-                            double convergence_distance_m, double max_yaw_rate_radps) {
+                            double convergence_distance_m, double max_yaw_rate_radps,
+                            double curvature_radpm) {
   const double L = convergence_distance_m;
-  const double omega = -v_mps * (lateral_m / (L * L) + 2.0 * heading_rad / L);
+  const double omega = v_mps * (curvature_radpm - lateral_m / (L * L) - 2.0 * heading_rad / L);
   return std::clamp(omega, -max_yaw_rate_radps, max_yaw_rate_radps);
 }
 
@@ -412,9 +413,13 @@ RepeatCommand MilestoneLocalizer3d::Update(const cv::Mat& gray, double t_s) {
     too_few_frames_ = 0;
     cmd.twist.v_mps = options_.forward_speed_mps;
     if (pose_ok) {
-      cmd.twist.yaw_rate_radps =
-          PathFollowingYawRate(offset.lateral_m, offset.heading_rad, options_.forward_speed_mps,
-                               options_.convergence_distance_m, options_.max_yaw_rate_radps);
+      const double curvature =
+          options_.curvature_feed_forward && offset.segment_length_m >= 1e-3
+              ? CameraHeading(m->T_first_last.linear()) / offset.segment_length_m
+              : 0.0;
+      cmd.twist.yaw_rate_radps = PathFollowingYawRate(
+          offset.lateral_m, offset.heading_rad, options_.forward_speed_mps,
+          options_.convergence_distance_m, options_.max_yaw_rate_radps, curvature);
     } else {
       cmd.fallback_2d = true;
       cmd.decision = DecideTurn(frame.tally, options_.fallback_min_net_vote);

@@ -192,6 +192,12 @@ struct FunnelFrame {
 FunnelFrame EvaluateFunnel(const CameraIntrinsics& camera, const Milestone& m,
                            const std::vector<FeatureTrack>& tracks, bool bearing);
 
+/// EstimateMilestoneProgress over the tracked features of `m` (defined in
+/// funnel_lane_controller.cpp).
+MilestoneProgress ProgressOf(const CameraIntrinsics& camera, const Milestone& m,
+                             const std::vector<FeatureTrack>& tracks,
+                             const MilestoneProgressOptions& options);
+
 /// The 2D milestone switch (funnel_lane_controller.h): follows the switch error through
 /// frame-to-frame changes over the features tracked in both frames — the common shift
 /// (rotation) included, so that losing or regaining features on one side of the image

@@ -221,7 +221,7 @@ RunMetrics RunTeachRepeat(const Scenario& scenario, const fs::path& dir) {
   std::ofstream csv(dir / "teach_repeat.csv", std::ios::out | std::ios::trunc);
   csv << "t,status,v_mps,yaw_rate_radps,milestone,switched,features,tracked,votes_left,"
          "votes_right,votes_straight,mean_error_px,lost,recovered,lateral_offset_m,"
-         "heading_error_rad,fallback_2d\n";
+         "heading_error_rad,fallback_2d,progress\n";
   RunObservers extra;
   std::vector<CumulativeRecovery> counts;  // per repeat frame
   extra.on_repeat_step = [&](const std::pair<double, navigation::RepeatCommand>& step) {
@@ -229,11 +229,11 @@ RunMetrics RunTeachRepeat(const Scenario& scenario, const fs::path& dir) {
     counts.push_back({step.first, c.features_lost, c.features_recovered});
     char line[512];
     std::snprintf(line, sizeof(line),
-                  "%.6f,%s,%.6g,%.6g,%d,%d,%d,%d,%d,%d,%d,%.6g,%d,%d,%.6g,%.6g,%d\n", step.first,
-                  navigation::ToString(c.status), c.twist.v_mps, c.twist.yaw_rate_radps,
+                  "%.6f,%s,%.6g,%.6g,%d,%d,%d,%d,%d,%d,%d,%.6g,%d,%d,%.6g,%.6g,%d,%.6g\n",
+                  step.first, navigation::ToString(c.status), c.twist.v_mps, c.twist.yaw_rate_radps,
                   c.milestone, c.switched ? 1 : 0, c.features, c.tracked, c.votes_left,
                   c.votes_right, c.votes_straight, c.mean_error_px, c.lost, c.recovered,
-                  c.lateral_offset_m, c.heading_error_rad, c.fallback_2d ? 1 : 0);
+                  c.lateral_offset_m, c.heading_error_rad, c.fallback_2d ? 1 : 0, c.progress);
     csv << line;
   };
   extra.on_sample = [&](const RunSample& s) {

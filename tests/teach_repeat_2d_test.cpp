@@ -157,12 +157,14 @@ LoopResult RunLoop(const CorridorScene& scene, Repeater* repeater, Pose2 start, 
 
 TEST(FunnelLaneRepeaterTest, RepeatFromTheTaughtStartKeepsToThePathAndSwitchesOnTime) {
   // On the path the mean x-error is smallest at the destination image: the switch comes
-  // within a few frames after it (the hysteresis), in both readings of the error.
+  // within a few frames after it (the hysteresis), in both readings of the error; the
+  // measured progress (the default) reaches 1 there.
   const CorridorScene scene;
   const TeachMap& map = TeachStraight(scene, 81);  // 1.6 m
-  for (SwitchError mode : {SwitchError::kMeanOutward, SwitchError::kMeanAbsolute}) {
+  for (int variant = 0; variant < 3; ++variant) {
     FunnelLaneOptions options = FastRepeat();
-    options.switch_error = mode;
+    options.switch_by_progress = variant == 0;
+    options.switch_error = variant == 2 ? SwitchError::kMeanAbsolute : SwitchError::kMeanOutward;
     FunnelLaneRepeater repeater(map, options);
     const LoopResult r = RunLoop(scene, &repeater, {}, 200);
     ASSERT_EQ(r.last.status, RepeatStatus::kFinished);

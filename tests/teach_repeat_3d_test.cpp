@@ -232,6 +232,8 @@ TEST(PathFollowingTest, SteersBackTowardThePathAndSaturates) {
   EXPECT_NEAR(PathFollowingYawRate(0.1, 0.02, 0.2, 0.5, 1.0), -0.2 * (0.1 / 0.25 + 0.04 / 0.5),
               1e-12);
   EXPECT_DOUBLE_EQ(PathFollowingYawRate(5.0, 0.0, 0.2, 0.5, 0.07), -0.07);
+  // On the taught path of a curve κ the law turns at the path's own rate v·κ.
+  EXPECT_NEAR(PathFollowingYawRate(0.0, 0.0, 0.05, 1.0, 1.0, 1.0 / 1.5), 0.05 / 1.5, 1e-12);
   // Closed loop on the kinematics: a critically damped approach over ~L (4 m = 8 L
   // leave (0.2 + 0.2·8)·e⁻⁸ = 0.6 mm), no overshoot to speak of.
   Pose2 p{0.0, 0.2, 0.0};

@@ -47,6 +47,32 @@
 //   neither. The milestone is passed when E has risen more than `switch_hysteresis_px`
 //   above its minimum since then (ErrorMinimumDetector), and no earlier than
 //   `min_frames_per_milestone` frames after it began.
+// * Progress (ours, default). Both readings of the error fail in curves: there the
+//   features often lie on one side of the image (the inside of the curve passes out of
+//   view), where the outward mean minus the common part is zero whatever the robot's
+//   position, and a heading error moves the flat minimum of either by tens of
+//   centimetres. So the robot's place within the milestone is measured instead, as a
+//   fraction of the taught image flow (EstimateMilestoneProgress): each feature moved
+//   by F_i = its last minus its first position while the teach camera went from the key
+//   image to the destination; now it has moved by D_i from its first position. Fitted
+//   over all features, D_i = p·F_i + (c, b): the progress p (0 at the key image, 1 at
+//   the destination) and a common offset, c in x (a yaw from the taught heading at that
+//   place, and the lateral offset's mean parallax), b in y (pitch). Positions are
+//   cylindrical (azimuth and elevation, in pixels at the centre), so that a yaw shifts
+//   x alike everywhere and leaves y alone; y carries the approach alone, x the approach
+//   and the turns of the teach. The milestone is passed when p reaches
+//   `switch_progress`; when the flow of the tracked features is too small to measure p
+//   the error minimum decides, and a milestone whose own taught flow is too small (a
+//   few images cut short by too few features, a turn in place) is passed after
+//   `min_frames_per_milestone` frames: its images cannot tell where in it the robot is,
+//   and its error has no minimum to wait for.
+// * Heading (ours, default). The funnel-lane rules only see a feature leave its lane on
+//   its own side: a robot turned away from the inside of a curve whose features are all
+//   on the outside sees every feature between the centre and its destination, votes
+//   "straight", and falls behind the taught heading until the features are lost. When
+//   the vote says straight but the common offset c of the progress fit exceeds
+//   `heading_deadband_px`, the robot turns toward the taught heading at that place
+//   (c > 0: features right of where the teach saw them, the robot turned left: right).
 // * Starting a milestone. The first milestone's features are tracked from its key image
 //   starting at their key-image positions moved by the global image shift (phase
 //   correlation, EstimateImageShift); a later milestone's, moved by the median
@@ -104,6 +130,38 @@ class ErrorMinimumDetector {
   bool passed_ = false;
 };
 
+/// Options of EstimateMilestoneProgress.
+struct MilestoneProgressOptions {
+  /// Smallest spread (RMS about its mean) of the taught flow F_i over the features for
+  /// the progress to be measurable [px], > 0.
+  double min_flow_spread_px = 2.0;
+  /// Residual beyond which a feature is left out of the second fit [px], > 0 (the
+  /// bound is the larger of this and 3 median residuals).
+  double outlier_px = 3.0;
+  /// Fewest features for a fit, >= 3.
+  int min_features = 8;
+
+  /// Throws OptionError naming the first invalid field.
+  void Validate() const;
+};
+
+/// Where the current image lies within a milestone (see the file comment, "Progress").
+struct MilestoneProgress {
+  bool valid = false;       ///< enough features and flow for a fit
+  double progress = 0.0;    ///< p: 0 at the key image, 1 at the destination (not clamped)
+  double heading_px = 0.0;  ///< c: common x offset [bearing px]; > 0: features lie right
+  double pitch_px = 0.0;    ///< b: common y offset [px]
+  int features = 0;         ///< used in the final fit
+  double rms_px = 0.0;      ///< residual RMS of the final fit [px]
+};
+
+/// Fits D_i = p·F_i + (c, b) (file comment) over the features of `m` whose position in
+/// the current image `current_px` is valid (`tracked`; both one per feature).
+MilestoneProgress EstimateMilestoneProgress(const CameraIntrinsics& camera, const Milestone& m,
+                                            const std::vector<cv::Point2f>& current_px,
+                                            const std::vector<bool>& tracked,
+                                            const MilestoneProgressOptions& options = {});
+
 /// What the 2D milestone switch follows (see the file comment).
 enum class SwitchError {
   kMeanAbsolute,  ///< mean_i |e_i| (Choi & Ha's words, literally)
@@ -125,8 +183,20 @@ struct FunnelLaneOptions {
   double min_net_vote = 0.1;
   /// Rise of the accumulated x-error above its minimum that switches milestones [px], >= 0.
   double switch_hysteresis_px = 1.0;
-  /// The error the milestone switch follows (file comment).
+  /// The error the milestone switch follows when the progress is not used or not
+  /// measurable (file comment).
   SwitchError switch_error = SwitchError::kMeanOutward;
+  /// Switch by the measured progress when it is measurable (file comment, "Progress").
+  bool switch_by_progress = true;
+  /// Progress that passes a milestone (1 = its destination image), in (0, 2].
+  double switch_progress = 1.0;
+  /// Turn toward the taught heading when the vote says straight (file comment).
+  bool heading_correction = true;
+  /// |c| beyond which the heading correction turns [bearing px], >= 0 (fx = 381 px:
+  /// 5 px is 0.75°).
+  double heading_deadband_px = 5.0;
+  /// The progress fit.
+  MilestoneProgressOptions progress;
   /// Remove the common rotation from the x-errors before switching (file comment).
   bool remove_rotation = true;
   /// Frames a milestone stays active at least before it may be switched, >= 1.
@@ -169,6 +239,7 @@ class FunnelLaneRepeater : public Repeater {
   double last_t_s_ = 0.0;
   int milestone_ = 0;
   int frames_in_milestone_ = 0;
+  bool taught_flow_measurable_ = true;
   int too_few_frames_ = 0;
   RepeatStatus status_ = RepeatStatus::kDriving;
   std::int64_t lost_total_ = 0;

@@ -35,7 +35,11 @@
 //      with forward speed v constant. With ẏ = v sin θ ≈ v θ and θ̇ = ω this is, per
 //      metre travelled, y'' + (2/L) y' + (1/L²) y = 0: a critically damped approach to
 //      the taught path over the distance scale L (`convergence_distance_m`),
-//      independent of the speed.
+//      independent of the speed. On a taught curve the reference heading turns by
+//      κ = Δψ / length per metre (the milestone's T_first_last), so the law adds the
+//      feed-forward v·κ: without it the path's yaw rate must come from a standing error,
+//      y/L² + 2θ/L = κ (on the lab's 1.5 m radius and L = 1 m: 0.67 m, or θ = 19°), and
+//      the repeat cuts the curve wide.
 //   6. Switching: when the along-track position passes switch_progress (1 = the last
 //      teach camera of the milestone), the next milestone becomes active: its features
 //      are found by KLT from its key image, starting at the reprojection of its 3-D
@@ -62,9 +66,11 @@ namespace trackbed::navigation {
 
 /// The yaw rate of the 3D path-following law (see the file comment) for lateral offset
 /// `lateral_m` and heading error `heading_rad` at forward speed `v_mps`, clamped to
-/// ±max_yaw_rate_radps (> 0).
+/// ±max_yaw_rate_radps (> 0); `curvature_radpm` is the taught path's heading change per
+/// metre [rad/m] (> 0 turning left), fed forward.
 double PathFollowingYawRate(double lateral_m, double heading_rad, double v_mps,
-                            double convergence_distance_m, double max_yaw_rate_radps);
+                            double convergence_distance_m, double max_yaw_rate_radps,
+                            double curvature_radpm = 0.0);
 
 /// Options of MilestoneLocalizer3d.
 struct Localizer3dOptions {
@@ -74,6 +80,9 @@ struct Localizer3dOptions {
   double max_yaw_rate_radps = 4.0 * M_PI / 180.0;
   /// Distance scale L of the steering law [m], > 0 (see the file comment).
   double convergence_distance_m = 1.0;
+  /// Feed the taught curvature of the milestone forward into the steering law (file
+  /// comment, step 5).
+  bool curvature_feed_forward = true;
   /// Along-track position that switches to the next milestone, in (0, 2] (1 = the
   /// milestone's last teach camera).
   double switch_progress = 1.0;

@@ -77,9 +77,12 @@ struct RepeatCommand {
   double scale_ratio = 0.0;
   double reprojection_rms_px = 0.0;  ///< of the tracked features after pose refinement
   double lateral_offset_m = 0.0;     ///< PathOffset::lateral_m (> 0: left of the route)
-  double heading_error_rad = 0.0;    ///< PathOffset::heading_rad (> 0: turned left)
-  double progress = 0.0;             ///< PathOffset::progress in the active milestone
-  bool fallback_2d = false;          ///< steered by the funnel-lane vote (no 3-D pose)
+  /// PathOffset::heading_rad (> 0: turned left); 2D: the progress fit's common offset
+  /// c / fx (EstimateMilestoneProgress), the heading error plus mean parallax [rad].
+  double heading_error_rad = 0.0;
+  /// PathOffset::progress in the active milestone; 2D: the progress fit's p.
+  double progress = 0.0;
+  bool fallback_2d = false;  ///< steered by the funnel-lane vote (no 3-D pose)
 };
 
 /// A repeat of a taught route. Stateful; not copyable.
