@@ -96,6 +96,7 @@ void Localizer3dOptions::Validate() const {
     throw OptionError("switch_progress",
                       "must be in (0, 2] (got " + option_check::Describe(switch_progress) + ")");
   }
+  AtLeast("max_switches_per_frame", max_switches_per_frame, 1);
   AtLeast("min_features", min_features, 1);
   AtLeast("lost_patience_frames", lost_patience_frames, 1);
   AtLeast("start_milestone", start_milestone, 0);
@@ -338,7 +339,7 @@ RepeatCommand MilestoneLocalizer3d::Update(const cv::Mat& gray, double t_s) {
   }
   lost_total_ += cmd.lost;
   recovered_total_ += cmd.recovered;
-  if (passed) {
+  for (int switches = 0; passed && switches < options_.max_switches_per_frame; ++switches) {
     if (milestone_ + 1 >= static_cast<int>(map_.milestones.size())) {
       status_ = RepeatStatus::kFinished;
       cmd.status = status_;
@@ -378,7 +379,11 @@ RepeatCommand MilestoneLocalizer3d::Update(const cv::Mat& gray, double t_s) {
     cmd.essential_inliers = fresh.essential_inliers;
     cmd.scale_ratio = fresh.scale_ratio;
     cmd.reprojection_rms_px = fresh.reprojection_rms_px;
-    if (pose_ok) offset = ComputePathOffset(T_first_cam_, m->T_first_last);
+    passed = false;
+    if (pose_ok) {
+      offset = ComputePathOffset(T_first_cam_, m->T_first_last);
+      passed = offset.progress >= options_.switch_progress;
+    }
   }
 
   cmd.milestone = milestone_;

@@ -86,6 +86,10 @@ struct Localizer3dOptions {
   /// Along-track position that switches to the next milestone, in (0, 2] (1 = the
   /// milestone's last teach camera).
   double switch_progress = 1.0;
+  /// Milestones passed in one frame at most, >= 1: after a switch the next milestone's
+  /// pose is estimated at once, and if the robot is already past it too (milestones of
+  /// one to three images, cut densely in curves) it switches again.
+  int max_switches_per_frame = 3;
   /// Fewer tracked features than this is "too few": the robot goes straight, >= 1.
   int min_features = 8;
   /// Consecutive frames with too few features before the repeat is lost, >= 1.
