@@ -378,6 +378,43 @@ TEST(MilestoneLocalizer3dTest, RepeatStartedOffThePathConvergesTowardIt) {
   EXPECT_NEAR(pose.x, 3.0, 0.1);
 }
 
+TEST(MilestoneLocalizer3dTest, SeveralShortMilestonesArePassedInOneFrame) {
+  // Milestones of 4 images (6 cm) and a repeat that moves 15 cm per frame, as in a
+  // curve where the teach cut milestones of one to three images: the localizer must
+  // pass two or three of them per frame to stay with the robot.
+  const CorridorScene scene;
+  MilestoneBuilderOptions teach;
+  teach.mode = TeachMode::k3d;
+  teach.max_milestone_images = 4;
+  MilestoneBuilder builder(TestCamera(), teach);
+  for (int k = 0; k < 121; ++k) {
+    const Pose2 pose{0.02 * k, 0.0, 0.0};
+    builder.AddImage(scene.Render(CameraPose(pose)), 0.1 * k, pose);
+  }
+  const TeachMap map = builder.Finish();
+  ASSERT_GE(map.milestones.size(), 30u);
+  const auto behind_at_the_end = [&](int max_switches) {
+    Localizer3dOptions o = FastRepeat();
+    o.max_switches_per_frame = max_switches;
+    MilestoneLocalizer3d localizer(map, o);
+    int behind = 0;
+    for (int k = 0; k < 12; ++k) {
+      const double x = 0.15 * k;
+      const RepeatCommand c = localizer.Update(scene.Render(CameraPose({x, 0.0, 0.0})), 0.1 * k);
+      if (c.status != RepeatStatus::kDriving) break;
+      // The milestone the robot is in: the last whose first image is at or before x.
+      int truth = 0;
+      for (std::size_t m = 0; m < map.milestones.size(); ++m) {
+        if (0.02 * map.milestones[m].first_image <= x + 1e-9) truth = static_cast<int>(m);
+      }
+      behind = truth - c.milestone;
+    }
+    return behind;
+  };
+  EXPECT_LE(behind_at_the_end(3), 1);
+  EXPECT_GE(behind_at_the_end(1), 5);  // once per frame falls ever further behind
+}
+
 TEST(MilestoneLocalizer3dTest, AMilestoneWithoutReconstructionIsFollowedByTheFunnelLane) {
   const CorridorScene scene;
   TeachMap map = TeachStraight3d(scene, 71);
