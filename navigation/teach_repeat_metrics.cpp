@@ -88,7 +88,7 @@ RepeatPathMetrics EvaluateRepeatPath(const std::vector<Eigen::Vector2d>& taught,
     m.covered_m = std::max(m.covered_m, p.arc_length_m);
   }
   m.lateral_rms_m = std::sqrt(sum_sq / static_cast<double>(repeated.size()));
-  m.lateral_start_m = projections.front().lateral_m;
+  m.lateral_start_m = std::abs(projections.front().lateral_m);
   double end_sq = 0.0;
   std::size_t end_n = 0;
   for (const PathProjection& p : projections) {

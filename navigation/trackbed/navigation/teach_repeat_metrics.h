@@ -54,8 +54,10 @@ struct RepeatPathMetrics {
   double lateral_rms_m = 0.0;      ///< RMS of the lateral errors
   double lateral_max_m = 0.0;      ///< largest |lateral error|
   double end_point_error_m = 0.0;  ///< |last repeated position − last taught position|
-  /// Signed lateral error of the first repeated position [m]: the offset the repeat
-  /// starts with.
+  /// |lateral error| of the first repeated position [m]: the offset the repeat starts
+  /// with. Unsigned: at the taught path's first vertex the side comes from its first
+  /// segment, which on settling rough ground can be a fraction of a millimetre long
+  /// in any direction.
   double lateral_start_m = 0.0;
   /// RMS lateral error over the last `kEndWindowM` of arc length reached [m]: where the
   /// repeat has got to; below |lateral_start_m| when an initial offset shrank.

@@ -51,8 +51,8 @@ struct TeachRepeatMetrics {
   double autonomy = 0.0;  ///< fraction of the taught route covered before a failure
   double end_point_error_m = 0.0;
   double lateral_rms_m = 0.0, lateral_max_m = 0.0;
-  /// The first repeated position's signed lateral error, and the RMS lateral error
-  /// over the last metre reached [m]: an initial offset that shrinks (convergence).
+  /// The first repeated position's |lateral error|, and the RMS lateral error over the
+  /// last metre reached [m]: an initial offset that shrinks (convergence).
   double lateral_start_m = 0.0, lateral_end_rms_m = 0.0;
   double taught_length_m = 0.0;
   std::int64_t features_lost = 0, features_recovered = 0;
