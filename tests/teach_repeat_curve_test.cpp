@@ -149,6 +149,9 @@ TEST(CurveRepeatTest, TwoDFollowsALeftCurveSeenOnlyOnItsOutside) {
   ASSERT_EQ(r.last.status, RepeatStatus::kFinished);
   EXPECT_LT(r.worst_lateral_m, 0.05);
   EXPECT_LT(std::hypot(r.end.x - end.x, r.end.y - end.y), 0.1);
+  // The two changes are what make the difference.
+  EXPECT_NE(w.last.status, RepeatStatus::kFinished);
+  EXPECT_GT(w.worst_lateral_m, 0.5);
 }
 
 TEST(CurveRepeatTest, ThreeDFollowsALeftCurveWithTheCurvatureFedForward) {
@@ -174,6 +177,8 @@ TEST(CurveRepeatTest, ThreeDFollowsALeftCurveWithTheCurvatureFedForward) {
   ASSERT_EQ(r.last.status, RepeatStatus::kFinished);
   EXPECT_LT(r.worst_lateral_m, 0.05);
   EXPECT_LT(std::hypot(r.end.x - end.x, r.end.y - end.y), 0.1);
+  // The feed-forward is what makes the difference.
+  EXPECT_GT(w.worst_lateral_m, 2.0 * r.worst_lateral_m);
 }
 
 }  // namespace
