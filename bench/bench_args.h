@@ -8,14 +8,18 @@
 
 namespace trackbed::bench {
 
-/// Reads `flag VALUE` into *value (when present) and returns the other
-/// arguments as scenario files, or the two shipped scenes when there are none.
+/// Reads `flag VALUE` into *value (when present) and, when `sets` is given,
+/// each `--set KEY=VALUE` into it, and returns the other arguments as scenario
+/// files, or the two shipped scenes when there are none.
 inline std::vector<std::string> ScenarioFiles(int argc, char** argv, const char* flag,
-                                              double* value) {
+                                              double* value,
+                                              std::vector<std::string>* sets = nullptr) {
   std::vector<std::string> files;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], flag) == 0 && i + 1 < argc) {
       *value = std::stod(argv[++i]);
+    } else if (sets && std::strcmp(argv[i], "--set") == 0 && i + 1 < argc) {
+      sets->emplace_back(argv[++i]);
     } else {
       files.emplace_back(argv[i]);
     }

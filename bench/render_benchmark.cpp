@@ -3,7 +3,7 @@
 // on those pairs (one thread), and the closed loop's real-time factor with the
 // camera rendering at its rate and the whole localization stack running.
 //
-//   render_benchmark [--pairs N] [SCENARIO.yaml ...]
+//   render_benchmark [--pairs N] [--set KEY=VALUE ...] [SCENARIO.yaml ...]
 #include <chrono>
 #include <cstdio>
 #include <exception>
@@ -22,11 +22,15 @@
 int main(int argc, char** argv) {
   using namespace trackbed;
   double pairs_arg = 200;
-  const std::vector<std::string> files = bench::ScenarioFiles(argc, argv, "--pairs", &pairs_arg);
+  std::vector<std::string> sets;
+  const std::vector<std::string> files =
+      bench::ScenarioFiles(argc, argv, "--pairs", &pairs_arg, &sets);
   const int pairs = static_cast<int>(pairs_arg);
   try {
+    std::vector<scenes::Override> overrides{{"robot.stereo.enabled", "true"}};
+    for (const std::string& set : sets) overrides.push_back(scenes::ParseOverride(set));
     for (const std::string& f : files) {
-      scenes::Scenario s = scenes::LoadScenario(f, {{"robot.stereo.enabled", "true"}});
+      scenes::Scenario s = scenes::LoadScenario(f, overrides);
       // Rendering alone: the poses of one closed-loop run's cameras, replayed.
       std::vector<Eigen::Isometry3d> left, right;
       scenes::RunObservers record;
@@ -46,16 +50,18 @@ int main(int argc, char** argv) {
       const auto start = std::chrono::steady_clock::now();
       for (int i = 0; i < n; ++i) {
         const std::size_t k = static_cast<std::size_t>(i) * left.size() / n;
-        renderer.Render(rig.intrinsics(), left[k], 0.1 * k, &l, nullptr);
-        renderer.Render(rig.intrinsics(), right[k], 0.1 * k, &r, nullptr);
+        const Eigen::Vector2d c = 0.5 * (left[k].translation() + right[k].translation()).head<2>();
+        renderer.Render(rig.intrinsics(), left[k], 0.1 * k, &l, nullptr, &c);
+        renderer.Render(rig.intrinsics(), right[k], 0.1 * k, &r, nullptr, &c);
       }
       const double seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       // The first n consecutive pairs (untimed), for visual odometry.
       std::vector<cv::Mat> lefts, rights;
       for (int i = 0; i < n; ++i) {
-        renderer.Render(rig.intrinsics(), left[i], 0.1 * i, &l, nullptr);
-        renderer.Render(rig.intrinsics(), right[i], 0.1 * i, &r, nullptr);
+        const Eigen::Vector2d c = 0.5 * (left[i].translation() + right[i].translation()).head<2>();
+        renderer.Render(rig.intrinsics(), left[i], 0.1 * i, &l, nullptr, &c);
+        renderer.Render(rig.intrinsics(), right[i], 0.1 * i, &r, nullptr, &c);
         lefts.push_back(cv::Mat(l.height, l.width, CV_8UC1, l.pixels.data()).clone());
         rights.push_back(cv::Mat(r.height, r.width, CV_8UC1, r.pixels.data()).clone());
       }

@@ -293,8 +293,13 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& given_obs
       frame.t_s = clock.now_s();
       frame.T_world_left = truth.T_world_body * rig->T_body_left();
       frame.T_world_right = truth.T_world_body * rig->T_body_right();
-      renderer->Render(rig->intrinsics(), frame.T_world_left, frame.t_s, &left_image, nullptr);
-      renderer->Render(rig->intrinsics(), frame.T_world_right, frame.t_s, &right_image, nullptr);
+      // Both cameras see the terrain at the detail of the rig's centre.
+      const Eigen::Vector2d rig_xy =
+          0.5 * (frame.T_world_left.translation() + frame.T_world_right.translation()).head<2>();
+      renderer->Render(rig->intrinsics(), frame.T_world_left, frame.t_s, &left_image, nullptr,
+                       &rig_xy);
+      renderer->Render(rig->intrinsics(), frame.T_world_right, frame.t_s, &right_image, nullptr,
+                       &rig_xy);
       robot::ApplySensorModel(rs.stereo.exposure, rs.stereo.noise_std, noise_seed,
                               static_cast<std::uint64_t>(frame.index), 0, &left_image);
       robot::ApplySensorModel(rs.stereo.exposure, rs.stereo.noise_std, noise_seed,

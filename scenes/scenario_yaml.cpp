@@ -248,6 +248,7 @@ void Visit(V& v, sim::SceneAppearance& o) {
   v("ceiling_height_m", o.ceiling_height_m);
   v("tree_crowns", o.tree_crowns);
   v("texture_size_px", o.texture_size_px);
+  v("terrain_full_detail_m", o.terrain_full_detail_m);
 }
 
 template <class V>

@@ -1,15 +1,19 @@
 // OSMesa renderer (see renderer.h).
 //
-// Fixed-function OpenGL in the compatibility profile: display lists compiled
-// once (terrain in chunks per material, one per object), textures uploaded
-// once with a mip chain built here (box filter) so that the bytes do not depend
-// on the driver's mipmap generation. Each frame: cull chunks against the
-// view frustum, draw, glFinish, read the colour buffer back flipped to
-// top-down rows.
+// Fixed-function OpenGL in the compatibility profile: one display list per
+// object compiled once, the terrain in chunks per material meshed at the
+// detail the distance from the detail centre asks for (TerrainDetail), kept
+// while it holds; textures uploaded once with a mip chain built here (box
+// filter) so that the bytes do not depend on the driver's mipmap generation.
+// Each frame: cull chunks against the view frustum, draw near to far,
+// glFinish, read the colour buffer back flipped to top-down rows.
 #include "trackbed/sim/renderer.h"
 
+#define GL_GLEXT_PROTOTYPES 1  // buffer objects (GL 1.5), which libOSMesa exports
 #include <GL/gl.h>
 #include <GL/osmesa.h>
+
+#include <cstddef>
 
 #include <algorithm>
 #include <cmath>
@@ -18,6 +22,7 @@
 
 #include "trackbed/common/option_error.h"
 #include "trackbed/sim/procedural_texture.h"
+#include "trackbed/sim/terrain_detail.h"
 
 namespace trackbed::sim {
 
@@ -27,6 +32,7 @@ void SceneAppearance::Validate() const {
   option_check::InRange("ambient", ambient, 0.0, 1.0);
   option_check::InRange("diffuse", diffuse, 0.0, 1.0);
   option_check::InRange("sky_gray", sky_gray, 0.0, 1.0);
+  option_check::NonNegative("terrain_full_detail_m", terrain_full_detail_m);
   option_check::NonNegative("ceiling_height_m", ceiling_height_m);
   if (texture_size_px < 16 || texture_size_px > 2048 ||
       (texture_size_px & (texture_size_px - 1)) != 0) {
@@ -47,7 +53,8 @@ std::uint64_t HashName(const std::string& s) {
 }
 
 struct Drawable {
-  GLuint list = 0;
+  GLuint list = 0;          // display list of an object, or
+  int terrain = -1;         // index of a terrain drawable
   Eigen::AlignedBox3d box;  // world-frame bounds, for culling
 };
 
@@ -55,6 +62,20 @@ struct Drawable {
 struct GlTexture {
   GLuint name = 0;
   double meters_per_repeat = 1.0;
+};
+
+// One material of one terrain chunk, and its mesh for the last detail centre.
+struct TerrainDrawable {
+  std::size_t chunk = 0;
+  GlTexture texture;
+  TerrainDetail::Mesh mesh;
+  Eigen::Vector2d center_xy = Eigen::Vector2d::Zero();
+  bool built = false;
+  // Buffer objects holding the mesh: Mesa copies client-side arrays and scans
+  // their indices on every draw call.
+  GLuint vertex_buffer = 0, index_buffer = 0;
+  int uploaded_level = -1;
+  GLsizei index_count = 0;
 };
 
 }  // namespace
@@ -70,9 +91,11 @@ struct Renderer::Gl {
   std::vector<float> depth;
   std::map<std::string, GlTexture> textures;
   std::vector<Drawable> drawables;
+  std::unique_ptr<TerrainDetail> detail;
+  std::vector<TerrainDrawable> terrain_drawables;
   std::vector<OccluderSpec> occluders;
   std::vector<GLuint> occluder_lists;
-  std::vector<std::pair<double, GLuint>> draw_order;  // per frame, kept to avoid reallocation
+  std::vector<std::pair<double, int>> draw_order;  // per frame, kept to avoid reallocation
 
   ~Gl() {
     if (context) OSMesaDestroyContext(context);
@@ -125,75 +148,58 @@ struct Renderer::Gl {
     return textures.emplace(name, g).first->second;
   }
 
+  // Terrain drawables: one per (chunk, material), meshed per frame from the
+  // detail centre (TerrainDetail), the mesh kept while it still holds.
   void BuildTerrain() {
-    const Terrain& t = *terrain;
-    const int cols = t.cols(), rows = t.rows();
-    const double cell = t.cell_size_m();
-    const std::vector<double>& h = t.heights();
-    auto H = [&](int i, int j) {
-      i = std::clamp(i, 0, cols - 1);
-      j = std::clamp(j, 0, rows - 1);
-      return h[static_cast<std::size_t>(j) * cols + i];
-    };
-    // Smooth vertex normals from central differences.
-    auto vertex = [&](int i, int j, double m) {
-      const double nx = -(H(i + 1, j) - H(i - 1, j)) / (2 * cell);
-      const double ny = -(H(i, j + 1) - H(i, j - 1)) / (2 * cell);
-      const Eigen::Vector3d n = Eigen::Vector3d(nx, ny, 1.0).normalized();
-      const double x = t.x_min() + i * cell, y = t.y_min() + j * cell;
-      glNormal3d(n.x(), n.y(), n.z());
-      glTexCoord2d(x / m, y / m);
-      glVertex3d(x, y, H(i, j));
-    };
-    const std::vector<std::uint8_t>& cell_material = t.cell_materials();
-    for (int j0 = 0; j0 < rows - 1; j0 += kChunkCells) {
-      for (int i0 = 0; i0 < cols - 1; i0 += kChunkCells) {
-        const int i1 = std::min(i0 + kChunkCells, cols - 1),
-                  j1 = std::min(j0 + kChunkCells, rows - 1);
-        std::vector<bool> present(t.materials().size(), false);
-        double lo = 1e300, hi = -1e300;
-        for (int j = j0; j < j1; ++j) {
-          for (int i = i0; i < i1; ++i) {
-            present[cell_material[static_cast<std::size_t>(j) * (cols - 1) + i]] = true;
-          }
-        }
-        for (int j = j0; j <= j1; ++j) {
-          for (int i = i0; i <= i1; ++i) {
-            lo = std::min(lo, H(i, j));
-            hi = std::max(hi, H(i, j));
-          }
-        }
-        for (std::size_t m = 0; m < present.size(); ++m) {
-          if (!present[m]) continue;
-          const TerrainMaterial& material = t.materials()[m];
-          const GlTexture& tex = Texture(material.name, material.albedo);
-          Drawable d;
-          d.box = Eigen::AlignedBox3d(
-              Eigen::Vector3d(t.x_min() + i0 * cell, t.y_min() + j0 * cell, lo),
-              Eigen::Vector3d(t.x_min() + i1 * cell, t.y_min() + j1 * cell, hi));
-          d.list = glGenLists(1);
-          glNewList(d.list, GL_COMPILE);
-          glBindTexture(GL_TEXTURE_2D, tex.name);
-          glBegin(GL_TRIANGLES);
-          for (int j = j0; j < j1; ++j) {
-            for (int i = i0; i < i1; ++i) {
-              if (cell_material[static_cast<std::size_t>(j) * (cols - 1) + i] != m) continue;
-              // The diagonal (i, j)–(i+1, j+1), as Terrain and Bullet split the cell.
-              const double r = tex.meters_per_repeat;
-              vertex(i, j, r);
-              vertex(i + 1, j, r);
-              vertex(i + 1, j + 1, r);
-              vertex(i, j, r);
-              vertex(i + 1, j + 1, r);
-              vertex(i, j + 1, r);
-            }
-          }
-          glEnd();
-          glEndList();
-          drawables.push_back(d);
-        }
+    detail =
+        std::make_unique<TerrainDetail>(*terrain, appearance.terrain_full_detail_m, kChunkCells);
+    for (std::size_t c = 0; c < detail->chunks().size(); ++c) {
+      const TerrainDetail::Chunk& chunk = detail->chunks()[c];
+      const TerrainMaterial& material = terrain->materials()[chunk.material];
+      TerrainDrawable t;
+      t.chunk = c;
+      t.texture = Texture(material.name, material.albedo);
+      terrain_drawables.push_back(std::move(t));
+      Drawable d;
+      d.box = chunk.box;
+      d.terrain = static_cast<int>(terrain_drawables.size()) - 1;
+      drawables.push_back(d);
+    }
+  }
+
+  void DrawTerrain(TerrainDrawable& t, const Eigen::Vector2d& center_xy) {
+    const TerrainDetail::Chunk& chunk = detail->chunks()[t.chunk];
+    if (!t.built ||
+        (center_xy != t.center_xy && !detail->SameMesh(chunk, t.center_xy, center_xy))) {
+      detail->BuildMesh(chunk, center_xy, t.texture.meters_per_repeat, &t.mesh);
+      t.center_xy = center_xy;
+      t.built = true;
+      if (t.vertex_buffer == 0) {
+        glGenBuffers(1, &t.vertex_buffer);
+        glGenBuffers(1, &t.index_buffer);
+      }
+      glBindBuffer(GL_ARRAY_BUFFER, t.vertex_buffer);
+      glBufferData(GL_ARRAY_BUFFER,
+                   static_cast<GLsizeiptr>(t.mesh.vertices.size() * sizeof(TerrainVertex)),
+                   t.mesh.vertices.data(), GL_DYNAMIC_DRAW);
+      if (t.mesh.level != t.uploaded_level) {
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, t.index_buffer);
+        glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+                     static_cast<GLsizeiptr>(t.mesh.indices.size() * sizeof(std::uint32_t)),
+                     t.mesh.indices.data(), GL_DYNAMIC_DRAW);
+        t.uploaded_level = t.mesh.level;
+        t.index_count = static_cast<GLsizei>(t.mesh.indices.size());
       }
     }
+    if (t.index_count == 0) return;
+    glBindTexture(GL_TEXTURE_2D, t.texture.name);
+    glBindBuffer(GL_ARRAY_BUFFER, t.vertex_buffer);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, t.index_buffer);
+    const auto offset = [](std::size_t bytes) { return reinterpret_cast<const void*>(bytes); };
+    glVertexPointer(3, GL_FLOAT, sizeof(TerrainVertex), offset(offsetof(TerrainVertex, x)));
+    glNormalPointer(GL_FLOAT, sizeof(TerrainVertex), offset(offsetof(TerrainVertex, nx)));
+    glTexCoordPointer(2, GL_FLOAT, sizeof(TerrainVertex), offset(offsetof(TerrainVertex, s)));
+    glDrawElements(GL_TRIANGLES, t.index_count, GL_UNSIGNED_INT, nullptr);
   }
 
   // A box of extents (lx, ly, lz) centred at the origin of the current frame,
@@ -418,7 +424,8 @@ std::string Renderer::gl_description() const {
 }
 
 void Renderer::Render(const PinholeIntrinsics& K, const Eigen::Isometry3d& T_world_camera,
-                      double t_s, GrayImage* gray, DepthImage* depth) {
+                      double t_s, GrayImage* gray, DepthImage* depth,
+                      const Eigen::Vector2d* detail_center_xy) {
   Gl& g = *gl_;
   if (K.width_px != g.width || K.height_px != g.height) {
     throw std::invalid_argument("Renderer::Render: intrinsics are for " +
@@ -470,13 +477,33 @@ void Renderer::Render(const PinholeIntrinsics& K, const Eigen::Isometry3d& T_wor
   };
   // Near to far, so that llvmpipe's early depth test rejects hidden fragments
   // before they are textured.
-  std::vector<std::pair<double, GLuint>>& order = g.draw_order;
+  std::vector<std::pair<double, int>>& order = g.draw_order;
   order.clear();
-  for (const Drawable& d : g.drawables) {
-    if (visible(d.box)) order.emplace_back((R * d.box.center() + tr).squaredNorm(), d.list);
+  for (std::size_t k = 0; k < g.drawables.size(); ++k) {
+    const Drawable& d = g.drawables[k];
+    if (visible(d.box)) {
+      order.emplace_back((R * d.box.center() + tr).squaredNorm(), static_cast<int>(k));
+    }
   }
   std::sort(order.begin(), order.end());
-  for (const auto& [distance, list] : order) glCallList(list);
+  const Eigen::Vector2d center_xy =
+      detail_center_xy ? *detail_center_xy : T_world_camera.translation().head<2>();
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glEnableClientState(GL_NORMAL_ARRAY);
+  glEnableClientState(GL_TEXTURE_COORD_ARRAY);
+  for (const auto& [distance, k] : order) {
+    const Drawable& d = g.drawables[static_cast<std::size_t>(k)];
+    if (d.terrain >= 0) {
+      g.DrawTerrain(g.terrain_drawables[static_cast<std::size_t>(d.terrain)], center_xy);
+    } else {
+      glCallList(d.list);
+    }
+  }
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
+  glDisableClientState(GL_VERTEX_ARRAY);
+  glDisableClientState(GL_NORMAL_ARRAY);
+  glDisableClientState(GL_TEXTURE_COORD_ARRAY);
   for (std::size_t k = 0; k < g.occluders.size(); ++k) {
     const OccluderPose pose = OccluderPoseAt(g.occluders[k], t_s);
     glPushMatrix();

@@ -38,6 +38,11 @@ struct SceneAppearance {
   bool tree_crowns = true;
   /// Side of the square procedural textures [px], a power of two in [16, 2048].
   int texture_size_px = 256;
+  /// Distance from the detail centre within which the terrain is drawn from its
+  /// full grid [m]; beyond it, blended to every 2nd vertex by 1.5×, every 4th
+  /// from 2× to 3×, every 8th from 4× to 6× this distance (TerrainDetail). 0: the
+  /// full grid everywhere.
+  double terrain_full_detail_m = 0.0;
 
   void Validate() const;
 };
@@ -57,9 +62,13 @@ class Renderer {
 
   /// Renders the view of a camera with intrinsics `K` (its size must be the
   /// renderer's) at pose `T_world_camera` (OpenCV camera axes) at simulation
-  /// time `t_s` (for the occluders). Either output may be null.
+  /// time `t_s` (for the occluders). Either output may be null. The terrain's
+  /// detail is measured from `detail_center_xy` (world x, y [m]), or from the
+  /// camera when it is null: pass one point for both cameras of a stereo pair
+  /// so that they see the same ground.
   void Render(const PinholeIntrinsics& K, const Eigen::Isometry3d& T_world_camera, double t_s,
-              GrayImage* gray, DepthImage* depth);
+              GrayImage* gray, DepthImage* depth,
+              const Eigen::Vector2d* detail_center_xy = nullptr);
 
   /// OpenGL renderer and version strings, e.g. "llvmpipe (LLVM 15.0.6, 256 bits) / 4.5
   /// (Compatibility Profile) Mesa 22.3.6".

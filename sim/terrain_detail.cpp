@@ -1,0 +1,232 @@
+// Levels of detail of the rendered terrain (see terrain_detail.h).
+#include "trackbed/sim/terrain_detail.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace trackbed::sim {
+
+TerrainDetail::TerrainDetail(const Terrain& terrain, double full_detail_m, int chunk_cells)
+    : terrain_(terrain),
+      full_detail_m_(full_detail_m),
+      cols_(terrain.cols()),
+      rows_(terrain.rows()) {
+  if (chunk_cells <= 0 || chunk_cells % (1 << kMaxLevel) != 0) {
+    throw std::invalid_argument("TerrainDetail: chunk_cells must be a positive multiple of " +
+                                std::to_string(1 << kMaxLevel) + " (got " +
+                                std::to_string(chunk_cells) + ")");
+  }
+  const double cell = terrain.cell_size_m();
+  const std::vector<double>& h = terrain.heights();
+  // Grid heights with indices clamped to the grid: the corners of the coarse
+  // cells that overhang the far edges.
+  auto H = [&](int i, int j) {
+    return h[Index(std::clamp(i, 0, cols_ - 1), std::clamp(j, 0, rows_ - 1))];
+  };
+  const std::size_t n = static_cast<std::size_t>(cols_) * rows_;
+  for (int k = 0; k <= kMaxLevel; ++k) {
+    const int s = 1 << k;
+    std::vector<float>& z = z_[k];
+    std::vector<Eigen::Vector3f>& nrm = n_[k];
+    z.resize(n);
+    nrm.resize(n);
+    // Smooth normal at a level-k grid vertex from central differences at its spacing.
+    auto corner_normal = [&](int I, int J) {
+      const double nx = -(H(I + s, J) - H(I - s, J)) / (2 * s * cell);
+      const double ny = -(H(I, J + s) - H(I, J - s)) / (2 * s * cell);
+      return Eigen::Vector3d(nx, ny, 1.0).normalized();
+    };
+    for (int j = 0; j < rows_; ++j) {
+      for (int i = 0; i < cols_; ++i) {
+        const int I = i / s * s, J = j / s * s;
+        const double u = static_cast<double>(i - I) / s, v = static_cast<double>(j - J) / s;
+        // Barycentric weights in the coarse cell split along (I, J)–(I+s, J+s).
+        double w00, wa, w11;
+        int ai, aj;
+        if (u >= v) {
+          w00 = 1 - u, wa = u - v, w11 = v, ai = I + s, aj = J;
+        } else {
+          w00 = 1 - v, wa = v - u, w11 = u, ai = I, aj = J + s;
+        }
+        const double zz = w00 * H(I, J) + wa * H(ai, aj) + w11 * H(I + s, J + s);
+        const Eigen::Vector3d nn = (w00 * corner_normal(I, J) + wa * corner_normal(ai, aj) +
+                                    w11 * corner_normal(I + s, J + s))
+                                       .normalized();
+        z[Index(i, j)] = static_cast<float>(k == 0 ? H(i, j) : zz);
+        nrm[Index(i, j)] = nn.cast<float>();
+      }
+    }
+  }
+
+  const std::vector<std::uint8_t>& cell_material = terrain.cell_materials();
+  for (int j0 = 0; j0 < rows_ - 1; j0 += chunk_cells) {
+    for (int i0 = 0; i0 < cols_ - 1; i0 += chunk_cells) {
+      const int i1 = std::min(i0 + chunk_cells, cols_ - 1),
+                j1 = std::min(j0 + chunk_cells, rows_ - 1);
+      std::vector<bool> present(terrain.materials().size(), false);
+      for (int j = j0; j < j1; ++j) {
+        for (int i = i0; i < i1; ++i) {
+          present[cell_material[static_cast<std::size_t>(j) * (cols_ - 1) + i]] = true;
+        }
+      }
+      const int kinds = static_cast<int>(std::count(present.begin(), present.end(), true));
+      int max_level = 0;
+      if (kinds == 1) {
+        while (max_level < kMaxLevel && (i1 - i0) % (2 << max_level) == 0 &&
+               (j1 - j0) % (2 << max_level) == 0) {
+          ++max_level;
+        }
+      }
+      float lo = 1e30f, hi = -1e30f;
+      for (int k = 0; k <= kMaxLevel; ++k) {
+        for (int j = j0; j <= j1; ++j) {
+          for (int i = i0; i <= i1; ++i) {
+            lo = std::min(lo, z_[k][Index(i, j)]);
+            hi = std::max(hi, z_[k][Index(i, j)]);
+          }
+        }
+      }
+      const Eigen::AlignedBox3d box(
+          Eigen::Vector3d(terrain.x_min() + i0 * cell, terrain.y_min() + j0 * cell, lo),
+          Eigen::Vector3d(terrain.x_min() + i1 * cell, terrain.y_min() + j1 * cell, hi));
+      for (std::size_t m = 0; m < present.size(); ++m) {
+        if (present[m]) chunks_.push_back({i0, j0, i1, j1, static_cast<int>(m), max_level, box});
+      }
+    }
+  }
+  for (Chunk& c : chunks_) {
+    for (std::size_t o = 0; o < chunks_.size(); ++o) {
+      const Chunk& other = chunks_[o];
+      const int k = static_cast<int>(o);
+      if (other.j0 == c.j0 && other.i1 == c.i0) c.neighbor[0] = k;
+      if (other.j0 == c.j0 && other.i0 == c.i1) c.neighbor[1] = k;
+      if (other.i0 == c.i0 && other.j1 == c.j0) c.neighbor[2] = k;
+      if (other.i0 == c.i0 && other.j0 == c.j1) c.neighbor[3] = k;
+    }
+  }
+}
+
+double TerrainDetail::LevelAt(double distance_m) const {
+  if (!(full_detail_m_ > 0.0)) return 0.0;
+  double start = full_detail_m_;
+  for (int k = 0; k < kMaxLevel; ++k, start *= 2.0) {
+    if (distance_m < start) return k;
+    if (distance_m < 1.5 * start) return k + (distance_m - start) / (0.5 * start);
+  }
+  return kMaxLevel;
+}
+
+void TerrainDetail::DistanceRange(const Chunk& c, const Eigen::Vector2d& p, double* d_min,
+                                  double* d_max) const {
+  const Eigen::Vector2d lo = c.box.min().head<2>(), hi = c.box.max().head<2>();
+  const Eigen::Vector2d nearest = p.cwiseMax(lo).cwiseMin(hi);
+  *d_min = (p - nearest).norm();
+  const Eigen::Vector2d far((p.x() - lo.x() > hi.x() - p.x()) ? lo.x() : hi.x(),
+                            (p.y() - lo.y() > hi.y() - p.y()) ? lo.y() : hi.y());
+  *d_max = (p - far).norm();
+}
+
+int TerrainDetail::MeshLevel(const Chunk& c, const Eigen::Vector2d& center_xy) const {
+  double d_min, d_max;
+  DistanceRange(c, center_xy, &d_min, &d_max);
+  // Every vertex is at least at the blend level of the nearest point.
+  return std::min(c.max_level, static_cast<int>(std::floor(LevelAt(d_min))));
+}
+
+bool TerrainDetail::SameMesh(const Chunk& c, const Eigen::Vector2d& a_xy,
+                             const Eigen::Vector2d& b_xy) const {
+  double a_min, a_max, b_min, b_max;
+  DistanceRange(c, a_xy, &a_min, &a_max);
+  DistanceRange(c, b_xy, &b_min, &b_max);
+  // The blend is one whole level over the chunk, the same from both centres.
+  const double level = LevelAt(a_min);
+  if (!(level == std::floor(level) && LevelAt(a_max) == level && LevelAt(b_min) == level &&
+        LevelAt(b_max) == level)) {
+    return false;
+  }
+  // ... and its sides go on the same neighbours' edges.
+  for (int n : c.neighbor) {
+    if (n < 0) continue;
+    const Chunk& other = chunks_[static_cast<std::size_t>(n)];
+    if (MeshLevel(other, a_xy) != MeshLevel(other, b_xy)) return false;
+  }
+  return true;
+}
+
+double TerrainDetail::Height(int i, int j, double level) const {
+  const int k = static_cast<int>(std::floor(level));
+  if (k >= kMaxLevel) return z_[kMaxLevel][Index(i, j)];
+  const double f = level - k;
+  const float a = z_[k][Index(i, j)];
+  return f == 0.0 ? a : a + f * (z_[k + 1][Index(i, j)] - a);
+}
+
+void TerrainDetail::BuildMesh(const Chunk& c, const Eigen::Vector2d& center_xy,
+                              double meters_per_repeat, Mesh* mesh) const {
+  const int level = MeshLevel(c, center_xy);
+  const int s = 1 << level;
+  const int na = (c.i1 - c.i0) / s, nb = (c.j1 - c.j0) / s;
+  const double cell = terrain_.cell_size_m();
+  mesh->vertices.clear();
+  for (int b = 0; b <= nb; ++b) {
+    for (int a = 0; a <= na; ++a) {
+      const int i = c.i0 + a * s, j = c.j0 + b * s;
+      const double x = terrain_.x_min() + i * cell, y = terrain_.y_min() + j * cell;
+      const double g = LevelAt(std::hypot(x - center_xy.x(), y - center_xy.y()));
+      const int k = std::min(static_cast<int>(std::floor(g)), kMaxLevel);
+      const float f = static_cast<float>(g - k);
+      Eigen::Vector3f normal = n_[k][Index(i, j)];
+      if (f > 0.0f) normal = ((1.0f - f) * normal + f * n_[k + 1][Index(i, j)]).normalized();
+      mesh->vertices.push_back({static_cast<float>(x), static_cast<float>(y),
+                                static_cast<float>(Height(i, j, g)), normal.x(), normal.y(),
+                                normal.z(), static_cast<float>(x / meters_per_repeat),
+                                static_cast<float>(y / meters_per_repeat)});
+    }
+  }
+  // Along a side shared with a coarser neighbour, the vertices between the
+  // neighbour's go on its edge: interpolated between the two around them.
+  for (int side = 0; side < 4; ++side) {
+    if (c.neighbor[side] < 0) continue;
+    const int coarser = MeshLevel(chunks_[static_cast<std::size_t>(c.neighbor[side])], center_xy);
+    if (coarser <= level) continue;
+    const int step = 1 << (coarser - level);
+    const bool along_j = side < 2;  // sides i = i0 and i = i1 run along j
+    const int fixed = side == 0 || side == 2 ? 0 : (along_j ? na : nb);
+    const int count = along_j ? nb : na;
+    const auto at = [&](int q) -> TerrainVertex& {
+      const int a = along_j ? fixed : q, b = along_j ? q : fixed;
+      return mesh->vertices[static_cast<std::size_t>(b * (na + 1) + a)];
+    };
+    for (int q = 0; q < count; q += step) {
+      const TerrainVertex p0 = at(q), p1 = at(q + step);
+      for (int r = 1; r < step; ++r) {
+        const float f = static_cast<float>(r) / step;
+        TerrainVertex& v = at(q + r);
+        v.z = p0.z + f * (p1.z - p0.z);
+        const Eigen::Vector3f n = ((1 - f) * Eigen::Vector3f(p0.nx, p0.ny, p0.nz) +
+                                   f * Eigen::Vector3f(p1.nx, p1.ny, p1.nz))
+                                      .normalized();
+        v.nx = n.x(), v.ny = n.y(), v.nz = n.z();
+      }
+    }
+  }
+  if (mesh->chunk == &c && mesh->level == level) return;  // same triangles
+  mesh->chunk = &c;
+  mesh->level = level;
+  mesh->indices.clear();
+  const std::vector<std::uint8_t>& cell_material = terrain_.cell_materials();
+  const auto v = [&](int a, int b) { return static_cast<std::uint32_t>(b * (na + 1) + a); };
+  for (int b = 0; b < nb; ++b) {
+    for (int a = 0; a < na; ++a) {
+      const std::size_t cell_index = static_cast<std::size_t>(c.j0 + b) * (cols_ - 1) + (c.i0 + a);
+      if (level == 0 && cell_material[cell_index] != c.material) continue;
+      // The diagonal (a, b)–(a+1, b+1), as Terrain and Bullet split the cell.
+      mesh->indices.insert(mesh->indices.end(), {v(a, b), v(a + 1, b), v(a + 1, b + 1), v(a, b),
+                                                 v(a + 1, b + 1), v(a, b + 1)});
+    }
+  }
+}
+
+}  // namespace trackbed::sim
