@@ -148,6 +148,63 @@ TEST(RendererTest, SameSceneAndSeedGiveIdenticalBytesWithoutADisplay) {
   EXPECT_NE(r2.gl_description().find("llvmpipe"), std::string::npos) << r2.gl_description();
 }
 
+// Rough grass, as outdoors: the far terrain at lower detail leaves the near
+// ground's pixels as they are, changes far ones, and gives both cameras of a
+// pair the same ground.
+TEST(RendererTest, FarTerrainDetailLeavesTheNearGroundUnchanged) {
+  TerrainOptions t;
+  t.extent_m = {-2, -8, 16, 8};
+  t.cell_size_m = 0.1;
+  t.roughness.undulation_amplitude_m = 0.25;
+  t.roughness.undulation_wavelength_m = 7.0;
+  t.roughness.bump_amplitude_m = 0.03;
+  t.roughness.bump_wavelength_m = 0.7;
+  t.default_material = "grass";
+  const World world(WorldOptions{}, Terrain(t, 2), {});
+  robot::StereoRigOptions o;
+  o.mount_m = {0.0, 0.0, 0.5};
+  const robot::StereoRig rig(o);
+  Eigen::Isometry3d body = Eigen::Isometry3d::Identity();
+  body.translation() = Eigen::Vector3d(0, 0, world.terrain().Height(0, 0));
+  const Eigen::Isometry3d left = body * rig.T_body_left(), right = body * rig.T_body_right();
+  const Eigen::Vector2d center = 0.5 * (left.translation() + right.translation()).head<2>();
+  SceneAppearance full, lod;
+  lod.terrain_full_detail_m = 2.0;
+  Renderer r_full(world, full, {}, 3, 640, 480, 0.05, 120.0);
+  Renderer r_lod(world, lod, {}, 3, 640, 480, 0.05, 120.0);
+  GrayImage a, b;
+  DepthImage depth;
+  r_full.Render(rig.intrinsics(), left, 0.0, &a, &depth, &center);
+  r_lod.Render(rig.intrinsics(), left, 0.0, &b, nullptr, &center);
+  int near = 0, near_same = 0, far = 0, far_changed = 0;
+  for (int v = 0; v < a.height; ++v) {
+    for (int u = 0; u < a.width; ++u) {
+      const float z = depth.at(u, v);
+      const bool same = a.at(u, v) == b.at(u, v);
+      if (z < 1.0f) {  // well inside 2 m of the rig, at any angle in the view
+        ++near;
+        near_same += same;
+      } else if (z > 6.0f && z < 100.0f) {
+        ++far;
+        far_changed += !same;
+      }
+    }
+  }
+  EXPECT_GT(near, 20000);
+  EXPECT_EQ(near_same, near);
+  EXPECT_GT(far, 5000);
+  EXPECT_GT(far_changed, far / 20);
+  std::printf("near ground: %d of %d pixels identical; far: %d of %d changed\n", near_same, near,
+              far_changed, far);
+  // The right camera with the same centre draws the same meshes as the left
+  // one did: rendering it after the left or on its own gives the same bytes.
+  GrayImage r1, r2;
+  r_lod.Render(rig.intrinsics(), right, 0.0, &r1, nullptr, &center);
+  Renderer r_alone(world, lod, {}, 3, 640, 480, 0.05, 120.0);
+  r_alone.Render(rig.intrinsics(), right, 0.0, &r2, nullptr, &center);
+  EXPECT_EQ(r1.pixels, r2.pixels);
+}
+
 TEST(RendererTest, WalkingOccluderMovesThroughTheView) {
   World world = MakeWorld({});
   OccluderSpec person;
