@@ -33,10 +33,14 @@ int main(int argc, char** argv) {
       scenes::Scenario s = scenes::LoadScenario(f, overrides);
       // Rendering alone: the poses of one closed-loop run's cameras, replayed.
       std::vector<Eigen::Isometry3d> left, right;
+      std::vector<Eigen::Vector2d> centers;
       scenes::RunObservers record;
       record.on_stereo = [&](const scenes::StereoFrame& frame) {
         left.push_back(frame.T_world_left);
         right.push_back(frame.T_world_right);
+        // The terrain's detail centre, as the closed loop passes it.
+        centers.push_back(
+            0.5 * (frame.T_world_left.translation() + frame.T_world_right.translation()).head<2>());
       };
       const scenes::RunMetrics loop = scenes::RunClosedLoop(s, record);
       const sim::World world(s.scene.world, sim::Terrain(s.scene.terrain, s.seed), s.scene.objects);
@@ -50,18 +54,17 @@ int main(int argc, char** argv) {
       const auto start = std::chrono::steady_clock::now();
       for (int i = 0; i < n; ++i) {
         const std::size_t k = static_cast<std::size_t>(i) * left.size() / n;
-        const Eigen::Vector2d c = 0.5 * (left[k].translation() + right[k].translation()).head<2>();
-        renderer.Render(rig.intrinsics(), left[k], 0.1 * k, &l, nullptr, &c);
-        renderer.Render(rig.intrinsics(), right[k], 0.1 * k, &r, nullptr, &c);
+        renderer.Render(rig.intrinsics(), left[k], 0.1 * k, &l, nullptr, &centers[k]);
+        renderer.Render(rig.intrinsics(), right[k], 0.1 * k, &r, nullptr, &centers[k]);
       }
       const double seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       // The first n consecutive pairs (untimed), for visual odometry.
       std::vector<cv::Mat> lefts, rights;
       for (int i = 0; i < n; ++i) {
-        const Eigen::Vector2d c = 0.5 * (left[i].translation() + right[i].translation()).head<2>();
-        renderer.Render(rig.intrinsics(), left[i], 0.1 * i, &l, nullptr, &c);
-        renderer.Render(rig.intrinsics(), right[i], 0.1 * i, &r, nullptr, &c);
+        const std::size_t k = static_cast<std::size_t>(i);
+        renderer.Render(rig.intrinsics(), left[k], 0.1 * i, &l, nullptr, &centers[k]);
+        renderer.Render(rig.intrinsics(), right[k], 0.1 * i, &r, nullptr, &centers[k]);
         lefts.push_back(cv::Mat(l.height, l.width, CV_8UC1, l.pixels.data()).clone());
         rights.push_back(cv::Mat(r.height, r.width, CV_8UC1, r.pixels.data()).clone());
       }
