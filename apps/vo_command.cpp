@@ -61,7 +61,7 @@ void RunVo(const VoArguments& args) {
   trajectory.reserve(sequence.size());
   const fs::path csv_path = out_dir / "vo_frames.csv";
   std::ofstream csv = OpenForWriting(csv_path);
-  csv << "t,status,tracked,inliers,ms\n";
+  csv << "t,status,tracked,inliers,ms,dynamics_constrained\n";
   double process_s = 0.0;
   int ok_frames = 0;
   for (std::size_t k = 0; k < sequence.size(); ++k) {
@@ -76,8 +76,9 @@ void RunVo(const VoArguments& args) {
     if (r.ok()) ++ok_frames;
     trajectory.push_back({t_s, r.T_world_cam});
     char line[160];
-    std::snprintf(line, sizeof(line), "%.6f,%s,%d,%d,%.3f\n", t_s, estimation::ToString(r.status),
-                  r.tracked, r.inliers, 1e3 * seconds);
+    std::snprintf(line, sizeof(line), "%.6f,%s,%d,%d,%.3f,%d\n", t_s,
+                  estimation::ToString(r.status), r.tracked, r.inliers, 1e3 * seconds,
+                  r.dynamics_constrained ? 1 : 0);
     csv << line;
   }
   Close(csv, csv_path);

@@ -5,8 +5,8 @@
 //   visual_odometry.tum        `t x y z qx qy qz qw`, t from times.txt: the left camera's
 //                              pose in the first left camera's frame;
 //   visual_odometry.kitti.txt  the same poses as KITTI 3×4 lines (one per frame);
-//   vo_frames.csv              `t,status,tracked,inliers,ms` per frame (ms: wall time of
-//                              StereoVisualOdometry::Process).
+//   vo_frames.csv              `t,status,tracked,inliers,ms,dynamics_constrained` per
+//                              frame (ms: wall time of StereoVisualOdometry::Process).
 // Prints the number of frames, frames per second (wall clock of Process only, images
 // are read outside it), and, when ground truth exists (poses.txt in the folder or
 // --poses), the end-point error [m, % of the ground-truth path length] and the ATE RMSE

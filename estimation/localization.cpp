@@ -55,15 +55,32 @@ void LocalizationStack::AddEncoderSample(double t_s, std::int64_t left_ticks,
   ekf_.AddWheelTwist(t_s, wheel_noslip_.forward_mps(), wheel_noslip_.yaw_rate_radps());
 }
 
-void LocalizationStack::AddGyroSample(double t_s, double yaw_rate_radps) {
-  ekf_.AddGyro(t_s, yaw_rate_radps);
+void LocalizationStack::AddGyroSample(double t_s, const Eigen::Vector3d& rate_radps) {
+  ekf_.AddGyro(t_s, rate_radps.z());
+  if (has_gyro_ && t_s > t_gyro_) {
+    // The rate held over the interval since the last sample (body frame: right-multiplied).
+    const Eigen::Vector3d phi = rate_radps * (t_s - t_gyro_);
+    const double angle = phi.norm();
+    if (angle > 0.0) {
+      R_gyro_since_frame_ =
+          R_gyro_since_frame_ * Eigen::AngleAxisd(angle, phi / angle).toRotationMatrix();
+    }
+    gyro_since_frame_ = true;
+  }
+  has_gyro_ = true;
+  t_gyro_ = t_s;
 }
 
 LocalizationFrameReport LocalizationStack::AddStereoFrame(double t_s, const cv::Mat& left,
                                                           const cv::Mat& right) {
   LocalizationFrameReport report;
   if (!vo_) throw std::logic_error("LocalizationStack: stereo frame without a camera calibration");
-  report.vo = vo_->Process(left, right, t_s);
+  // The gyro's rotation since the last frame, in the left camera's frame.
+  const Eigen::Matrix3d& R_bc = T_body_left_.linear();
+  const Eigen::Matrix3d R_prior = R_bc.transpose() * R_gyro_since_frame_ * R_bc;
+  report.vo = vo_->Process(left, right, t_s, gyro_since_frame_ ? &R_prior : nullptr);
+  R_gyro_since_frame_.setIdentity();
+  gyro_since_frame_ = false;
   report.vo_valid = report.vo.status == VoStatus::kOk;
   std::optional<Pose2> vo_increment;
   if (report.vo_valid) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -345,6 +346,9 @@ void StereoVisualOdometryOptions::Validate() const {
   option_check::Nested("refinement", refinement);
   option_check::Positive("max_translation_per_frame_m", max_translation_per_frame_m);
   option_check::InRange("max_rotation_per_frame_deg", max_rotation_per_frame_deg, 1e-3, 180.0);
+  option_check::Positive("max_acceleration_mps2", max_acceleration_mps2);
+  option_check::Positive("max_angular_acceleration_dps2", max_angular_acceleration_dps2);
+  option_check::Positive("max_rotation_prior_error_deg", max_rotation_prior_error_deg);
 }
 
 const char* ToString(VoStatus status) {
@@ -361,6 +365,8 @@ const char* ToString(VoStatus status) {
       return "ransac_failed";
     case VoStatus::kImplausibleMotion:
       return "implausible_motion";
+    case VoStatus::kInconsistentMotion:
+      return "inconsistent_motion";
   }
   return "unknown";
 }
@@ -369,6 +375,17 @@ namespace {
 StereoVisualOdometryOptions Validated(const StereoVisualOdometryOptions& options) {
   options.Validate();
   return options;
+}
+
+/// The motion T (over an interval dt_from) continued at constant velocity over dt_to:
+/// rotation angle and translation scaled by dt_to / dt_from.
+Eigen::Isometry3d ContinuedMotion(const Eigen::Isometry3d& T, double dt_from, double dt_to) {
+  const double s = dt_from > 0.0 ? dt_to / dt_from : 1.0;
+  const Eigen::AngleAxisd r(T.linear());
+  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
+  out.linear() = Eigen::AngleAxisd(s * r.angle(), r.axis()).toRotationMatrix();
+  out.translation() = s * T.translation();
+  return out;
 }
 }  // namespace
 
@@ -484,7 +501,8 @@ void StereoVisualOdometry::Replenish(const cv::Mat& left, const cv::Mat& right,
   }
 }
 
-VoFrameResult StereoVisualOdometry::Process(const cv::Mat& left, const cv::Mat& right, double t_s) {
+VoFrameResult StereoVisualOdometry::Process(const cv::Mat& left, const cv::Mat& right, double t_s,
+                                            const Eigen::Matrix3d* R_prev_curr_prior) {
   if (left.empty() || right.empty() || left.type() != CV_8UC1 || right.type() != CV_8UC1 ||
       left.size() != right.size()) {
     throw std::invalid_argument(
@@ -612,20 +630,28 @@ VoFrameResult StereoVisualOdometry::Process(const cv::Mat& left, const cv::Mat& 
                                               std::to_string(min_inliers) + ")");
   }
 
-  // 4. Reprojection refinement; re-select the inliers with the refined motion; refine
-  //    again on them.
+  // 4. Reprojection refinement from an initial motion and its inlier mask; re-select
+  //    the inliers with the refined motion; refine again on them.
   const double threshold = options_.ransac.threshold_px;
-  MotionRefinementResult refined = RefineMotionReprojection(
-      correspondences_, ransac_.inlier_mask, camera_, ransac_.T_curr_prev, options_.refinement);
   inlier_mask_.resize(correspondences_.size());
-  int inliers =
-      CountInliers(correspondences_, camera_, refined.T_curr_prev, threshold, &inlier_mask_);
-  if (inliers >= min_inliers) {
-    refined = RefineMotionReprojection(correspondences_, inlier_mask_, camera_, refined.T_curr_prev,
-                                       options_.refinement);
-    inliers =
+  const auto refine = [&](const Eigen::Isometry3d& T_init, const std::vector<unsigned char>& mask,
+                          int* inliers) {
+    MotionRefinementResult refined =
+        RefineMotionReprojection(correspondences_, mask, camera_, T_init, options_.refinement);
+    *inliers =
         CountInliers(correspondences_, camera_, refined.T_curr_prev, threshold, &inlier_mask_);
-  }
+    if (*inliers >= min_inliers) {
+      refined = RefineMotionReprojection(correspondences_, inlier_mask_, camera_,
+                                         refined.T_curr_prev, options_.refinement);
+      *inliers =
+          CountInliers(correspondences_, camera_, refined.T_curr_prev, threshold, &inlier_mask_);
+    }
+    refined.T_curr_prev.linear() =
+        Eigen::Quaterniond(refined.T_curr_prev.linear()).normalized().toRotationMatrix();
+    return refined;
+  };
+  int inliers = 0;
+  MotionRefinementResult refined = refine(ransac_.T_curr_prev, ransac_.inlier_mask, &inliers);
   if (inliers < min_inliers || !refined.T_curr_prev.matrix().allFinite()) {
     return fail(VoStatus::kTooFewInliers, "refined motion keeps " + std::to_string(inliers) +
                                               " inliers of " + std::to_string(result.matched) +
@@ -633,26 +659,97 @@ VoFrameResult StereoVisualOdometry::Process(const cv::Mat& left, const cv::Mat& 
                                               std::to_string(min_inliers) + ")");
   }
 
-  // Success, if the motion is one the platform can make: accumulate the pose.
-  Eigen::Isometry3d T_curr_prev = refined.T_curr_prev;
-  T_curr_prev.linear() = Eigen::Quaterniond(T_curr_prev.linear()).normalized().toRotationMatrix();
-  const double moved_m = T_curr_prev.translation().norm();
-  const double turned_deg = Eigen::AngleAxisd(T_curr_prev.linear()).angle() * 180.0 / M_PI;
-  if (moved_m > options_.max_translation_per_frame_m ||
-      turned_deg > options_.max_rotation_per_frame_deg) {
-    char reason[160];
-    std::snprintf(reason, sizeof(reason),
-                  "motion of %.3f m and %.1f deg exceeds the per-frame bounds (%.3f m, %.1f deg)",
-                  moved_m, turned_deg, options_.max_translation_per_frame_m,
-                  options_.max_rotation_per_frame_deg);
+  // A motion the platform can make: within the per-frame bounds, and — when the last
+  // frame had a motion — within the dynamics bounds of the constant-velocity prediction.
+  const auto exceeds_bounds = [&](const Eigen::Isometry3d& T, char* reason, std::size_t size) {
+    const double moved_m = T.translation().norm();
+    const double turned_deg = Eigen::AngleAxisd(T.linear()).angle() * 180.0 / M_PI;
+    if (moved_m > options_.max_translation_per_frame_m ||
+        turned_deg > options_.max_rotation_per_frame_deg) {
+      std::snprintf(reason, size,
+                    "motion of %.3f m and %.1f deg exceeds the per-frame bounds (%.3f m, %.1f deg)",
+                    moved_m, turned_deg, options_.max_translation_per_frame_m,
+                    options_.max_rotation_per_frame_deg);
+      return true;
+    }
+    return false;
+  };
+  const double dt = t_s - last_t_s_;
+  const Eigen::Isometry3d predicted = ContinuedMotion(last_T_curr_prev_, last_motion_dt_s_, dt);
+  const auto breaks_dynamics = [&](const Eigen::Isometry3d& T, char* reason, std::size_t size) {
+    if (R_prev_curr_prior) {
+      // T maps prev to curr: its rotation times the prior's (prev from curr) is the error.
+      const double error_deg =
+          Eigen::AngleAxisd(T.linear() * *R_prev_curr_prior).angle() * 180.0 / M_PI;
+      if (error_deg > options_.max_rotation_prior_error_deg) {
+        std::snprintf(reason, size, "rotation departs from the prior's by %.2f deg (bound %.2f)",
+                      error_deg, options_.max_rotation_prior_error_deg);
+        return true;
+      }
+    }
+    if (!last_motion_valid_) return false;
+    const Eigen::Isometry3d change = predicted.inverse() * T;
+    const double change_m = change.translation().norm();
+    const double change_deg = Eigen::AngleAxisd(change.linear()).angle() * 180.0 / M_PI;
+    const double bound_m = options_.max_acceleration_mps2 * dt * dt;
+    const double bound_deg = R_prev_curr_prior ? std::numeric_limits<double>::infinity()
+                                               : options_.max_angular_acceleration_dps2 * dt * dt;
+    if (change_m > bound_m || change_deg > bound_deg) {
+      std::snprintf(reason, size,
+                    "motion departs from the constant-velocity prediction by %.3f m and %.2f deg "
+                    "(dynamics bounds over %.3f s: %.3f m, %.2f deg)",
+                    change_m, change_deg, dt, bound_m, bound_deg);
+      return true;
+    }
+    return false;
+  };
+  char reason[256];
+  if (exceeds_bounds(refined.T_curr_prev, reason, sizeof(reason))) {
     return fail(VoStatus::kImplausibleMotion, reason);
   }
+  if (breaks_dynamics(refined.T_curr_prev, reason, sizeof(reason))) {
+    // RANSAC's consensus is not a motion the platform can make (points on a moving
+    // object, say): the consensus of the other correspondences may be.
+    const std::string ransac_reason = reason;
+    rest_.clear();
+    rest_index_.clear();
+    for (std::size_t j = 0; j < correspondences_.size(); ++j) {
+      if (inlier_mask_[j]) continue;
+      rest_.push_back(correspondences_[j]);
+      rest_index_.push_back(static_cast<int>(j));
+    }
+    int second = 0;
+    bool recovered = false;
+    if (rest_.size() >= static_cast<std::size_t>(min_inliers)) {
+      EstimateMotionRansac(rest_, camera_, options_.ransac, rng_, &ransac_);
+      second = ransac_.success ? ransac_.inliers : 0;
+    }
+    if (second >= min_inliers) {
+      rest_mask_.assign(correspondences_.size(), 0);
+      for (std::size_t k = 0; k < rest_.size(); ++k) {
+        rest_mask_[static_cast<std::size_t>(rest_index_[k])] = ransac_.inlier_mask[k];
+      }
+      refined = refine(ransac_.T_curr_prev, rest_mask_, &inliers);
+      recovered = inliers >= min_inliers && refined.T_curr_prev.matrix().allFinite() &&
+                  !exceeds_bounds(refined.T_curr_prev, reason, sizeof(reason)) &&
+                  !breaks_dynamics(refined.T_curr_prev, reason, sizeof(reason));
+    }
+    if (!recovered) {
+      return fail(VoStatus::kInconsistentMotion,
+                  "RANSAC's " + ransac_reason + "; the other " + std::to_string(rest_.size()) +
+                      " correspondences' consensus (" + std::to_string(second) +
+                      " inliers) does not keep within them either");
+    }
+    result.dynamics_constrained = true;
+  }
+  const Eigen::Isometry3d& T_curr_prev = refined.T_curr_prev;
   result.status = VoStatus::kOk;
   result.inliers = inliers;
   result.reprojection_rms_px = refined.final_rms_px;
   result.T_prev_curr = T_curr_prev.inverse();
   T_world_cam_ = T_world_cam_ * result.T_prev_curr;
   last_T_curr_prev_ = T_curr_prev;
+  last_motion_dt_s_ = dt;
   last_motion_valid_ = true;
 
   // 5. Carry the inliers to the next frame; fill the grid's empty cells.

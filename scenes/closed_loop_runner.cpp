@@ -188,6 +188,9 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& given_obs
     lo.fusion_weight_rise_time_s = scenario.estimation.fusion_weight_rise_time_s;
     lo.vo.max_translation_per_frame_m = scenario.estimation.vo_max_translation_per_frame_m;
     lo.vo.max_rotation_per_frame_deg = scenario.estimation.vo_max_rotation_per_frame_deg;
+    lo.vo.max_acceleration_mps2 = scenario.estimation.vo_max_acceleration_mps2;
+    lo.vo.max_angular_acceleration_dps2 = scenario.estimation.vo_max_angular_acceleration_dps2;
+    lo.vo.max_rotation_prior_error_deg = scenario.estimation.vo_max_gyro_rotation_error_deg;
     std::optional<perception::StereoCalibration> calibration;
     if (rig) {
       const sim::PinholeIntrinsics& K = rig->intrinsics();
@@ -361,10 +364,9 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& given_obs
           imu.Sample(clock.now_s(), truth.T_world_body.linear(), truth.omega_world, accel);
       if (observers.on_imu) observers.on_imu(sample);
       if (worker) {
-        worker->Submit(
-            [&, t = sample.t_s, z = sample.gyro_radps.z()] { stack->AddGyroSample(t, z); });
+        worker->Submit([&, t = sample.t_s, w = sample.gyro_radps] { stack->AddGyroSample(t, w); });
       } else if (stack) {
-        stack->AddGyroSample(sample.t_s, sample.gyro_radps.z());
+        stack->AddGyroSample(sample.t_s, sample.gyro_radps);
       }
     }
     if (range_sensor && clock.Fires(scan_period)) {

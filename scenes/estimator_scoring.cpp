@@ -31,6 +31,7 @@ void EstimatorScoring::AddFrame(const Eigen::Isometry3d& T_world_body_true,
   vo_truth_.push_back({frame.t_s, T_world_body_true});
   vo_.push_back({frame.t_s, frame.visual_odometry});
   if (!frame.report.vo_valid) ++vo_failures_;
+  if (frame.report.vo.dynamics_constrained) ++vo_constrained_;
   if (frame.camera_blackout) ++blackout_frames_;
   inliers_sum_ += frame.report.features;
   w_sum_ += frame.report.w;
@@ -72,6 +73,7 @@ LocalizationSummary EstimatorScoring::Summary() const {
   LocalizationSummary s;
   s.vo_frames = static_cast<long long>(vo_.size());
   s.vo_failures = vo_failures_;
+  s.vo_dynamics_constrained = vo_constrained_;
   s.camera_blackout_frames = blackout_frames_;
   if (!vo_.empty()) {
     s.mean_inliers = inliers_sum_ / static_cast<double>(vo_.size());

@@ -191,10 +191,13 @@ std::string MetricsJson(const RunMetrics& m) {
   }
   j["estimators"] = estimators;
   const LocalizationSummary& loc = m.localization;
-  j["localization"] = {
-      {"vo_frames", loc.vo_frames},         {"camera_blackout_frames", loc.camera_blackout_frames},
-      {"vo_failures", loc.vo_failures},     {"mean_inliers", loc.mean_inliers},
-      {"mean_fusion_w", loc.mean_fusion_w}, {"slip_estimate_rmse_mps", loc.slip_estimate_rmse_mps}};
+  j["localization"] = {{"vo_frames", loc.vo_frames},
+                       {"camera_blackout_frames", loc.camera_blackout_frames},
+                       {"vo_failures", loc.vo_failures},
+                       {"vo_dynamics_constrained", loc.vo_dynamics_constrained},
+                       {"mean_inliers", loc.mean_inliers},
+                       {"mean_fusion_w", loc.mean_fusion_w},
+                       {"slip_estimate_rmse_mps", loc.slip_estimate_rmse_mps}};
   j["timing"] = {{"render_s", m.render_wall_s},   {"estimation_s", m.estimation_wall_s},
                  {"physics_s", m.physics_wall_s}, {"control_s", m.control_wall_s},
                  {"sensing_s", m.sensing_wall_s}, {"io_s", m.io_wall_s}};
@@ -411,7 +414,8 @@ RunMetrics RunToFolderWith(const Scenario& scenario, const fs::path& dir, const 
         vo_tum = std::make_unique<LogFile>(dir / "visual_odometry.tum", "");
         fusion_csv = std::make_unique<LogFile>(
             dir / "fusion.csv",
-            "t,slip_velocity_mps,features,w,vo_status,vo_tracked,camera_blackout,w_rule");
+            "t,slip_velocity_mps,features,w,vo_status,vo_tracked,camera_blackout,w_rule,"
+            "vo_dynamics_constrained");
       }
     }
     LogFile tracks(dir / "tracks.csv",
@@ -490,10 +494,11 @@ RunMetrics RunToFolderWith(const Scenario& scenario, const fs::path& dir, const 
       plots.estimates["visual_odometry"].push_back({f.t_s, f.visual_odometry});
       if (!vo_tum) return;
       vo_tum->Line(estimation::FormatTumLine({f.t_s, f.visual_odometry}).c_str());
-      std::snprintf(line, sizeof(line), "%.6f,%.9g,%.0f,%.6f,%s,%d,%d,%.6f", f.t_s,
+      std::snprintf(line, sizeof(line), "%.6f,%.9g,%.0f,%.6f,%s,%d,%d,%.6f,%d", f.t_s,
                     f.report.slip_velocity_mps, f.report.features, f.report.w,
                     estimation::ToString(f.report.vo.status), f.report.vo.tracked,
-                    f.camera_blackout ? 1 : 0, f.report.w_rule);
+                    f.camera_blackout ? 1 : 0, f.report.w_rule,
+                    f.report.vo.dynamics_constrained ? 1 : 0);
       fusion_csv->Line(line);
     };
     observers.on_imu = [&](const robot::ImuSample& s) {

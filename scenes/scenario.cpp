@@ -118,6 +118,9 @@ void EstimationSpec::Validate() const {
   option_check::Positive("vo_max_translation_per_frame_m", vo_max_translation_per_frame_m);
   option_check::InRange("vo_max_rotation_per_frame_deg", vo_max_rotation_per_frame_deg, 1e-3,
                         180.0);
+  option_check::Positive("vo_max_acceleration_mps2", vo_max_acceleration_mps2);
+  option_check::Positive("vo_max_angular_acceleration_dps2", vo_max_angular_acceleration_dps2);
+  option_check::Positive("vo_max_gyro_rotation_error_deg", vo_max_gyro_rotation_error_deg);
 }
 
 void NavigationSpec::Validate() const {

@@ -401,6 +401,9 @@ void Visit(V& v, EstimationSpec& o) {
   v("fusion_weight_rise_time_s", o.fusion_weight_rise_time_s);
   v("vo_max_translation_per_frame_m", o.vo_max_translation_per_frame_m);
   v("vo_max_rotation_per_frame_deg", o.vo_max_rotation_per_frame_deg);
+  v("vo_max_acceleration_mps2", o.vo_max_acceleration_mps2);
+  v("vo_max_angular_acceleration_dps2", o.vo_max_angular_acceleration_dps2);
+  v("vo_max_gyro_rotation_error_deg", o.vo_max_gyro_rotation_error_deg);
 }
 
 template <class V>

@@ -180,13 +180,15 @@ TEST(CliTest, CameraBlackoutMidRunFusionLeansOnWheelsAndTheRunCompletes) {
   std::istringstream fusion(Slurp(out / "fusion.csv"));
   std::string row;
   std::getline(fusion, row);
-  EXPECT_EQ(row, "t,slip_velocity_mps,features,w,vo_status,vo_tracked,camera_blackout,w_rule");
+  EXPECT_EQ(row,
+            "t,slip_velocity_mps,features,w,vo_status,vo_tracked,camera_blackout,w_rule,"
+            "vo_dynamics_constrained");
   int blacked = 0, recovered = 0;
   while (std::getline(fusion, row)) {
     std::vector<std::string> f;
     std::istringstream cells(row);
     for (std::string c; std::getline(cells, c, ',');) f.push_back(c);
-    ASSERT_EQ(f.size(), 8u) << row;
+    ASSERT_EQ(f.size(), 9u) << row;
     const double t = std::stod(f[0]);
     if (f[6] == "1") {
       ++blacked;

@@ -402,6 +402,124 @@ TEST(StereoVisualOdometryTest, MotionBeyondThePlatformsBoundsIsAFailureNotAMotio
   EXPECT_STREQ(ToString(VoStatus::kImplausibleMotion), "implausible_motion");
 }
 
+// Frame k of the synthetic scene in which, from frame `jump_frame` on, the part of the
+// view between columns [x0, x1) is an object that has moved 0.06 m to the left at once
+// (rendered from a camera 0.06 m to the right): features there move rigidly, but not
+// with the camera. The whole view (x0 = 0, x1 = width) is the scene itself jumping.
+std::pair<cv::Mat, cv::Mat> RenderWithJump(const SyntheticScene& scene, int k, int jump_frame,
+                                           int x0, int x1) {
+  const Eigen::Isometry3d pose = SyntheticScene::TruePose(k);
+  std::pair<cv::Mat, cv::Mat> pair{scene.Render(pose, false), scene.Render(pose, true)};
+  if (k < jump_frame) return pair;
+  Eigen::Isometry3d moved = pose;
+  moved.translation() += pose.linear() * Eigen::Vector3d(0.06, 0.0, 0.0);
+  const cv::Rect region(x0, 0, x1 - x0, SyntheticScene::kHeight);
+  scene.Render(moved, false)(region).copyTo(pair.first(region));
+  scene.Render(moved, true)(region).copyTo(pair.second(region));
+  return pair;
+}
+
+// The camera's true motion changes by under 2 mm per frame; 1 m/s² at 10 Hz allows 1 cm.
+StereoVisualOdometryOptions TightDynamicsOptions() {
+  StereoVisualOdometryOptions options;
+  options.max_acceleration_mps2 = 1.0;
+  options.max_angular_acceleration_dps2 = 100.0;
+  return options;
+}
+
+TEST(StereoVisualOdometryTest, AConsensusOnAMovingObjectGivesWayToTheBackgroundsConsensus) {
+  const SyntheticScene scene;
+  // Three quarters of the view jump at frame 3: RANSAC's consensus is the object's.
+  constexpr int kJump = 3, kX0 = 80, kX1 = 560;
+  for (const bool check : {true, false}) {
+    StereoVisualOdometryOptions options = TightDynamicsOptions();
+    if (!check) options.max_acceleration_mps2 = options.max_angular_acceleration_dps2 = 1e6;
+    StereoVisualOdometry vo(SyntheticScene::Calibration(), options);
+    for (int k = 0; k <= kJump + 2; ++k) {
+      const auto [left, right] = RenderWithJump(scene, k, kJump, kX0, kX1);
+      const VoFrameResult r = vo.Process(left, right, 0.1 * k);
+      if (k == 0) continue;
+      ASSERT_EQ(r.status, VoStatus::kOk) << "frame " << k << ": " << r.reason;
+      const Eigen::Isometry3d truth =
+          SyntheticScene::TruePose(k - 1).inverse() * SyntheticScene::TruePose(k);
+      const double error_m = TranslationError(r.T_prev_curr, truth);
+      if (k != kJump) {
+        EXPECT_FALSE(r.dynamics_constrained) << "frame " << k;
+        continue;
+      }
+      if (check) {
+        EXPECT_TRUE(r.dynamics_constrained);
+        EXPECT_LT(error_m, 0.006);  // a quarter of the view's points: a little less accurate
+        EXPECT_LT(RotationErrorDeg(r.T_prev_curr, truth), 0.05);
+        EXPECT_LT(r.inliers, r.matched / 2);  // the background's quarter
+        std::printf("moving object: the background's consensus %d of %d, error %.2f mm\n",
+                    r.inliers, r.matched, 1e3 * error_m);
+      } else {
+        // Without the bounds the object's consensus is taken: the camera seems to move
+        // with it.
+        EXPECT_FALSE(r.dynamics_constrained);
+        EXPECT_GT(error_m, 0.03);
+        EXPECT_GT(r.inliers, r.matched / 2);
+      }
+    }
+  }
+}
+
+TEST(StereoVisualOdometryTest, AJumpOfTheWholeViewIsAnInconsistentMotionAndTheNextFrameRecovers) {
+  const SyntheticScene scene;
+  constexpr int kJump = 3;
+  StereoVisualOdometry vo(SyntheticScene::Calibration(), TightDynamicsOptions());
+  Eigen::Isometry3d pose_before_jump = Eigen::Isometry3d::Identity();
+  for (int k = 0; k <= kJump + 2; ++k) {
+    const auto [left, right] = RenderWithJump(scene, k, kJump, 0, SyntheticScene::kWidth);
+    const VoFrameResult r = vo.Process(left, right, 0.1 * k);
+    if (k == kJump - 1) pose_before_jump = r.T_world_cam;
+    if (k == kJump) {
+      EXPECT_EQ(r.status, VoStatus::kInconsistentMotion) << r.reason;
+      EXPECT_NE(r.reason.find("constant-velocity prediction"), std::string::npos) << r.reason;
+      EXPECT_EQ(r.inliers, 0);
+      EXPECT_TRUE(r.T_prev_curr.matrix().isIdentity());
+      EXPECT_TRUE(r.T_world_cam.matrix() == pose_before_jump.matrix());
+      std::printf("whole view jumps: %s\n", r.reason.c_str());
+    } else if (k > kJump) {
+      // No prediction after a failure: the next frame is taken as it comes, and the
+      // scene is rigid again.
+      ASSERT_EQ(r.status, VoStatus::kOk) << "frame " << k << ": " << r.reason;
+      const Eigen::Isometry3d truth =
+          SyntheticScene::TruePose(k - 1).inverse() * SyntheticScene::TruePose(k);
+      EXPECT_LT(TranslationError(r.T_prev_curr, truth), 0.004) << "frame " << k;
+    }
+  }
+  EXPECT_STREQ(ToString(VoStatus::kInconsistentMotion), "inconsistent_motion");
+}
+
+TEST(StereoVisualOdometryTest, ARotationPriorVetsEveryFramesConsensusEvenAfterAFailure) {
+  const SyntheticScene scene;
+  StereoVisualOdometry vo(SyntheticScene::Calibration());  // 2 deg from the prior
+  const Eigen::Matrix3d off = Eigen::AngleAxisd(5.0 / kDegPerRad, Eigen::Vector3d::UnitY())
+                                  .toRotationMatrix();  // a gyro 5 deg wrong
+  for (int k = 0; k <= 4; ++k) {
+    const Eigen::Isometry3d pose = SyntheticScene::TruePose(k);
+    const Eigen::Isometry3d truth = SyntheticScene::TruePose(k - 1).inverse() * pose;
+    const bool wrong_prior = k == 2 || k == 3;
+    const Eigen::Matrix3d prior =
+        wrong_prior ? Eigen::Matrix3d(truth.linear() * off) : Eigen::Matrix3d(truth.linear());
+    const VoFrameResult r =
+        vo.Process(scene.Render(pose, false), scene.Render(pose, true), 0.1 * k, &prior);
+    if (k == 0) continue;
+    if (wrong_prior) {
+      // Frame 3 follows a failed frame: no constant-velocity prediction, but the prior.
+      EXPECT_EQ(r.status, VoStatus::kInconsistentMotion) << "frame " << k;
+      EXPECT_NE(r.reason.find("departs from the prior's by"), std::string::npos) << r.reason;
+      EXPECT_TRUE(r.T_prev_curr.matrix().isIdentity());
+    } else {
+      ASSERT_EQ(r.status, VoStatus::kOk) << "frame " << k << ": " << r.reason;
+      EXPECT_FALSE(r.dynamics_constrained);
+      EXPECT_LT(TranslationError(r.T_prev_curr, truth), 0.004) << "frame " << k;
+    }
+  }
+}
+
 TEST(StereoVisualOdometryTest, BlankFrameFailsWithoutMotionAndTheNextFramesRecover) {
   const SyntheticScene scene;
   StereoVisualOdometry vo(SyntheticScene::Calibration());

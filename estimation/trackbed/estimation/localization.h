@@ -68,8 +68,12 @@ class LocalizationStack {
   LocalizationStack& operator=(const LocalizationStack&) = delete;
 
   void AddEncoderSample(double t_s, std::int64_t left_ticks, std::int64_t right_ticks);
-  /// The IMU gyro's rate about the body z axis [rad/s] (for the EKF baseline).
-  void AddGyroSample(double t_s, double yaw_rate_radps);
+  /// The IMU gyro's rates about the body axes [rad/s]: z for the EKF baseline; all
+  /// three, integrated from one stereo frame to the next, are the rotation prior that
+  /// vets visual odometry's consensus (StereoVisualOdometryOptions::
+  /// max_rotation_prior_error_deg). Only VO frames with gyro samples since the last
+  /// frame get a prior.
+  void AddGyroSample(double t_s, const Eigen::Vector3d& rate_radps);
   LocalizationFrameReport AddStereoFrame(double t_s, const cv::Mat& left, const cv::Mat& right);
 
   /// Current estimates of T_world_body.
@@ -96,6 +100,10 @@ class LocalizationStack {
   double t_frame_ = 0.0;
   bool has_frame_ = false;
   double w_ = 1.0;  // the applied wheel weight, rising slowly (fusion_weight_rise_time_s)
+  // The body's rotation since the last stereo frame, integrated from the gyro.
+  Eigen::Matrix3d R_gyro_since_frame_ = Eigen::Matrix3d::Identity();
+  double t_gyro_ = 0.0;
+  bool has_gyro_ = false, gyro_since_frame_ = false;
 };
 
 }  // namespace trackbed::estimation

@@ -26,6 +26,10 @@
 //   4. Horn refit on the inliers (weights 1/(Z_prev⁴ + Z_curr⁴), the inverse variance
 //      of stereo depth), then reprojection refinement, a re-selection of the inliers
 //      with the refined motion and a second refinement;
+//   4b. vet the motion: within the platform's per-frame bounds, and within its dynamics
+//      bounds around the constant-velocity prediction (or a gyro's rotation, if given);
+//      a consensus that breaks the dynamics bounds gives way to the consensus of the
+//      remaining correspondences, if that one keeps within them;
 //   5. keep the inliers as features and replenish the grid cells that have too few with
 //      new Harris corners (stereo-matched for the next frame).
 // Fewer than min_inliers inliers is a failure (design.md §3): no motion (identity),
@@ -209,6 +213,26 @@ struct StereoVisualOdometryOptions {
   /// leave room for a car at 100 km/h and 10 Hz; a slow robot may tighten them. > 0.
   double max_translation_per_frame_m = 3.0;
   double max_rotation_per_frame_deg = 30.0;
+  /// Dynamics bounds of the platform: its velocity cannot change faster than this, so a
+  /// frame's motion cannot depart from the constant-velocity prediction (the last
+  /// frame's motion, scaled to this frame's interval dt) by more than
+  /// max_acceleration_mps2·dt² [m] or max_angular_acceleration_dps2·dt² [deg]. Such a
+  /// consensus is a wrong one (features on a moving object, a repeated texture); the
+  /// frame then runs RANSAC again on the correspondences outside it and takes the
+  /// second consensus, refined like any other, if it has min_inliers inliers and keeps
+  /// within the bounds, and fails (kInconsistentMotion) otherwise.
+  /// Checked only when the last frame had a motion (for a rotation prior, see below).
+  /// The bounds must leave room for the
+  /// estimate's own noise: with a few dozen inliers, consecutive translations of a
+  /// short-baseline rig differ by 0.1 m where the true ones differ by 1 cm. Defaults
+  /// leave room for a car braking at 3 g; a slow robot may tighten them. > 0.
+  double max_acceleration_mps2 = 30.0;
+  double max_angular_acceleration_dps2 = 1000.0;
+  /// With a rotation prior (a gyro's rotation over the frame interval, passed to
+  /// Process), the frame's rotation is held to the prior instead, to within this [deg],
+  /// > 0, also right after a failed frame; the angular acceleration bound is then not
+  /// used. The prior only vets consensuses: it never enters the motion estimate.
+  double max_rotation_prior_error_deg = 2.0;
   /// Reprojection refinement after the inlier refit.
   MotionRefinementOptions refinement;
   /// Start LK at the position the last motion predicts (constant velocity), rather than
@@ -222,16 +246,17 @@ struct StereoVisualOdometryOptions {
 
 /// Outcome of one frame.
 enum class VoStatus {
-  kOk,                 ///< motion estimated
-  kFirstFrame,         ///< first frame (or after Reset): features initialised, no motion
-  kTooFewFeatures,     ///< fewer than min_inliers 3-D–3-D correspondences
-  kTooFewInliers,      ///< RANSAC found fewer than min_inliers inliers
-  kRansacFailed,       ///< every sample was degenerate
-  kImplausibleMotion,  ///< the motion exceeds the per-frame bounds (a wrong consensus)
+  kOk,                  ///< motion estimated
+  kFirstFrame,          ///< first frame (or after Reset): features initialised, no motion
+  kTooFewFeatures,      ///< fewer than min_inliers 3-D–3-D correspondences
+  kTooFewInliers,       ///< RANSAC found fewer than min_inliers inliers
+  kRansacFailed,        ///< every sample was degenerate
+  kImplausibleMotion,   ///< the motion exceeds the per-frame bounds (a wrong consensus)
+  kInconsistentMotion,  ///< breaks the dynamics bounds, as does the second consensus
 };
 
 /// "ok", "first_frame", "too_few_features", "too_few_inliers", "ransac_failed",
-/// "implausible_motion".
+/// "implausible_motion", "inconsistent_motion".
 const char* ToString(VoStatus status);
 
 /// Result of StereoVisualOdometry::Process for one frame.
@@ -251,6 +276,9 @@ struct VoFrameResult {
   int inliers = 0;
   int features = 0;                  ///< features carried to the next frame (inliers + new corners)
   double reprojection_rms_px = 0.0;  ///< inliers' RMS residual after refinement
+  /// Whether RANSAC's consensus broke the dynamics bounds and the motion is the
+  /// consensus of the other correspondences instead.
+  bool dynamics_constrained = false;
   bool ok() const { return status == VoStatus::kOk; }
 };
 
@@ -268,7 +296,11 @@ class StereoVisualOdometry {
   /// Processes one rectified pair taken at t_s [s]. Images: non-empty CV_8UC1, left and
   /// right of one size, the same size for every frame; t_s finite and not decreasing.
   /// Throws std::invalid_argument otherwise (the state is then unchanged).
-  VoFrameResult Process(const cv::Mat& left, const cv::Mat& right, double t_s);
+  /// `R_prev_curr_prior`: where known, the rotation of the left camera since the last
+  /// frame (p_prev = R · p_curr, as T_prev_curr's), e.g. from a gyro; see
+  /// max_rotation_prior_error_deg.
+  VoFrameResult Process(const cv::Mat& left, const cv::Mat& right, double t_s,
+                        const Eigen::Matrix3d* R_prev_curr_prior = nullptr);
 
   /// Forgets all features and the pose: the next frame is a first frame again.
   void Reset();
@@ -307,6 +339,7 @@ class StereoVisualOdometry {
   Features prev_, curr_;
   Eigen::Isometry3d T_world_cam_ = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d last_T_curr_prev_ = Eigen::Isometry3d::Identity();
+  double last_motion_dt_s_ = 0.0;  // the interval last_T_curr_prev_ spans
   bool last_motion_valid_ = false;
 
   // Per-frame scratch (kept to avoid allocations).
@@ -317,6 +350,9 @@ class StereoVisualOdometry {
   std::vector<int> correspondence_feature_;  // correspondence → index into prev_
   MotionRansacResult ransac_;
   std::vector<unsigned char> inlier_mask_;
+  std::vector<MotionCorrespondence> rest_;  // outside an inconsistent consensus
+  std::vector<int> rest_index_;             // rest_ → index into correspondences_
+  std::vector<unsigned char> rest_mask_;    // a consensus of rest_, over correspondences_
   std::vector<int> cell_count_;
   std::vector<std::int64_t> cell_retry_frame_;  // frame index from which a cell is searched
   std::int64_t frame_index_ = 0;                // frames processed since construction
