@@ -113,16 +113,18 @@ struct EstimationSpec {
   double vo_max_rotation_per_frame_deg = 20.0;
   /// Visual odometry's dynamics bounds for this robot [m/s²], [deg/s²]: a frame's motion
   /// may depart from the last frame's (constant velocity) by at most a·dt², α·dt²
-  /// (StereoVisualOdometryOptions::max_acceleration_mps2). VO's translation estimates
-  /// differ by up to 0.15 m between frames with a few dozen inliers outdoors, where the
-  /// true ones differ by under 4 cm. The angular bound applies only to frames without
-  /// gyro samples: the robot's rotation changes by up to 5.6 deg per 0.1 s when it
-  /// starts or stops a turn on the spot.
+  /// (StereoVisualOdometryOptions::max_acceleration_mps2). Measured (docs/localization.md):
+  /// VO's translation estimates differ by up to 0.15 m between frames with a few dozen
+  /// inliers outdoors (seed 3), where the true ones differ by under 4 cm. The angular
+  /// bound applies only to frames without gyro samples: the robot's rotation changes by
+  /// up to 5.6 deg per 0.1 s when it starts or stops a turn on the spot
+  /// (ClosedLoopNavigationTest's run).
   double vo_max_acceleration_mps2 = 30.0;
   double vo_max_angular_acceleration_dps2 = 1000.0;
   /// A VO frame's rotation may differ from the gyro's over the frame interval by at most
-  /// this [deg] (StereoVisualOdometryOptions::max_rotation_prior_error_deg); VO's
-  /// rotation error is under 0.6 deg per frame outdoors with a right consensus.
+  /// this [deg] (StereoVisualOdometryOptions::max_rotation_prior_error_deg); with a right
+  /// consensus VO's rotation error stayed under 0.6 deg per frame in the outdoor runs of
+  /// seeds 3 and 6.
   double vo_max_gyro_rotation_error_deg = 2.0;
 
   void Validate() const;
