@@ -1,12 +1,12 @@
 // OSMesa renderer (see renderer.h).
 //
-// Fixed-function OpenGL in the compatibility profile: one display list per
-// object compiled once, the terrain in chunks per material meshed at the
+// Fixed-function OpenGL in the compatibility profile, back faces culled: one
+// display list per object compiled once, the terrain in chunks per material meshed at the
 // detail the distance from the detail centre asks for (TerrainDetail), kept
 // while it holds; textures uploaded once with a mip chain built here (box
 // filter) so that the bytes do not depend on the driver's mipmap generation.
-// Each frame: cull chunks against the view frustum, draw near to far,
-// glFinish, read the colour buffer back flipped to top-down rows.
+// Each frame: cull chunks against the view frustum, draw near to far into a
+// frame buffer object of one 8-bit channel, read it back flipped to top-down rows.
 #include "trackbed/sim/renderer.h"
 
 #define GL_GLEXT_PROTOTYPES 1  // buffer objects (GL 1.5), which libOSMesa exports
@@ -87,7 +87,12 @@ struct Renderer::Gl {
   SceneAppearance appearance;
   std::uint64_t seed = 0;
   const Terrain* terrain = nullptr;
-  std::vector<std::uint8_t> color;  // RGBA, bottom row first
+  // OSMesa's own frame buffer, 1 x 1 and never drawn into: the frame buffer
+  // object (one 8-bit channel and depth) is what is drawn and read, so the
+  // shaders write one byte per pixel and OSMesa copies nothing at glFinish.
+  std::vector<std::uint8_t> osmesa_pixel = std::vector<std::uint8_t>(4, 0);
+  GLuint framebuffer = 0, color_buffer = 0, depth_buffer = 0;
+  std::vector<std::uint8_t> grey;  // read back, bottom row first
   std::vector<float> depth;
   std::map<std::string, GlTexture> textures;
   std::vector<Drawable> drawables;
@@ -102,8 +107,25 @@ struct Renderer::Gl {
   }
 
   void MakeCurrent() {
-    if (!OSMesaMakeCurrent(context, color.data(), GL_UNSIGNED_BYTE, width, height)) {
+    if (!OSMesaMakeCurrent(context, osmesa_pixel.data(), GL_UNSIGNED_BYTE, 1, 1)) {
       throw std::runtime_error("Renderer: OSMesaMakeCurrent failed");
+    }
+    if (framebuffer != 0) glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+  }
+
+  void CreateFramebuffer() {
+    glGenFramebuffers(1, &framebuffer);
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    glGenRenderbuffers(1, &color_buffer);
+    glBindRenderbuffer(GL_RENDERBUFFER, color_buffer);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_R8, width, height);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color_buffer);
+    glGenRenderbuffers(1, &depth_buffer);
+    glBindRenderbuffer(GL_RENDERBUFFER, depth_buffer);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_buffer);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+      throw std::runtime_error("Renderer: the frame buffer object is incomplete");
     }
   }
 
@@ -232,17 +254,18 @@ struct Renderer::Gl {
     glEnd();
   }
 
-  // An upright cylinder from z = 0 to `height`, with a top cap.
+  // An upright cylinder from z = 0 to `height`, with a top cap. Each side quad
+  // is top, bottom, next bottom, next top: counter-clockwise from outside.
   static void DrawCylinder(double radius, double height, double m, int slices = 24) {
     glBegin(GL_QUAD_STRIP);
     for (int k = 0; k <= slices; ++k) {
       const double a = 2 * M_PI * k / slices;
       const double c = std::cos(a), s = std::sin(a);
       glNormal3d(c, s, 0);
-      glTexCoord2d(a * radius / m, 0);
-      glVertex3d(radius * c, radius * s, 0);
       glTexCoord2d(a * radius / m, height / m);
       glVertex3d(radius * c, radius * s, height);
+      glTexCoord2d(a * radius / m, 0);
+      glVertex3d(radius * c, radius * s, 0);
     }
     glEnd();
     glBegin(GL_TRIANGLE_FAN);
@@ -378,20 +401,26 @@ Renderer::Renderer(const World& world, const SceneAppearance& appearance,
   g.seed = seed;
   g.terrain = &world.terrain();
   g.occluders = std::move(occluders);
-  g.color.assign(static_cast<std::size_t>(width_px) * height_px * 4, 0);
+  g.grey.resize(static_cast<std::size_t>(width_px) * height_px);
   g.depth.resize(static_cast<std::size_t>(width_px) * height_px);
   g.context = OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr);
   if (!g.context) throw std::runtime_error("Renderer: OSMesaCreateContextExt failed");
   g.MakeCurrent();
+  g.CreateFramebuffer();
 
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
+  // Every surface is wound counter-clockwise seen from outside (terrain from
+  // above, the ceiling from below), so back faces are hidden ones: culling
+  // them spares llvmpipe rasterizing them (1.13-1.15x the pairs/s, README).
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
+  glFrontFace(GL_CCW);
   glEnable(GL_TEXTURE_2D);
   glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE);
   glShadeModel(GL_SMOOTH);
   glEnable(GL_LIGHTING);
   glEnable(GL_LIGHT0);
-  glLightModeli(GL_LIGHT_MODEL_TWO_SIDE, GL_TRUE);
   const float ambient[] = {static_cast<float>(appearance.ambient),
                            static_cast<float>(appearance.ambient),
                            static_cast<float>(appearance.ambient), 1.0f};
@@ -513,17 +542,17 @@ void Renderer::Render(const PinholeIntrinsics& K, const Eigen::Isometry3d& T_wor
     glCallList(g.occluder_lists[k]);
     glPopMatrix();
   }
-  glFinish();
-
+  // Reading the frame buffer object waits for llvmpipe to finish the frame.
   const int W = g.width, H = g.height;
   if (gray) {
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, W, H, GL_RED, GL_UNSIGNED_BYTE, g.grey.data());
     gray->width = W;
     gray->height = H;
     gray->pixels.resize(static_cast<std::size_t>(W) * H);
-    for (int v = 0; v < H; ++v) {
-      const std::uint8_t* src = &g.color[static_cast<std::size_t>(H - 1 - v) * W * 4];
-      std::uint8_t* dst = &gray->pixels[static_cast<std::size_t>(v) * W];
-      for (int u = 0; u < W; ++u) dst[u] = src[4 * u];  // grey scene: R = G = B
+    for (int v = 0; v < H; ++v) {  // OpenGL's first row is the bottom one
+      std::copy_n(&g.grey[static_cast<std::size_t>(H - 1 - v) * W], W,
+                  &gray->pixels[static_cast<std::size_t>(v) * W]);
     }
   }
   if (depth) {

@@ -4,6 +4,9 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
@@ -203,6 +206,141 @@ TEST(RendererTest, FarTerrainDetailLeavesTheNearGroundUnchanged) {
   Renderer r_alone(world, lod, {}, 3, 640, 480, 0.05, 120.0);
   r_alone.Render(rig.intrinsics(), right, 0.0, &r2, nullptr, &center);
   EXPECT_EQ(r1.pixels, r2.pixels);
+}
+
+// A level camera at `eye` looking horizontally towards `target` (OpenCV axes).
+Eigen::Isometry3d LookAt(const Eigen::Vector3d& eye, const Eigen::Vector3d& target) {
+  const Eigen::Vector3d z = (target - eye).normalized();
+  const Eigen::Vector3d x = z.cross(Eigen::Vector3d::UnitZ()).normalized();
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear().col(0) = x;
+  T.linear().col(1) = z.cross(x);
+  T.linear().col(2) = z;
+  T.translation() = eye;
+  return T;
+}
+
+// Back faces are culled, so a surface wound the wrong way would vanish and
+// show what is behind it: every shape must be seen, from every side, at the
+// distance of its near surface.
+TEST(RendererTest, EveryShapeIsSeenFromEverySideWithBackFacesCulled) {
+  StaticObject box;
+  box.center_m = {0, 0};
+  box.base_z_m = 0;
+  box.size_m = {1.2, 0.6, 1.0};
+  box.yaw_rad = 0.5;
+  StaticObject post;
+  post.shape = StaticObject::Shape::kCylinder;
+  post.kind = "post";
+  post.center_m = {6, 0};
+  post.base_z_m = 0;
+  post.radius_m = 0.3;
+  post.height_m = 2.0;
+  StaticObject tree = post;
+  tree.kind = "tree";
+  tree.center_m = {0, 8};
+  tree.height_m = 1.2;  // crown of radius 0.6 centred on the trunk's top
+  OccluderSpec person;
+  person.waypoints = {{6, 8}};
+  TerrainOptions t;
+  t.extent_m = {-8, -8, 14, 16};
+  t.cell_size_m = 0.5;
+  const World world(WorldOptions{}, Terrain(t, 1), {box, post, tree});
+  SceneAppearance a = Flat();
+  a.tree_crowns = true;
+  Renderer renderer(world, a, {person}, 3, 640, 480, 0.05, 120.0);
+  const robot::StereoRig rig = LevelRig();
+  const double far_away = 4.0;
+  // The distance from `eye` to the box along the ray to `c` (slabs in the box frame).
+  const auto box_distance = [&](const Eigen::Vector3d& eye, const Eigen::Vector3d& c) {
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(box.yaw_rad, Eigen::Vector3d::UnitZ()).matrix();
+    const Eigen::Vector3d o = R.transpose() * (eye - c);
+    const Eigen::Vector3d d = R.transpose() * (c - eye).normalized();
+    double enter = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      if (std::abs(d[i]) < 1e-12) continue;
+      const double t0 = (-box.size_m[i] / 2 - o[i]) / d[i], t1 = (box.size_m[i] / 2 - o[i]) / d[i];
+      enter = std::max(enter, std::min(t0, t1));
+    }
+    return enter;
+  };
+  struct Case {
+    std::string what;
+    Eigen::Vector3d centre;
+    std::function<double(const Eigen::Vector3d&)> near_surface;  // distance from an eye
+    double tolerance_m;  // the polygons' inset from the true shape, and some
+  };
+  const std::vector<Case> cases = {
+      {"box",
+       {0, 0, 0.5},
+       [&](const Eigen::Vector3d& e) {
+         return box_distance(e, {0, 0, 0.5});
+       },
+       0.002},
+      {"post", {6, 0, 1.0}, [&](const Eigen::Vector3d&) { return far_away - 0.3; }, 0.005},
+      {"crown", {0, 8, 1.2}, [&](const Eigen::Vector3d&) { return far_away - 0.6; }, 0.02},
+      {"person", {6, 8, 0.8}, [&](const Eigen::Vector3d&) { return far_away - 0.25; }, 0.005},
+  };
+  for (const Case& c : cases) {
+    for (int k = 0; k < 8; ++k) {
+      const double az = k * M_PI / 4 + 0.1;
+      const Eigen::Vector3d eye =
+          c.centre + far_away * Eigen::Vector3d(std::cos(az), std::sin(az), 0);
+      DepthImage depth;
+      renderer.Render(rig.intrinsics(), LookAt(eye, c.centre), 0.0, nullptr, &depth);
+      // The ray through the principal point, (319.5, 239.5): the mean of the four pixels about it.
+      const double seen = 0.25 * (depth.at(319, 239) + depth.at(320, 239) + depth.at(319, 240) +
+                                  depth.at(320, 240));
+      EXPECT_NEAR(seen, c.near_surface(eye), c.tolerance_m) << c.what << " from azimuth " << az;
+    }
+  }
+  // The ceiling, from below: 30 degrees up, 1.8 m under it.
+  SceneAppearance indoor = a;
+  indoor.ceiling_height_m = 2.5;
+  Renderer under(world, indoor, {}, 3, 640, 480, 0.05, 120.0);
+  Eigen::Isometry3d up = LookAt({-4, -6, 0.7}, {-3, -6, 0.7});
+  up.linear() = up.linear() * Eigen::AngleAxisd(30 * M_PI / 180, Eigen::Vector3d::UnitX()).matrix();
+  DepthImage depth;
+  under.Render(rig.intrinsics(), up, 0.0, nullptr, &depth);
+  // Depth along the optical axis of the ray that meets the ceiling 1.8 / sin 30° = 3.6 m away.
+  EXPECT_NEAR(depth.at(319, 239), 3.6, 0.05);
+}
+
+// Per-vertex lighting uses the outward normals: a post lit from the camera's
+// left is brighter on its left half (a surface wound the wrong way would be lit
+// from inside, as the posts and trunks were before back faces were culled).
+TEST(RendererTest, APostIsBrighterOnItsSunlitSide) {
+  StaticObject post;
+  post.shape = StaticObject::Shape::kCylinder;
+  post.kind = "post";
+  post.appearance = "plain_test";  // no texture of that name: plain grey
+  post.center_m = {4, 0};
+  post.base_z_m = 0;
+  post.radius_m = 0.3;
+  post.height_m = 3.0;
+  SceneAppearance a;
+  a.ambient = 0.2;
+  a.diffuse = 0.7;
+  a.sun_azimuth_deg = 90;  // from +y: the left of a camera looking along +x
+  a.sun_elevation_deg = 10;
+  a.sky_gray = 0.0;
+  const World world = MakeWorld({post});
+  Renderer renderer(world, a, {}, 3, 640, 480, 0.05, 120.0);
+  const robot::StereoRig rig = LevelRig();
+  GrayImage img;
+  renderer.Render(rig.intrinsics(), LookAt({0, 0, 1.5}, {4, 0, 1.5}), 0.0, &img, nullptr);
+  // The post spans fx * 0.3 / 3.7 = 31 px either side of the centre column.
+  double left = 0, right = 0;
+  for (int v = 100; v < 140; ++v) {
+    for (int du = 10; du < 25; ++du) {
+      left += img.at(319 - du, v);
+      right += img.at(320 + du, v);
+    }
+  }
+  left /= 40 * 15;
+  right /= 40 * 15;
+  std::printf("post lit from the left: left half %.1f, right half %.1f grey levels\n", left, right);
+  EXPECT_GT(left, right + 20);
 }
 
 TEST(RendererTest, WalkingOccluderMovesThroughTheView) {
