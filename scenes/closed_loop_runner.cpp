@@ -184,6 +184,7 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& given_obs
     lo.wheel.icr_offset_m = scenario.estimation.icr_offset_m;
     lo.wheel.ticks_per_rev = rs.encoders.ticks_per_rev;
     lo.wheel.slip_decay_time_s = scenario.estimation.slip_decay_time_s;
+    lo.min_inliers_for_slip = scenario.estimation.min_inliers_for_slip;
     lo.fusion_rules_file = scenario.estimation.fusion_rules;
     lo.fusion_weight_rise_time_s = scenario.estimation.fusion_weight_rise_time_s;
     lo.vo.max_translation_per_frame_m = scenario.estimation.vo_max_translation_per_frame_m;

@@ -311,7 +311,9 @@ SweepSpec ParseSweep(const std::string& yaml_text, const std::string& source_nam
   spec.source = source_name;
   spec.name =
       root["name"] ? reader.String(root["name"], "name") : fs::path(source_name).stem().string();
-  const fs::path dir = fs::absolute(file_dir).lexically_normal();
+  // A bare file name (`trackbed sweep my.yaml`) has an empty directory: the working one.
+  const fs::path dir =
+      (file_dir.empty() ? fs::current_path() : fs::absolute(file_dir)).lexically_normal();
   spec.base_dir = dir;
   if (root["base_dir"]) {
     const fs::path b = reader.String(root["base_dir"], "base_dir");

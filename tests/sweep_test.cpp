@@ -247,6 +247,22 @@ TEST(SweepFileTest, MissingScenarioAndSyntaxErrorsNameTheFile) {
   }
 }
 
+// `trackbed sweep my.yaml` run in the sweep file's own folder: the file name has no
+// directory part, and relative scenario paths resolve against the working directory.
+TEST(SweepFileTest, ABareFileNameResolvesAgainstTheWorkingDirectory) {
+  const fs::path before = fs::current_path();
+  fs::current_path(kScenes / "sweeps");
+  try {
+    const SweepSpec spec = LoadSweep("corridor_vs_outdoor.yaml");
+    fs::current_path(before);
+    EXPECT_EQ(spec.base_dir, (kScenes / "sweeps").lexically_normal());
+    EXPECT_EQ(MakeSweepPlan(spec).cells.size(), 20u);
+  } catch (...) {
+    fs::current_path(before);
+    throw;
+  }
+}
+
 TEST(SweepFileTest, ResolvedCopyAndCellListRoundTrip) {
   const SweepSpec spec = Parse(R"(
 name: round trip

@@ -102,6 +102,9 @@ struct EstimationSpec {
   double icr_offset_m = 0.0;
   /// Decay time constant of a held slip estimate [s], > 0.
   double slip_decay_time_s = 3.0;
+  /// Inliers a VO frame needs before its velocity updates the slip estimate, >= 0
+  /// (LocalizationOptions::min_inliers_for_slip).
+  int min_inliers_for_slip = 30;
   /// FLL file with the fusion rule base; empty: the built-in Table 1.
   std::string fusion_rules;
   /// Time constant with which the fusion's wheel weight may rise [s], >= 0 (it falls at
