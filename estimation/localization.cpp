@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "trackbed/common/option_error.h"
+#include "trackbed/estimation/constant_velocity.h"
 
 namespace trackbed::estimation {
 namespace {
@@ -26,6 +27,7 @@ void LocalizationOptions::Validate() const {
   option_check::Nested("ekf", ekf);
   if (min_inliers_for_slip < 0) throw OptionError("min_inliers_for_slip", "must be >= 0");
   option_check::NonNegative("fusion_weight_rise_time_s", fusion_weight_rise_time_s);
+  option_check::NonNegative("vo_coast_time_s", vo_coast_time_s);
 }
 
 LocalizationStack::LocalizationStack(const LocalizationOptions& options,
@@ -102,7 +104,17 @@ LocalizationFrameReport LocalizationStack::AddStereoFrame(double t_s, const cv::
     if (has_frame_ && t_s > t_frame_) {
       const double dt = t_s - t_frame_;
       ekf_.AddVisualTwist(t_s, vo_increment->x / dt, vo_increment->yaw / dt, report.vo.inliers);
+      vo_last_motion_ = T_body_motion;
+      vo_last_dt_ = dt;
+      t_vo_valid_ = t_s;
+      has_vo_motion_ = true;
     }
+  } else if (has_vo_motion_ && has_frame_ && t_s > t_frame_ &&
+             t_s - t_vo_valid_ <= options_.vo_coast_time_s + 1e-9) {
+    // The next valid frame's motion starts at this frame: the gap is this interval's.
+    T_world_body_vo_ =
+        T_world_body_vo_ * ContinuedMotion(vo_last_motion_, vo_last_dt_, t_s - t_frame_);
+    report.vo_coasted = true;
   }
   report.slip = wheel_.slip();
   report.slip_velocity_mps = report.slip.max_abs_mps();

@@ -15,6 +15,7 @@
 
 #include "trackbed/common/option_error.h"
 #include "trackbed/estimation/absolute_orientation.h"
+#include "trackbed/estimation/constant_velocity.h"
 
 namespace trackbed::estimation {
 namespace {
@@ -377,16 +378,6 @@ StereoVisualOdometryOptions Validated(const StereoVisualOdometryOptions& options
   return options;
 }
 
-/// The motion T (over an interval dt_from) continued at constant velocity over dt_to:
-/// rotation angle and translation scaled by dt_to / dt_from.
-Eigen::Isometry3d ContinuedMotion(const Eigen::Isometry3d& T, double dt_from, double dt_to) {
-  const double s = dt_from > 0.0 ? dt_to / dt_from : 1.0;
-  const Eigen::AngleAxisd r(T.linear());
-  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
-  out.linear() = Eigen::AngleAxisd(s * r.angle(), r.axis()).toRotationMatrix();
-  out.translation() = s * T.translation();
-  return out;
-}
 }  // namespace
 
 StereoVisualOdometry::StereoVisualOdometry(const perception::StereoCalibration& calibration,

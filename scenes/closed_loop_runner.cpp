@@ -187,6 +187,7 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& given_obs
     lo.min_inliers_for_slip = scenario.estimation.min_inliers_for_slip;
     lo.fusion_rules_file = scenario.estimation.fusion_rules;
     lo.fusion_weight_rise_time_s = scenario.estimation.fusion_weight_rise_time_s;
+    lo.vo_coast_time_s = scenario.estimation.vo_coast_time_s;
     lo.vo.max_translation_per_frame_m = scenario.estimation.vo_max_translation_per_frame_m;
     lo.vo.max_rotation_per_frame_deg = scenario.estimation.vo_max_rotation_per_frame_deg;
     lo.vo.max_acceleration_mps2 = scenario.estimation.vo_max_acceleration_mps2;

@@ -32,6 +32,7 @@ void EstimatorScoring::AddFrame(const Eigen::Isometry3d& T_world_body_true,
   vo_.push_back({frame.t_s, frame.visual_odometry});
   if (!frame.report.vo_valid) ++vo_failures_;
   if (frame.report.vo.dynamics_constrained) ++vo_constrained_;
+  if (frame.report.vo_coasted) ++vo_coasted_;
   if (frame.camera_blackout) ++blackout_frames_;
   inliers_sum_ += frame.report.features;
   w_sum_ += frame.report.w;
@@ -74,6 +75,7 @@ LocalizationSummary EstimatorScoring::Summary() const {
   s.vo_frames = static_cast<long long>(vo_.size());
   s.vo_failures = vo_failures_;
   s.vo_dynamics_constrained = vo_constrained_;
+  s.vo_coasted = vo_coasted_;
   s.camera_blackout_frames = blackout_frames_;
   if (!vo_.empty()) {
     s.mean_inliers = inliers_sum_ / static_cast<double>(vo_.size());

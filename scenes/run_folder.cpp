@@ -195,6 +195,7 @@ std::string MetricsJson(const RunMetrics& m) {
                        {"camera_blackout_frames", loc.camera_blackout_frames},
                        {"vo_failures", loc.vo_failures},
                        {"vo_dynamics_constrained", loc.vo_dynamics_constrained},
+                       {"vo_coasted", loc.vo_coasted},
                        {"mean_inliers", loc.mean_inliers},
                        {"mean_fusion_w", loc.mean_fusion_w},
                        {"slip_estimate_rmse_mps", loc.slip_estimate_rmse_mps}};

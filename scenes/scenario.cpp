@@ -119,6 +119,7 @@ void EstimationSpec::Validate() const {
                       "must be >= 0 (got " + std::to_string(min_inliers_for_slip) + ")");
   }
   option_check::NonNegative("fusion_weight_rise_time_s", fusion_weight_rise_time_s);
+  option_check::NonNegative("vo_coast_time_s", vo_coast_time_s);
   option_check::Positive("vo_max_translation_per_frame_m", vo_max_translation_per_frame_m);
   option_check::InRange("vo_max_rotation_per_frame_deg", vo_max_rotation_per_frame_deg, 1e-3,
                         180.0);

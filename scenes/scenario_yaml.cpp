@@ -400,6 +400,7 @@ void Visit(V& v, EstimationSpec& o) {
   v("min_inliers_for_slip", o.min_inliers_for_slip);
   v("fusion_rules", o.fusion_rules);
   v("fusion_weight_rise_time_s", o.fusion_weight_rise_time_s);
+  v("vo_coast_time_s", o.vo_coast_time_s);
   v("vo_max_translation_per_frame_m", o.vo_max_translation_per_frame_m);
   v("vo_max_rotation_per_frame_deg", o.vo_max_rotation_per_frame_deg);
   v("vo_max_acceleration_mps2", o.vo_max_acceleration_mps2);

@@ -37,6 +37,12 @@ struct LocalizationOptions {
   /// them (and cancel with the errors of its onset); a weight that returned to the
   /// wheels as fast as the estimated slip fades would keep one half of each such pair.
   double fusion_weight_rise_time_s = 3.0;
+  /// On a failed VO frame, visual odometry's own pose goes on with the last valid
+  /// frame's velocity (a constant-velocity motion model, as VO pipelines bridge a lost
+  /// frame) for up to this long after that frame [s], >= 0; beyond it, it holds. 0:
+  /// it holds at once. The fusion takes a failed frame's increment from the wheels
+  /// whatever this is, and the slip estimate never sees a coasted motion.
+  double vo_coast_time_s = 1.0;
   /// The EKF baseline (wheel odometry + gyro + visual odometry).
   EkfOdometryOptions ekf;
 
@@ -47,6 +53,7 @@ struct LocalizationOptions {
 struct LocalizationFrameReport {
   VoFrameResult vo;
   bool vo_valid = false;           ///< VO produced a motion (enough inliers).
+  bool vo_coasted = false;         ///< VO failed; its pose went on at the last velocity.
   double slip_velocity_mps = 0.0;  ///< Fusion input: larger track |slip| estimate.
   double features = 0.0;           ///< Fusion input: VO inliers.
   double w = 1.0;                  ///< Weight of wheel odometry applied in this step.
@@ -94,6 +101,10 @@ class LocalizationStack {
   FusedOdometry fused_;
   EkfOdometry ekf_;
   Eigen::Isometry3d T_world_body_vo_;
+  // The body's motion over the last valid VO frame, its interval and its time (coasting).
+  Eigen::Isometry3d vo_last_motion_ = Eigen::Isometry3d::Identity();
+  double vo_last_dt_ = 0.0, t_vo_valid_ = 0.0;
+  bool has_vo_motion_ = false;
   // Wheel pose and time at the last stereo frame: the fusion step's interval.
   // (Declared after the estimators: initialised from the initial pose.)
   Pose2 wheel_at_frame_;

@@ -36,6 +36,8 @@ struct LocalizationSummary {
   /// Frames whose motion is the constant-velocity prediction's consensus (RANSAC's broke
   /// the dynamics bounds).
   long long vo_dynamics_constrained = 0;
+  /// Failed frames over which VO's pose went on at the last valid velocity.
+  long long vo_coasted = 0;
   long long camera_blackout_frames = 0;  ///< Frames a camera fault blanked.
   double mean_inliers = 0.0;
   double mean_fusion_w = 0.0;           ///< Mean weight of wheel odometry.
@@ -56,7 +58,7 @@ class EstimatorScoring {
   estimation::Trajectory truth_, wheel_, wheel_noslip_, fused_, ekf_;
   estimation::Trajectory vo_truth_, vo_;
   bool has_camera_ = false;
-  long long vo_failures_ = 0, vo_constrained_ = 0, blackout_frames_ = 0;
+  long long vo_failures_ = 0, vo_constrained_ = 0, vo_coasted_ = 0, blackout_frames_ = 0;
   double inliers_sum_ = 0.0, w_sum_ = 0.0;
   double slip_sq_sum_ = 0.0;
   long long slip_samples_ = 0;

@@ -110,6 +110,9 @@ struct EstimationSpec {
   /// Time constant with which the fusion's wheel weight may rise [s], >= 0 (it falls at
   /// once; 0: the rule base's weight of each frame as it is).
   double fusion_weight_rise_time_s = 3.0;
+  /// Visual odometry's pose coasts at the last valid velocity over failed frames for up
+  /// to this long [s], >= 0 (LocalizationOptions::vo_coast_time_s).
+  double vo_coast_time_s = 1.0;
   /// Visual odometry's per-frame motion bounds for this robot [m], [deg]: a frame that
   /// claims more is a failure, not a motion (the robot tops out at 1.5 m/s, 10 Hz).
   double vo_max_translation_per_frame_m = 0.5;
@@ -117,12 +120,13 @@ struct EstimationSpec {
   /// Visual odometry's dynamics bounds for this robot [m/s²], [deg/s²]: a frame's motion
   /// may depart from the last frame's (constant velocity) by at most a·dt², α·dt²
   /// (StereoVisualOdometryOptions::max_acceleration_mps2). Measured (docs/localization.md):
-  /// VO's translation estimates differ by up to 0.15 m between frames with a few dozen
-  /// inliers outdoors (seed 3), where the true ones differ by under 4 cm. The angular
+  /// the camera's true translation changes by under 4 cm from one frame to the next
+  /// outdoors (4 m/s²); with a few dozen inliers VO's consensus can be 0.12 m off (seed 7),
+  /// which 8 m/s² (0.08 m at 10 Hz) rejects, where 30 let it through. The angular
   /// bound applies only to frames without gyro samples: the robot's rotation changes by
   /// up to 5.6 deg per 0.1 s when it starts or stops a turn on the spot
   /// (ClosedLoopNavigationTest's run).
-  double vo_max_acceleration_mps2 = 30.0;
+  double vo_max_acceleration_mps2 = 8.0;
   double vo_max_angular_acceleration_dps2 = 1000.0;
   /// A VO frame's rotation may differ from the gyro's over the frame interval by at most
   /// this [deg] (StereoVisualOdometryOptions::max_rotation_prior_error_deg); with a right
