@@ -19,6 +19,7 @@
 
 #include "trackbed/common/option_error.h"
 #include "trackbed/estimation/absolute_orientation.h"
+#include "trackbed/estimation/localization.h"
 #include "trackbed/perception/kitti_sequence.h"
 
 namespace trackbed::estimation {
@@ -516,6 +517,58 @@ TEST(StereoVisualOdometryTest, ARotationPriorVetsEveryFramesConsensusEvenAfterAF
       ASSERT_EQ(r.status, VoStatus::kOk) << "frame " << k << ": " << r.reason;
       EXPECT_FALSE(r.dynamics_constrained);
       EXPECT_LT(TranslationError(r.T_prev_curr, truth), 0.004) << "frame " << k;
+    }
+  }
+}
+
+// The stack hands VO the gyro's rotation in the left camera's frame: a body turning
+// about its z axis is a camera turning about its (pitched) y axis. Fed the true body
+// rates, every frame keeps within the 2° bound and VO's pose is the body's; a stack
+// that passed the body rotation on as the camera's would be 3°·√2 off and fail. Fed
+// a gyro that turns about the body's x axis instead, the frames fail.
+TEST(LocalizationStackTest, GyroRatesAreTurnedIntoTheCamerasFrameForVisualOdometry) {
+  const SyntheticScene scene;
+  const perception::StereoCalibration calibration = SyntheticScene::Calibration();
+  // Body x forward, z up; the camera (OpenCV axes) looks along x, pitched 5° down.
+  Eigen::Matrix3d R_body_cam;
+  R_body_cam.col(0) = -Eigen::Vector3d::UnitY();  // right
+  R_body_cam.col(1) = -Eigen::Vector3d::UnitZ();  // down
+  R_body_cam.col(2) = Eigen::Vector3d::UnitX();   // forward
+  R_body_cam = Eigen::AngleAxisd(5.0 / kDegPerRad, Eigen::Vector3d::UnitY()) * R_body_cam;
+  Eigen::Isometry3d T_body_left = Eigen::Isometry3d::Identity();
+  T_body_left.linear() = R_body_cam;
+  T_body_left.translation() = Eigen::Vector3d(0.2, 0.06, 0.5);
+  const double yaw_rate = 3.0 / kDegPerRad / 0.1;  // 3° per 0.1 s frame
+  const auto body_pose = [&](int k) {              // turning left while driving 5 cm a frame
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = Eigen::AngleAxisd(yaw_rate * 0.1 * k, Eigen::Vector3d::UnitZ()).matrix();
+    T.translation() = Eigen::Vector3d(0.05 * k, 0.003 * k * k, 0.0);
+    return T;
+  };
+  for (const bool right_axis : {true, false}) {
+    LocalizationStack stack(LocalizationOptions{}, &calibration, T_body_left,
+                            Eigen::Isometry3d::Identity());
+    const Eigen::Vector3d rate =
+        right_axis ? Eigen::Vector3d(0, 0, yaw_rate) : Eigen::Vector3d(yaw_rate, 0, 0);
+    for (int k = 0; k <= 4; ++k) {
+      if (k > 0) {
+        for (int j = 1; j <= 20; ++j) stack.AddGyroSample(0.1 * (k - 1) + 0.005 * j, rate);
+      } else {
+        stack.AddGyroSample(0.0, rate);
+      }
+      // The scene's world is the first camera's frame.
+      const Eigen::Isometry3d T_scene_cam = T_body_left.inverse() * body_pose(k) * T_body_left;
+      const LocalizationFrameReport r = stack.AddStereoFrame(
+          0.1 * k, scene.Render(T_scene_cam, false), scene.Render(T_scene_cam, true));
+      if (k == 0) continue;
+      if (right_axis) {
+        ASSERT_EQ(r.vo.status, VoStatus::kOk) << "frame " << k << ": " << r.vo.reason;
+        EXPECT_LT((stack.visual_odometry().translation() - body_pose(k).translation()).norm(), 0.01)
+            << "frame " << k;
+        EXPECT_LT(RotationErrorDeg(stack.visual_odometry(), body_pose(k)), 0.2) << "frame " << k;
+      } else {
+        EXPECT_EQ(r.vo.status, VoStatus::kInconsistentMotion) << "frame " << k;
+      }
     }
   }
 }
