@@ -222,10 +222,10 @@ struct StereoVisualOdometryOptions {
   /// second consensus, refined like any other, if it has min_inliers inliers and keeps
   /// within the bounds, and fails (kInconsistentMotion) otherwise.
   /// Checked only when the last frame had a motion (for a rotation prior, see below).
-  /// The bounds must leave room for the
-  /// estimate's own noise: with a few dozen inliers, consecutive translations of a
-  /// short-baseline rig differ by 0.1 m where the true ones differ by 1 cm. Defaults
-  /// leave room for a car braking at 3 g; a slow robot may tighten them. > 0.
+  /// With a few dozen inliers a short-baseline rig's consensus can be 0.1 m off where
+  /// the true translations differ by 1 cm from frame to frame: a bound just above the
+  /// platform's true accelerations rejects it (the tracked robot's scenarios use
+  /// 8 m/s², scenes/scenario.h). Defaults leave room for a car braking at 3 g. > 0.
   double max_acceleration_mps2 = 30.0;
   double max_angular_acceleration_dps2 = 1000.0;
   /// With a rotation prior (a gyro's rotation over the frame interval, passed to
