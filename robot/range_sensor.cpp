@@ -5,17 +5,10 @@
 #include <limits>
 
 #include "trackbed/common/option_error.h"
+#include "trackbed/common/split_mix.h"
 
 namespace trackbed::robot {
 namespace {
-
-// SplitMix64: a counter-based stream, so scan k's noise needs no earlier scan.
-std::uint64_t Mix(std::uint64_t z) {
-  z += 0x9e3779b97f4a7c15ULL;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
 
 // A uniform draw in (0, 1) from the top 53 bits.
 double Unit(std::uint64_t bits) { return (static_cast<double>(bits >> 11) + 0.5) * 0x1.0p-53; }
@@ -59,12 +52,12 @@ RangeScanSample RangeSensor::Scan(const sim::World& world, const Eigen::Isometry
   scan.ranges_m.resize(angles_rad_.size());
   const Eigen::Vector3d origin = scan.T_world_sensor.translation();
   const Eigen::Matrix3d& R = scan.T_world_sensor.linear();
-  std::uint64_t state = Mix(seed_ ^ Mix(index));
+  std::uint64_t state = split_mix::Mix(seed_ ^ split_mix::Mix(index));
   for (std::size_t k = 0; k < angles_rad_.size(); ++k) {
     // Box–Muller from two draws of the scan's own stream (same bits on every platform).
-    state = Mix(state);
+    state = split_mix::Mix(state);
     const double u1 = Unit(state);
-    state = Mix(state);
+    state = split_mix::Mix(state);
     const double u2 = Unit(state);
     const double noise =
         options_.noise_std_m * std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "trackbed/common/option_error.h"
+#include "trackbed/common/split_mix.h"
 
 namespace trackbed::robot {
 
@@ -59,18 +60,6 @@ StereoRig::StereoRig(const StereoRigOptions& options) : options_(options) {
   T_body_right_.translation() = options_.mount_m + half_baseline;
 }
 
-namespace {
-
-// SplitMix64 finaliser: a counter-based generator, one 64-bit value per index.
-std::uint64_t Mix(std::uint64_t z) {
-  z += 0x9e3779b97f4a7c15ULL;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
-
-}  // namespace
-
 void ApplySensorModel(double exposure, double noise_std, std::uint64_t seed, std::uint64_t frame,
                       int camera, sim::GrayImage* image) {
   if (exposure == 1.0 && noise_std == 0.0) return;
@@ -90,17 +79,18 @@ void ApplySensorModel(double exposure, double noise_std, std::uint64_t seed, std
     cached.seed = seed;
     cached.noise_std = noise_std;
     cached.values.resize(kTable);
-    std::uint64_t state = Mix(seed ^ 0x5eed5eedULL);
+    std::uint64_t state = split_mix::Mix(seed ^ 0x5eed5eedULL);
     const double norm = 1.0 / (65536.0 * std::sqrt(4.0 / 12.0));
     for (float& t : cached.values) {
-      state = Mix(state);
+      state = split_mix::Mix(state);
       const double sum = static_cast<double>((state & 0xffff) + ((state >> 16) & 0xffff) +
                                              ((state >> 32) & 0xffff) + (state >> 48));
       t = static_cast<float>(noise_std * (sum - 2.0 * 65535.0) * norm);
     }
   }
   const float* table = cached.values.data();
-  std::uint64_t x = Mix(seed ^ Mix(frame * 2 + static_cast<std::uint64_t>(camera))) | 1;
+  std::uint64_t x =
+      split_mix::Mix(seed ^ split_mix::Mix(frame * 2 + static_cast<std::uint64_t>(camera))) | 1;
   const float gain = static_cast<float>(exposure);
   const bool noisy = noise_std > 0.0;
   std::uint8_t* px = image->pixels.data();

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <utility>
 
+#include "trackbed/common/split_mix.h"
 #include "trackbed/estimation/skid_steer.h"
 #include "trackbed/navigation/pure_pursuit.h"
 #include "trackbed/robot/encoder.h"
@@ -24,14 +25,6 @@
 
 namespace trackbed::scenes {
 namespace {
-
-// Seeds of independent random streams derived from the scenario's seed.
-std::uint64_t StreamSeed(std::uint64_t seed, std::uint64_t stream) {
-  std::uint64_t z = seed + 0x9e3779b97f4a7c15ULL * (stream + 1);  // splitmix64
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
 
 double Yaw(const Eigen::Matrix3d& R) { return std::atan2(R(1, 0), R(0, 0)); }
 
@@ -150,12 +143,12 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& given_obs
   const RunObservers observers = TimedObservers(given_observers, &times.io_s);
 
   sim::World world(scenario.scene.world,
-                   sim::Terrain(scenario.scene.terrain, StreamSeed(scenario.seed, 0)),
+                   sim::Terrain(scenario.scene.terrain, split_mix::Stream(scenario.seed, 0)),
                    scenario.scene.objects);
   const RobotSpec& rs = scenario.robot;
   robot::TrackedVehicle vehicle(rs.vehicle, &world, rs.start.x_m, rs.start.y_m,
                                 rs.start.yaw_deg * M_PI / 180.0);
-  robot::Imu imu(rs.imu, scenario.scene.world.gravity_mps2, StreamSeed(scenario.seed, 1));
+  robot::Imu imu(rs.imu, scenario.scene.world.gravity_mps2, split_mix::Stream(scenario.seed, 1));
   std::optional<Driver> driver;  // the drive, unless navigation drives
   if (!scenario.navigation.enabled && !repeater) {
     driver.emplace(scenario.drive, rs.vehicle.track_gauge_m);
@@ -167,9 +160,10 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& given_obs
   std::unique_ptr<sim::Renderer> renderer;
   if (rs.stereo.enabled) {
     rig.emplace(rs.stereo);
-    renderer = std::make_unique<sim::Renderer>(
-        world, scenario.scene.appearance, scenario.scene.occluders, StreamSeed(scenario.seed, 2),
-        rs.stereo.width_px, rs.stereo.height_px, rs.stereo.near_m, rs.stereo.far_m);
+    renderer =
+        std::make_unique<sim::Renderer>(world, scenario.scene.appearance, scenario.scene.occluders,
+                                        split_mix::Stream(scenario.seed, 2), rs.stereo.width_px,
+                                        rs.stereo.height_px, rs.stereo.near_m, rs.stereo.far_m);
   }
   sim::GrayImage left_image, right_image;
   // The robot software: the localization stack on the robot's own sensors.
@@ -215,12 +209,12 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& given_obs
   std::unique_ptr<robot::RangeSensor> range_sensor;
   if (rs.range_sensor.enabled) {
     range_sensor =
-        std::make_unique<robot::RangeSensor>(rs.range_sensor, StreamSeed(scenario.seed, 4));
+        std::make_unique<robot::RangeSensor>(rs.range_sensor, split_mix::Stream(scenario.seed, 4));
   }
   std::uint64_t scan_index = 0;
   std::int64_t stereo_index = 0;
   double render_wall_s = 0.0;
-  const std::uint64_t noise_seed = StreamSeed(scenario.seed, 3);
+  const std::uint64_t noise_seed = split_mix::Stream(scenario.seed, 3);
   MetricsAccumulator metrics(rs.vehicle.sprocket_radius_m, rs.vehicle.track_gauge_m,
                              rs.encoders.ticks_per_rev);
 

@@ -20,6 +20,8 @@
 
 #include <Eigen/Core>
 
+#include "trackbed/common/split_mix.h"
+
 // Fusing a·b + c into one FMA changes rounding, so bytes would depend on whether the
 // target has FMA (ARM64 has, baseline x86-64 has not): keep every product rounded.
 #if defined(__clang__)
@@ -42,17 +44,11 @@ namespace {
 // ---------------------------------------------------------------------------
 // Randomness.
 
-constexpr std::uint64_t kGamma = 0x9e3779b97f4a7c15ULL;  // SplitMix64's increment.
-
-// SplitMix64's output function (Steele, Lea & Flood 2014): a bijective 64-bit mixer.
-std::uint64_t Mix(std::uint64_t z) {
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
-
-// An independent sub-seed: stream `k` of `seed`.
-std::uint64_t Stream(std::uint64_t seed, std::uint64_t k) { return Mix(seed + (k + 1) * kGamma); }
+// SplitMix64 (common/split_mix.h): its increment, its output function as the mixer,
+// and its independent sub-seeds (stream `k` of `seed`).
+using split_mix::kGamma;
+using split_mix::Stream;
+constexpr std::uint64_t Mix(std::uint64_t z) { return split_mix::Finalize(z); }
 
 // Hash of the integer point (i, j) in stream `seed`.
 std::uint64_t HashPoint(std::uint64_t seed, int i, int j) {
