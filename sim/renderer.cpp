@@ -412,7 +412,7 @@ Renderer::Renderer(const World& world, const SceneAppearance& appearance,
   glDepthFunc(GL_LESS);
   // Every surface is wound counter-clockwise seen from outside (terrain from
   // above, the ceiling from below), so back faces are hidden ones: culling
-  // them spares llvmpipe rasterizing them (1.13-1.15x the pairs/s, README).
+  // them spares llvmpipe rasterizing them (docs/rendering.md has the speed-up).
   glEnable(GL_CULL_FACE);
   glCullFace(GL_BACK);
   glFrontFace(GL_CCW);
