@@ -178,6 +178,7 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& given_obs
     lo.wheel.icr_offset_m = scenario.estimation.icr_offset_m;
     lo.wheel.ticks_per_rev = rs.encoders.ticks_per_rev;
     lo.wheel.slip_decay_time_s = scenario.estimation.slip_decay_time_s;
+    lo.wheel.slip_filter_time_s = scenario.estimation.slip_filter_time_s;
     lo.min_inliers_for_slip = scenario.estimation.min_inliers_for_slip;
     lo.fusion_rules_file = scenario.estimation.fusion_rules;
     lo.fusion_weight_rise_time_s = scenario.estimation.fusion_weight_rise_time_s;

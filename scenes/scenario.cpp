@@ -114,6 +114,7 @@ void EstimationSpec::Validate() const {
   option_check::InRange("icr_expansion", icr_expansion, 0.2, 5.0);
   option_check::Finite("icr_offset_m", icr_offset_m);
   option_check::Positive("slip_decay_time_s", slip_decay_time_s);
+  option_check::NonNegative("slip_filter_time_s", slip_filter_time_s);
   if (min_inliers_for_slip < 0) {
     throw OptionError("min_inliers_for_slip",
                       "must be >= 0 (got " + std::to_string(min_inliers_for_slip) + ")");

@@ -397,6 +397,7 @@ void Visit(V& v, EstimationSpec& o) {
   v("icr_expansion", o.icr_expansion);
   v("icr_offset_m", o.icr_offset_m);
   v("slip_decay_time_s", o.slip_decay_time_s);
+  v("slip_filter_time_s", o.slip_filter_time_s);
   v("min_inliers_for_slip", o.min_inliers_for_slip);
   v("fusion_rules", o.fusion_rules);
   v("fusion_weight_rise_time_s", o.fusion_weight_rise_time_s);

@@ -242,6 +242,8 @@ TEST(ScenarioYamlTest, OutOfRangeValueReportsFullDottedKey) {
   EXPECT_EQ(ErrorOf(m + "duration_s: 0\n"), "test.yaml: duration_s: must be in (0, 1e6] (got 0)");
   EXPECT_EQ(ErrorOf(m + "estimation: {min_inliers_for_slip: -5}\n"),
             "test.yaml: estimation.min_inliers_for_slip: must be >= 0 (got -5)");
+  EXPECT_EQ(ErrorOf(m + "estimation: {slip_filter_time_s: -0.1}\n"),
+            "test.yaml: estimation.slip_filter_time_s: must be >= 0 (got -0.1)");
   EXPECT_EQ(ErrorOf(m + "outputs: {save_images: png}\n"),
             "test.yaml: outputs.save_images: must be none or kitti (got 'png')");
   EXPECT_EQ(ErrorOf("drive: {waypoints: [[0, 0]]}\n"),

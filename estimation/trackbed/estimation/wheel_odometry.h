@@ -44,9 +44,13 @@ struct WheelOdometryOptions {
   /// How long a slip measurement stays fresh [s] (a few camera periods), >= 0.
   double slip_hold_s = 0.3;
   /// Time constant of the low-pass filter on slip measurements [s], >= 0 (0: take each
-  /// measurement whole). One visual-odometry interval is short and noisy; slip changes
-  /// with the ground and the manoeuvre, over seconds.
-  double slip_filter_time_s = 0.5;
+  /// measurement whole). One visual-odometry interval is short and noisy, but the
+  /// estimate's lag is the wheels' error: as a skid turn starts and ends the slip changes
+  /// within a few frames, and each 0.1 s of lag is yaw the estimate has not caught up
+  /// with. 0.2 s against 0.5 s over 30 outdoor seeds (docs/localization.md): the wheels
+  /// alone 0.181 against 0.169 m ATE, the fused estimate, which takes the wheels'
+  /// transients, 0.085 against 0.103 m.
+  double slip_filter_time_s = 0.2;
 
   void Validate() const;
 };

@@ -102,6 +102,9 @@ struct EstimationSpec {
   double icr_offset_m = 0.0;
   /// Decay time constant of a held slip estimate [s], > 0.
   double slip_decay_time_s = 3.0;
+  /// Time constant of the low-pass filter on slip measurements [s], >= 0
+  /// (WheelOdometryOptions::slip_filter_time_s).
+  double slip_filter_time_s = 0.2;
   /// Inliers a VO frame needs before its velocity updates the slip estimate, >= 0
   /// (LocalizationOptions::min_inliers_for_slip).
   int min_inliers_for_slip = 30;
