@@ -103,7 +103,6 @@ LocalizationFrameReport LocalizationStack::AddStereoFrame(double t_s, const cv::
     }
     if (has_frame_ && t_s > t_frame_) {
       const double dt = t_s - t_frame_;
-      ekf_.AddVisualTwist(t_s, vo_increment->x / dt, vo_increment->yaw / dt, report.vo.inliers);
       vo_last_motion_ = T_body_motion;
       vo_last_dt_ = dt;
       t_vo_valid_ = t_s;
@@ -116,6 +115,9 @@ LocalizationFrameReport LocalizationStack::AddStereoFrame(double t_s, const cv::
         T_world_body_vo_ * ContinuedMotion(vo_last_motion_, vo_last_dt_, t_s - t_frame_);
     report.vo_coasted = true;
   }
+  // Only a measured motion enters the EKF; after a failed or coasted frame the next
+  // motion starts from here.
+  ekf_.AddCameraFrame(t_s, vo_increment, report.vo.inliers);
   report.slip = wheel_.slip();
   report.slip_velocity_mps = report.slip.max_abs_mps();
   report.features = report.vo.inliers;

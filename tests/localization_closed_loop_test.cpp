@@ -38,6 +38,10 @@ TEST(LocalizationClosedLoopTest, OnRoughTexturedGroundVisionBeatsWheelOdometryAn
   EXPECT_LT(Ate(m, "fused"), Ate(m, "wheel_odometry"));
   // Slip is real here: the slip-aware odometry beats the no-slip baseline.
   EXPECT_LT(Ate(m, "wheel_odometry"), Ate(m, "wheel_odometry_noslip"));
+  // The EKF reads the same encoders with no slip model, but weighs them against the
+  // gyro and VO.
+  EXPECT_LT(Ate(m, "ekf"), Ate(m, "wheel_odometry"));
+  EXPECT_LT(10.0 * Ate(m, "ekf"), Ate(m, "wheel_odometry_noslip"));
 }
 
 }  // namespace

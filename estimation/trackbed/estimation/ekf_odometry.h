@@ -3,12 +3,30 @@
 // manner of ROS's robot_localization (planar constant-velocity model, every
 // sensor a measurement of part of the state).
 //
-// State: x, y [m], heading θ [rad], forward speed v [m/s], yaw rate ω [rad/s],
-// gyro bias b [rad/s]. Prediction: constant velocity. Measurements: wheel
-// odometry's (v, ω) from the encoders with B_eff (no slip model: slip shows up
-// as disagreement with the other sensors), the gyro's ω + b, and visual
-// odometry's (v, ω) over each valid frame interval.
+// State: x, y [m], heading θ [rad], body velocity v_x (forward), v_y (left) [m/s],
+// yaw rate ω [rad/s], gyro bias b [rad/s], and a clone of (x, y, θ) taken at the
+// last camera frame. Prediction: constant velocity. Measurements: wheel odometry's
+// (v_x, v_y = 0, ω) from the encoders with B_eff (no slip model: slip shows up as
+// disagreement with the other sensors), the gyro's ω + b, and visual odometry's
+// planar motion between two frames as the pose's change since the clone
+// (stochastic cloning, Roumeliotis & Burdick 2002).
+//
+// Why the clone: a VO frame gives the motion over the whole frame interval, not a
+// rate at the frame's time. Read as the yaw rate at the frame's end, it lags the
+// gyro by half an interval whenever the turn rate changes, and the filter put that
+// disagreement into the gyro bias: outdoors (seed 1) the heading ended 14° off with
+// VO itself 0.2° off (docs/localization.md).
+//
+// Why the wheel noise is large: skid-steer odometry's errors are slip, which
+// persists over a manoeuvre (about a second), not white noise at the encoder rate.
+// The defaults are the per-sample error RMS measured outdoors (0.018 m/s, 0.048
+// rad/s at 100 Hz) times √(1 s / 0.01 s) = 10, the inflation that gives a white
+// sequence at 100 Hz the same weight per second as one measurement per correlation
+// time. The tracks' lateral slip (up to 0.08 m/s on slopes) lasts the whole run, so
+// v_y = 0 is a loose constraint.
 #pragma once
+
+#include <optional>
 
 #include <Eigen/Core>
 
@@ -17,18 +35,23 @@
 namespace trackbed::estimation {
 
 struct EkfOdometryOptions {
-  /// Process noise: forward acceleration [m/s²/√Hz] and yaw acceleration [rad/s²/√Hz].
+  /// Process noise: forward and lateral acceleration [m/s²/√Hz] and yaw acceleration
+  /// [rad/s²/√Hz].
   double accel_noise = 0.5;
+  double lateral_accel_noise = 0.5;
   double yaw_accel_noise = 1.0;
   /// Gyro bias random walk [rad/s/√s].
   double gyro_bias_walk = 1e-4;
-  /// Wheel odometry twist noise: standard deviations [m/s], [rad/s] per measurement.
-  double wheel_speed_std = 0.03;
-  double wheel_yaw_rate_std = 0.05;
+  /// Wheel odometry twist noise: standard deviations per measurement, forward [m/s],
+  /// lateral (the no-side-slip constraint) [m/s], yaw rate [rad/s].
+  double wheel_speed_std = 0.2;
+  double wheel_lateral_speed_std = 1.0;
+  double wheel_yaw_rate_std = 0.5;
   /// Gyro noise per sample [rad/s].
   double gyro_std = 0.005;
-  /// Visual odometry twist noise at `vo_reference_inliers` inliers [m/s], [rad/s]; it
-  /// grows as √(reference / inliers) with fewer.
+  /// Visual odometry noise at `vo_reference_inliers` inliers, as a rate: a frame's
+  /// translation (per axis) has σ = vo_speed_std · Δt [m], its rotation
+  /// σ = vo_yaw_rate_std · Δt [rad]; both grow as √(reference / inliers) with fewer.
   double vo_speed_std = 0.01;
   double vo_yaw_rate_std = 0.01;
   double vo_reference_inliers = 100.0;
@@ -47,25 +70,31 @@ class EkfOdometry {
   void AddWheelTwist(double t_s, double forward_mps, double yaw_rate_radps);
   /// Gyro z rate at t [rad/s].
   void AddGyro(double t_s, double yaw_rate_radps);
-  /// Visual-odometry twist averaged over the frame interval ending at t.
-  void AddVisualTwist(double t_s, double forward_mps, double yaw_rate_radps, int inliers);
+  /// A camera frame at t. `motion`: visual odometry's planar motion since the previous
+  /// frame, in that frame's body axes, or none (a failed frame, or the first). Either
+  /// way the pose now is what the next frame's motion starts from.
+  void AddCameraFrame(double t_s, const std::optional<Pose2>& motion, int inliers);
 
   Pose2 pose() const { return {x_(0), x_(1), WrapAngle(x_(2))}; }
-  double gyro_bias() const { return x_(5); }
+  double gyro_bias() const { return x_(6); }
 
  private:
-  using Vec = Eigen::Matrix<double, 6, 1>;
-  using Mat = Eigen::Matrix<double, 6, 6>;
+  static constexpr int kN = 10;
+  using Vec = Eigen::Matrix<double, kN, 1>;
+  using Mat = Eigen::Matrix<double, kN, kN>;
   void PredictTo(double t_s);
   template <int M>
-  void Update(const Eigen::Matrix<double, M, 1>& z, const Eigen::Matrix<double, M, 6>& H,
+  void Update(const Eigen::Matrix<double, M, 1>& innovation, const Eigen::Matrix<double, M, kN>& H,
               const Eigen::Matrix<double, M, M>& R);
+  void ClonePose();
 
   EkfOdometryOptions options_;
   Vec x_ = Vec::Zero();
   Mat P_ = Mat::Zero();
   double t_ = 0.0;
   bool started_ = false;
+  double t_clone_ = 0.0;
+  bool has_clone_ = false;
 };
 
 }  // namespace trackbed::estimation
