@@ -188,6 +188,7 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& given_obs
     lo.vo.max_acceleration_mps2 = scenario.estimation.vo_max_acceleration_mps2;
     lo.vo.max_angular_acceleration_dps2 = scenario.estimation.vo_max_angular_acceleration_dps2;
     lo.vo.max_rotation_prior_error_deg = scenario.estimation.vo_max_gyro_rotation_error_deg;
+    lo.ekf = scenario.estimation.ekf;
     std::optional<perception::StereoCalibration> calibration;
     if (rig) {
       const sim::PinholeIntrinsics& K = rig->intrinsics();

@@ -127,6 +127,7 @@ void EstimationSpec::Validate() const {
   option_check::Positive("vo_max_acceleration_mps2", vo_max_acceleration_mps2);
   option_check::Positive("vo_max_angular_acceleration_dps2", vo_max_angular_acceleration_dps2);
   option_check::Positive("vo_max_gyro_rotation_error_deg", vo_max_gyro_rotation_error_deg);
+  option_check::Nested("ekf", ekf);
 }
 
 void NavigationSpec::Validate() const {

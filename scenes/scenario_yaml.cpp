@@ -392,6 +392,21 @@ void Visit(V& v, DriveSpec& o) {
 }
 
 template <class V>
+void Visit(V& v, estimation::EkfOdometryOptions& o) {
+  v("accel_noise", o.accel_noise);
+  v("lateral_accel_noise", o.lateral_accel_noise);
+  v("yaw_accel_noise", o.yaw_accel_noise);
+  v("gyro_bias_walk", o.gyro_bias_walk);
+  v("wheel_speed_std", o.wheel_speed_std);
+  v("wheel_lateral_speed_std", o.wheel_lateral_speed_std);
+  v("wheel_yaw_rate_std", o.wheel_yaw_rate_std);
+  v("gyro_std", o.gyro_std);
+  v("vo_speed_std", o.vo_speed_std);
+  v("vo_yaw_rate_std", o.vo_yaw_rate_std);
+  v("vo_reference_inliers", o.vo_reference_inliers);
+}
+
+template <class V>
 void Visit(V& v, EstimationSpec& o) {
   v("enabled", o.enabled);
   v("icr_expansion", o.icr_expansion);
@@ -407,6 +422,7 @@ void Visit(V& v, EstimationSpec& o) {
   v("vo_max_acceleration_mps2", o.vo_max_acceleration_mps2);
   v("vo_max_angular_acceleration_dps2", o.vo_max_angular_acceleration_dps2);
   v("vo_max_gyro_rotation_error_deg", o.vo_max_gyro_rotation_error_deg);
+  v("ekf", o.ekf);
 }
 
 template <class V>

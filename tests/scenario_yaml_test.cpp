@@ -244,6 +244,11 @@ TEST(ScenarioYamlTest, OutOfRangeValueReportsFullDottedKey) {
             "test.yaml: estimation.min_inliers_for_slip: must be >= 0 (got -5)");
   EXPECT_EQ(ErrorOf(m + "estimation: {slip_filter_time_s: -0.1}\n"),
             "test.yaml: estimation.slip_filter_time_s: must be >= 0 (got -0.1)");
+  EXPECT_EQ(ErrorOf(m + "estimation: {ekf: {wheel_yaw_rate_std: 0}}\n"),
+            "test.yaml: estimation.ekf.wheel_yaw_rate_std: must be > 0 (got 0)");
+  EXPECT_EQ(ErrorOf(m + "estimation: {ekf: {wheel_yaw_std: 0.5}}\n")
+                .rfind("test.yaml: estimation.ekf.wheel_yaw_std: unknown key (allowed: ", 0),
+            0u);
   EXPECT_EQ(ErrorOf(m + "outputs: {save_images: png}\n"),
             "test.yaml: outputs.save_images: must be none or kitti (got 'png')");
   EXPECT_EQ(ErrorOf("drive: {waypoints: [[0, 0]]}\n"),

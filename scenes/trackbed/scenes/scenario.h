@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "trackbed/estimation/ekf_odometry.h"
 #include "trackbed/robot/encoder.h"
 #include "trackbed/robot/imu.h"
 #include "trackbed/robot/range_sensor.h"
@@ -136,6 +137,8 @@ struct EstimationSpec {
   /// consensus VO's rotation error stayed under 0.6 deg per frame in the outdoor runs of
   /// seeds 3 and 6.
   double vo_max_gyro_rotation_error_deg = 2.0;
+  /// The EKF baseline's noise model (estimation/ekf_odometry.h), as `estimation.ekf.*`.
+  estimation::EkfOdometryOptions ekf;
 
   void Validate() const;
 };
