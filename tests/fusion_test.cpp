@@ -50,10 +50,27 @@ TEST(WheelOdometryTest, MeasuredVelocityRevealsSlipAndCorrectsTheOdometry) {
   }
   EXPECT_NEAR(with_slip.slip().left_mps, -0.04, 2e-3);
   EXPECT_NEAR(with_slip.slip().right_mps, -0.04, 2e-3);
-  // Corrected, once the filter (τ = 0.5 s) has settled: 0.04 m/s lost over its first second.
-  EXPECT_NEAR(with_slip.pose().x, 3.6 + 0.02, 0.02);
+  // Corrected, once the filter (τ = 0.2 s) has settled: 0.04 m/s of slip unseen over
+  // the first interval (0.1 s) and the filter's lag (0.2 s), 0.012 m.
+  EXPECT_NEAR(with_slip.pose().x, 3.6 + 0.012, 0.004);
   EXPECT_NEAR(plain.pose().x, 4.0, 1e-3);  // the baseline cannot see slip
   EXPECT_EQ(plain.slip().max_abs_mps(), 0.0);
+}
+
+TEST(WheelOdometryTest, SlipFilterTakesEachMeasurementWithItsTimeConstant) {
+  // A slip of −0.10 m/s appears at once; one 0.1 s measurement moves the estimate by
+  // 1 − exp(−0.1 / τ) of it.
+  for (double tau : {0.0, 0.2, 0.5}) {
+    WheelOdometryOptions o;
+    o.slip_filter_time_s = tau;
+    WheelOdometry odo(o, {});
+    for (int k = 0; k <= 100; ++k)
+      odo.AddEncoderSample(0.01 * k, Ticks(4.0, 0.01 * k), Ticks(4.0, 0.01 * k));
+    odo.AddMeasuredVelocity(0.9, 1.0, 0.30, 0.0);
+    const double gain = tau > 0.0 ? 1.0 - std::exp(-0.1 / tau) : 1.0;
+    EXPECT_NEAR(odo.slip().left_mps, -0.10 * gain, 2e-3) << "tau " << tau;
+    EXPECT_NEAR(odo.slip().right_mps, -0.10 * gain, 2e-3) << "tau " << tau;
+  }
 }
 
 TEST(WheelOdometryTest, HeldSlipDecaysWithoutMeasurements) {
