@@ -202,6 +202,12 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& given_obs
   // With the camera on, the localization stack runs on a second thread, fed the same
   // samples in the same order as it would be inline (identical results), while this
   // thread simulates and renders ahead. The drive does not read the estimates.
+  // The worker gets copies of each stereo pair in buffers that come back to
+  // `free_pairs` when the frame's delivery runs here, so no frame allocates images
+  // (declared before the worker, which may still hold some when it is destroyed).
+  using ImagePair = std::pair<sim::GrayImage, sim::GrayImage>;
+  std::vector<std::unique_ptr<ImagePair>> image_pairs;
+  std::vector<ImagePair*> free_pairs;
   std::unique_ptr<OrderedWorker> worker;
   if (stack && rig) worker = std::make_unique<OrderedWorker>();
   // Closed-loop navigation replaces the drive; it reads the estimates at each control
@@ -335,17 +341,24 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& given_obs
         }
       }
       if (worker) {
-        // The worker owns copies of the pair: the main thread renders the next one into
+        // The worker reads copies of the pair: the main thread renders the next one into
         // the same buffers while visual odometry runs on this one.
-        auto pair = std::make_shared<const std::pair<sim::GrayImage, sim::GrayImage>>(left_image,
-                                                                                      right_image);
+        if (free_pairs.empty()) {
+          image_pairs.push_back(std::make_unique<ImagePair>());
+          free_pairs.push_back(image_pairs.back().get());
+        }
+        ImagePair* pair = free_pairs.back();
+        free_pairs.pop_back();
+        pair->first = left_image;  // same size as last time: no reallocation
+        pair->second = right_image;
         const Eigen::Isometry3d T_world_body = truth.T_world_body;
         const double t_s = frame.t_s;
         const bool blackout = frame.blackout;
         worker->Submit([&, pair, T_world_body, t_s, blackout] {
           const LocalizationFrame lf =
               LocalizeStereoFrame(*stack, t_s, blackout, pair->first, pair->second);
-          worker->Deliver([&, T_world_body, lf] {
+          worker->Deliver([&, pair, T_world_body, lf] {
+            free_pairs.push_back(pair);
             estimates.AddFrame(T_world_body, lf);
             if (observers.on_localization_frame) observers.on_localization_frame(lf);
           });
