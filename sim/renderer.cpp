@@ -410,6 +410,10 @@ Renderer::Renderer(const World& world, const SceneAppearance& appearance,
 
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
+  // Dithering (on by default) changes no byte of the 8-bit images, but llvmpipe
+  // pays for it per fragment: off, rendering is 1.03-1.13x faster
+  // (docs/rendering.md).
+  glDisable(GL_DITHER);
   // Every surface is wound counter-clockwise seen from outside (terrain from
   // above, the ceiling from below), so back faces are hidden ones: culling
   // them spares llvmpipe rasterizing them (docs/rendering.md has the speed-up).
