@@ -24,6 +24,11 @@ void StereoRigOptions::Validate() const {
   if (!(far_m > near_m)) throw OptionError("far_m", "must exceed near_m");
   option_check::Positive("exposure", exposure);
   option_check::NonNegative("noise_std", noise_std);
+  option_check::InRange("exposure_time_s", exposure_time_s, 0.0, 1.0 / rate_hz);
+  if (exposure_samples < 1 || exposure_samples > 64) {
+    throw OptionError("exposure_samples",
+                      "must be in [1, 64] (got " + std::to_string(exposure_samples) + ")");
+  }
   for (std::size_t k = 0; k < blackouts_s.size(); ++k) {
     const Eigen::Vector2d& b = blackouts_s[k];
     if (!(std::isfinite(b.x()) && std::isfinite(b.y()) && b.x() >= 0.0 && b.y() > 0.0)) {

@@ -19,6 +19,7 @@
 #include "trackbed/robot/tracked_vehicle.h"
 #include "trackbed/scenes/closed_loop_navigation.h"
 #include "trackbed/scenes/ordered_worker.h"
+#include "trackbed/sim/camera_exposure.h"
 #include "trackbed/sim/renderer.h"
 #include "trackbed/sim/sim_clock.h"
 #include "trackbed/sim/world.h"
@@ -166,6 +167,7 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& given_obs
                                         rs.stereo.height_px, rs.stereo.near_m, rs.stereo.far_m);
   }
   sim::GrayImage left_image, right_image;
+  sim::CameraExposure exposure(rs.stereo.exposure_time_s, rs.stereo.exposure_samples);
   // The robot software: the localization stack on the robot's own sensors.
   std::unique_ptr<estimation::LocalizationStack> stack;
   EstimatorScoring estimates;
@@ -303,10 +305,12 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& given_obs
       // Both cameras see the terrain at the detail of the rig's centre.
       const Eigen::Vector2d rig_xy =
           0.5 * (frame.T_world_left.translation() + frame.T_world_right.translation()).head<2>();
-      renderer->Render(rig->intrinsics(), frame.T_world_left, frame.t_s, &left_image, nullptr,
-                       &rig_xy);
-      renderer->Render(rig->intrinsics(), frame.T_world_right, frame.t_s, &right_image, nullptr,
-                       &rig_xy);
+      // Each image is exposed around the frame's time (an instant by default).
+      const sim::BodyMotion motion{truth.T_world_body, truth.v_world, truth.omega_world};
+      exposure.Render(*renderer, rig->intrinsics(), motion, rig->T_body_left(), frame.t_s,
+                      &left_image, &rig_xy);
+      exposure.Render(*renderer, rig->intrinsics(), motion, rig->T_body_right(), frame.t_s,
+                      &right_image, &rig_xy);
       robot::ApplySensorModel(rs.stereo.exposure, rs.stereo.noise_std, noise_seed,
                               static_cast<std::uint64_t>(frame.index), 0, &left_image);
       robot::ApplySensorModel(rs.stereo.exposure, rs.stereo.noise_std, noise_seed,

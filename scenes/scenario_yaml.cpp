@@ -341,6 +341,8 @@ void Visit(V& v, robot::StereoRigOptions& o) {
   v("far_m", o.far_m);
   v("exposure", o.exposure);
   v("noise_std", o.noise_std);
+  v("exposure_time_s", o.exposure_time_s);
+  v("exposure_samples", o.exposure_samples);
   v("blackouts_s", o.blackouts_s);
 }
 

@@ -38,6 +38,11 @@ struct StereoRigOptions {
   double exposure = 1.0;
   /// Standard deviation of the sensor's additive noise [grey levels], >= 0.
   double noise_std = 1.0;
+  /// How long the shutter is open [s], in [0, 1 / rate_hz]: what moves across the
+  /// view meanwhile is smeared (sim/camera_exposure.h). 0 takes an instant.
+  double exposure_time_s = 0.0;
+  /// Renders averaged over an exposure, in [1, 64] (used when exposure_time_s > 0).
+  int exposure_samples = 4;
   /// Camera faults: [start, duration] pairs [s] during which both cameras deliver black
   /// frames (a covered lens, a dropped link), for fault tests.
   std::vector<Eigen::Vector2d> blackouts_s;
