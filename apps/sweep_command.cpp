@@ -1,6 +1,7 @@
 // `trackbed sweep` and `trackbed sweep-cell` (see sweep_command.h, docs/sweeps.md).
 //
-// Each cell is a child process of this same binary (`/proc/self/exe run …`), started
+// Each cell is a child process of this same binary (`/proc/self/exe run …`: the very
+// image this process runs, whatever its file holds by then), started
 // with posix_spawn in a process group of its own, so that a timeout or an interrupt
 // kills the whole run, and so that the terminal's Ctrl-C reaches only the sweep,
 // which then stops its cells itself. The sweep blocks SIGCHLD, SIGINT, SIGTERM and
@@ -171,7 +172,11 @@ class CellRunner {
     posix_spawnattr_setsigdefault(&attr, &defaults);
 
     Child child{&cell, 0, Clock::now(), UtcNow()};
-    const int rc = ::posix_spawn(&child.pid, exe_.c_str(), &files, &attr, argv.data(), environ);
+    // The child execs /proc/self/exe, which before the exec is this process's own
+    // image: the binary the sweep started with, even if its file has since been
+    // replaced (a rebuild) or removed, so every cell of a sweep runs the same code.
+    // argv[0] keeps the path, for ps and messages.
+    const int rc = ::posix_spawn(&child.pid, "/proc/self/exe", &files, &attr, argv.data(), environ);
     posix_spawn_file_actions_destroy(&files);
     posix_spawnattr_destroy(&attr);
     if (rc != 0) {

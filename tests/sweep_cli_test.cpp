@@ -267,6 +267,58 @@ bool WaitForFile(const fs::path& file, pid_t pid) {
   return true;
 }
 
+// A sweep's cells run the binary the sweep started with, even when the file is
+// replaced while it runs (a rebuild during a long sweep): every cell of one summary comes
+// from one build. Until 2026-12-03 the cells started whatever the path then held, and
+// failed with "cannot start …" while the linker wrote it.
+TEST(SweepCliTest, CellsRunTheBinaryTheSweepStartedWithWhenTheFileIsReplaced) {
+  const fs::path dir = TempDir("replaced");
+  std::ofstream(dir / "nav.yaml") << "name: nav\n"
+                                  << "scenarios: ["
+                                  << (kSource / "scenes/nav_paper_left.yaml").string() << "]\n"
+                                  << "seeds: [1, 2]\n"
+                                  << "set: [\"duration_s=30\"]\n"
+                                  << "vary:\n"
+                                  << "  - {key: navigation.method, values: [gauss_newton_subgoal, "
+                                     "potential_field, dwa]}\n";
+  const fs::path copy = dir / "trackbed_copy";
+  fs::copy_file(TRACKBED_BINARY, copy);
+  fs::permissions(copy, fs::perms::owner_all);
+  const fs::path out = dir / "sweep";
+  const std::vector<std::string> args = {
+      copy.string(), "sweep", (dir / "nav.yaml").string(), "--out", out.string(), "--jobs", "1"};
+  std::vector<std::string> all = args;
+  std::vector<char*> argv;
+  for (std::string& a : all) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  fs::create_directories(dir / "io");
+  const std::string err = (dir / "io" / "err").string();
+  posix_spawn_file_actions_t files;
+  posix_spawn_file_actions_init(&files);
+  posix_spawn_file_actions_addopen(&files, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&files, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = -1;
+  ASSERT_EQ(posix_spawn(&pid, copy.c_str(), &files, nullptr, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&files);
+  // Once the first cell has started, the file becomes a program that fails.
+  ASSERT_TRUE(WaitForFile(
+      out / "cells" / "nav_paper_left__method-gauss_newton_subgoal__seed-1" / "stderr.txt", pid));
+  fs::remove(copy);
+  std::ofstream(copy) << "#!/bin/sh\necho 'not the sweep binary' >&2\nexit 3\n";
+  fs::permissions(copy, fs::perms::owner_all);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0) << Slurp(dir / "io" / "err");
+  int ok = 0;
+  for (const auto& entry : fs::directory_iterator(out / "cells")) {
+    const nlohmann::json cell = nlohmann::json::parse(Slurp(entry.path() / "cell.json"));
+    EXPECT_EQ(cell["status"], "ok") << entry.path() << ": " << cell.dump();
+    ok += cell["status"] == "ok" ? 1 : 0;
+  }
+  EXPECT_EQ(ok, 6);
+}
+
 TEST(SweepCliTest, AnInterruptedSweepResumesToTheSameSummaryAsAnUninterruptedOne) {
   const fs::path dir = TempDir("interrupt");
   // The corridor and the park for 3 simulated seconds, two seeds: about a second a cell.
