@@ -237,10 +237,12 @@ TEST(SweepCliTest, ACellOverItsTimeLimitIsKilledAndReported) {
   EXPECT_NE(Slurp(out / "summary.csv").find(",timed_out,no result within"), std::string::npos);
 }
 
-// Starts `trackbed ARGS...` without a shell so that the test can signal it.
-pid_t Spawn(const std::vector<std::string>& args, const fs::path& io) {
+// Starts `trackbed ARGS...` (the binary at `binary`) without a shell so that the test
+// can signal it.
+pid_t Spawn(const std::vector<std::string>& args, const fs::path& io,
+            const std::string& binary = TRACKBED_BINARY) {
   fs::create_directories(io);
-  std::vector<std::string> all = {TRACKBED_BINARY};
+  std::vector<std::string> all = {binary};
   all.insert(all.end(), args.begin(), args.end());
   std::vector<char*> argv;
   for (std::string& a : all) argv.push_back(a.data());
@@ -251,7 +253,7 @@ pid_t Spawn(const std::vector<std::string>& args, const fs::path& io) {
   posix_spawn_file_actions_addopen(&files, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_addopen(&files, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   pid_t pid = -1;
-  const int rc = posix_spawn(&pid, TRACKBED_BINARY, &files, nullptr, argv.data(), environ);
+  const int rc = posix_spawn(&pid, binary.c_str(), &files, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&files);
   EXPECT_EQ(rc, 0);
   return pid;
@@ -285,21 +287,9 @@ TEST(SweepCliTest, CellsRunTheBinaryTheSweepStartedWithWhenTheFileIsReplaced) {
   fs::copy_file(TRACKBED_BINARY, copy);
   fs::permissions(copy, fs::perms::owner_all);
   const fs::path out = dir / "sweep";
-  const std::vector<std::string> args = {
-      copy.string(), "sweep", (dir / "nav.yaml").string(), "--out", out.string(), "--jobs", "1"};
-  std::vector<std::string> all = args;
-  std::vector<char*> argv;
-  for (std::string& a : all) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  fs::create_directories(dir / "io");
-  const std::string err = (dir / "io" / "err").string();
-  posix_spawn_file_actions_t files;
-  posix_spawn_file_actions_init(&files);
-  posix_spawn_file_actions_addopen(&files, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&files, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  pid_t pid = -1;
-  ASSERT_EQ(posix_spawn(&pid, copy.c_str(), &files, nullptr, argv.data(), environ), 0);
-  posix_spawn_file_actions_destroy(&files);
+  const pid_t pid =
+      Spawn({"sweep", (dir / "nav.yaml").string(), "--out", out.string(), "--jobs", "1"},
+            dir / "io", copy.string());
   // Once the first cell has started, the file becomes a program that fails.
   ASSERT_TRUE(WaitForFile(
       out / "cells" / "nav_paper_left__method-gauss_newton_subgoal__seed-1" / "stderr.txt", pid));
