@@ -181,6 +181,16 @@ fs::path WriteBatchScript(const fs::path& dir, const SweepPlan& plan, const Slur
   scenes::WriteFileAtomically(SlurmDir(dir) / (stem + ".cells"), list);
 
   const fs::path exe = fs::read_symlink("/proc/self/exe");
+  // The tasks start the file at this path, not this process's image: if the file was
+  // replaced (a rebuild) since this process started, the kernel names it "… (deleted)".
+  const std::string deleted = " (deleted)";
+  const std::string exe_name = exe.string();
+  if (exe_name.size() > deleted.size() &&
+      exe_name.compare(exe_name.size() - deleted.size(), deleted.size(), deleted) == 0) {
+    throw std::runtime_error("the trackbed binary was replaced on disk since this sweep started (" +
+                             exe_name +
+                             "); Slurm tasks would run the new file: run the sweep again with it");
+  }
   std::string array = "0-" + std::to_string(cells.size() - 1);
   if (options.max_parallel > 0) array += "%" + std::to_string(options.max_parallel);
   std::string time = options.time_limit;

@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <mutex>
 #include <stdexcept>
 
 #include "trackbed/common/option_error.h"
@@ -88,9 +89,16 @@ struct TerrainDrawable {
 // page-fault handler. Keeping freed memory in the process (a process-wide
 // setting, harmless to the rest) makes the loop 1.1x faster with the same
 // bytes (docs/rendering.md).
+// Once per process, from the first renderer's constructor: mallopt is not
+// thread-safe, and the setting is the process's anyway.
 void KeepFreedMemory() {
-  mallopt(M_TRIM_THRESHOLD, 256 << 20);  // keep up to 256 MiB freed at the heap's top
-  mallopt(M_MMAP_THRESHOLD, 32 << 20);   // map only blocks of 32 MiB and more
+#ifdef __GLIBC__
+  static std::once_flag once;
+  std::call_once(once, [] {
+    mallopt(M_TRIM_THRESHOLD, 256 << 20);  // keep up to 256 MiB freed at the heap's top
+    mallopt(M_MMAP_THRESHOLD, 32 << 20);   // map only blocks of 32 MiB and more
+  });
+#endif
 }
 
 }  // namespace

@@ -255,12 +255,25 @@ TEST(RendererTest, AnExposureSmearsAnEdgeByTheCameraMotionDuringIt) {
   // The plate's mean position along the row (its edge) does not move.
   EXPECT_NEAR(mass_blurred, mass_plain, 0.3);
 
-  // The body's pose over the exposure: turned by ω·dt, moved by v·dt.
-  motion.v_world = {0.4, 0.1, 0.0};
-  const Eigen::Isometry3d later = motion.PoseAfter(0.005);
-  EXPECT_NEAR(Eigen::AngleAxisd(later.linear() * Body().linear().transpose()).angle(), 0.005,
-              1e-12);
-  EXPECT_TRUE(later.translation().isApprox(Body().translation() + 0.005 * motion.v_world, 1e-12));
+  // The body's pose over the exposure: turned by ω·dt about ω's axis in the world
+  // frame (Bullet's angular velocity is the world frame's), moved by v·dt. A pitched
+  // and rolled body and an ω off its axes tell a world-frame rotation from a
+  // body-frame one: here they differ by about 3e-3 rad.
+  BodyMotion tilted;
+  tilted.T_world_body = Body();
+  tilted.T_world_body.linear() = (Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitX()) *
+                                  Eigen::AngleAxisd(-0.3, Eigen::Vector3d::UnitY()))
+                                     .toRotationMatrix();
+  tilted.omega_world = {0.3, -0.5, 0.8};
+  tilted.v_world = {0.4, 0.1, 0.0};
+  const double dt = 0.005;
+  const Eigen::Isometry3d later = tilted.PoseAfter(dt);
+  const Eigen::AngleAxisd turn(tilted.omega_world.norm() * dt, tilted.omega_world.normalized());
+  const Eigen::Matrix3d in_world = turn * tilted.T_world_body.linear();
+  const Eigen::Matrix3d in_body = tilted.T_world_body.linear() * turn;
+  ASSERT_GT((in_world - in_body).norm(), 1e-3);
+  EXPECT_LT((later.linear() - in_world).norm(), 1e-12);
+  EXPECT_TRUE(later.translation().isApprox(Body().translation() + dt * tilted.v_world, 1e-12));
 }
 
 // A level camera at `eye` looking horizontally towards `target` (OpenCV axes).

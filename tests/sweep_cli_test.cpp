@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -283,21 +284,41 @@ TEST(SweepCliTest, CellsRunTheBinaryTheSweepStartedWithWhenTheFileIsReplaced) {
                                   << "vary:\n"
                                   << "  - {key: navigation.method, values: [gauss_newton_subgoal, "
                                      "potential_field, dwa]}\n";
-  const fs::path copy = dir / "trackbed_copy";
-  fs::copy_file(TRACKBED_BINARY, copy);
+  // The copy sits beside the real binary, not in the temporary folder, which may be
+  // mounted noexec.
+  const fs::path copy = fs::path(TRACKBED_BINARY).parent_path() /
+                        ("trackbed_replaced_test_" + std::to_string(getpid()));
+  fs::copy_file(TRACKBED_BINARY, copy, fs::copy_options::overwrite_existing);
   fs::permissions(copy, fs::perms::owner_all);
   const fs::path out = dir / "sweep";
-  const pid_t pid =
-      Spawn({"sweep", (dir / "nav.yaml").string(), "--out", out.string(), "--jobs", "1"},
-            dir / "io", copy.string());
+  pid_t pid = Spawn({"sweep", (dir / "nav.yaml").string(), "--out", out.string(), "--jobs", "1"},
+                    dir / "io", copy.string());
+  struct Cleanup {  // on a failed assertion too: no stray sweep, no stray file
+    pid_t* pid;
+    fs::path file;
+    ~Cleanup() {
+      if (*pid > 0) {
+        kill(*pid, SIGKILL);
+        waitpid(*pid, nullptr, 0);
+      }
+      std::error_code ignored;
+      fs::remove(file, ignored);
+    }
+  } cleanup{&pid, copy};
   // Once the first cell has started, the file becomes a program that fails.
   ASSERT_TRUE(WaitForFile(
       out / "cells" / "nav_paper_left__method-gauss_newton_subgoal__seed-1" / "stderr.txt", pid));
   fs::remove(copy);
   std::ofstream(copy) << "#!/bin/sh\necho 'not the sweep binary' >&2\nexit 3\n";
   fs::permissions(copy, fs::perms::owner_all);
+  // Cells start one at a time, each a few seconds long: most start after the swap,
+  // which is what this test is about.
+  const auto started =
+      std::distance(fs::directory_iterator(out / "cells"), fs::directory_iterator{});
+  ASSERT_LT(started, 6);
   int status = 0;
   ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  pid = -1;
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 0) << Slurp(dir / "io" / "err");
   int ok = 0;

@@ -5,10 +5,11 @@
 // exposure sweeps the view by 0.3°, 2 px at 381 px focal length. The renderer
 // draws instants, so an exposure of duration T centred at t is approximated by
 // the mean of N renders at the midpoints of N equal parts of [t − T/2, t + T/2],
-// with the body moving at its velocity and angular velocity at t (constant
-// over T: a 10 ms exposure is one physics step) and the scene's occluders at each
-// instant. The result is rounded to grey levels once, as a sensor does; noise
-// and gain (robot::ApplySensorModel) come after it. T = 0 is one render at t.
+// with the body moving at its velocity and angular velocity at t (taken as
+// constant over T, a few milliseconds in which a tracked robot's motion hardly
+// changes) and the scene's occluders at each instant. The mean of the renders'
+// grey levels is rounded to grey levels once; noise and gain
+// (robot::ApplySensorModel) come after it. T = 0 is one render at t.
 #pragma once
 
 #include <cstdint>
