@@ -31,7 +31,11 @@ int main(int argc, char** argv) {
     for (const std::string& set : sets) overrides.push_back(scenes::ParseOverride(set));
     for (const std::string& f : files) {
       scenes::Scenario s = scenes::LoadScenario(f, overrides);
-      // Rendering alone: the poses of one closed-loop run's cameras, replayed.
+      // The closed loop as `trackbed run` runs it: nothing on the main thread looks at
+      // the images, so the sensor model runs on the localization thread.
+      const scenes::RunMetrics loop = scenes::RunClosedLoop(s);
+      // Rendering alone: the poses of the same run's cameras, recorded in a second,
+      // untimed run (identical: the same scenario and seed), replayed.
       std::vector<Eigen::Isometry3d> left, right;
       std::vector<Eigen::Vector2d> centers;
       scenes::RunObservers record;
@@ -42,7 +46,7 @@ int main(int argc, char** argv) {
         centers.push_back(
             0.5 * (frame.T_world_left.translation() + frame.T_world_right.translation()).head<2>());
       };
-      const scenes::RunMetrics loop = scenes::RunClosedLoop(s, record);
+      scenes::RunClosedLoop(s, record);
       const sim::World world(s.scene.world, sim::Terrain(s.scene.terrain, s.seed), s.scene.objects);
       const robot::StereoRig rig(s.robot.stereo);
       sim::Renderer renderer(world, s.scene.appearance, s.scene.occluders, s.seed,
@@ -103,6 +107,12 @@ int main(int argc, char** argv) {
           n / vo_seconds, sensor_ms, s.robot.stereo.rate_hz, loop.sim_time_s, loop.wall_time_s,
           loop.real_time_factor(), 100.0 * loop.render_wall_s / loop.wall_time_s,
           100.0 * loop.estimation_wall_s / loop.wall_time_s, renderer.gl_description().c_str());
+      if (s.robot.stereo.exposure_time_s > 0.0) {
+        std::printf(
+            "%-9s rendering alone draws instants; the closed loop renders %d per image "
+            "(robot.stereo.exposure_time_s = %g s)\n",
+            s.scene.name.c_str(), s.robot.stereo.exposure_samples, s.robot.stereo.exposure_time_s);
+      }
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "render_benchmark: %s\n", e.what());

@@ -125,6 +125,25 @@ auto Timed(double* seconds, F&& f) {
 }
 
 // The observers, each call's time added to *io_s (they write the run folder).
+// The camera's stages after rendering: the sensor model (exposure, gain, noise keyed
+// by seed, frame and camera), then the blackout fault, on a rendered pair.
+struct CameraPipeline {
+  const robot::StereoRigOptions& stereo;
+  std::uint64_t noise_seed;
+  std::int64_t frame_index;
+  bool blackout;
+
+  void Apply(sim::GrayImage* left, sim::GrayImage* right) const {
+    const auto frame = static_cast<std::uint64_t>(frame_index);
+    robot::ApplySensorModel(stereo.exposure, stereo.noise_std, noise_seed, frame, 0, left);
+    robot::ApplySensorModel(stereo.exposure, stereo.noise_std, noise_seed, frame, 1, right);
+    if (blackout) {
+      std::fill(left->pixels.begin(), left->pixels.end(), 0);
+      std::fill(right->pixels.begin(), right->pixels.end(), 0);
+    }
+  }
+};
+
 RunObservers TimedObservers(const RunObservers& o, double* io_s) {
   return CombineObservers(o, o, [io_s](const auto& f, const auto&) -> std::decay_t<decltype(f)> {
     if (!f) return {};
@@ -224,6 +243,8 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& given_obs
   std::uint64_t scan_index = 0;
   std::int64_t stereo_index = 0;
   double render_wall_s = 0.0;
+  double sensor_model_wall_s = 0.0;       // on this thread
+  double sensor_model_on_worker_s = 0.0;  // written by the worker, read after Drain()
   const std::uint64_t noise_seed = split_mix::Stream(scenario.seed, 3);
   MetricsAccumulator metrics(rs.vehicle.sprocket_radius_m, rs.vehicle.track_gauge_m,
                              rs.encoders.ticks_per_rev);
@@ -305,35 +326,50 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& given_obs
       // Both cameras see the terrain at the detail of the rig's centre.
       const Eigen::Vector2d rig_xy =
           0.5 * (frame.T_world_left.translation() + frame.T_world_right.translation()).head<2>();
+      // With the worker, the pair is rendered straight into a buffer that the worker
+      // then reads, so the main thread copies no image.
+      ImagePair* pair = nullptr;
+      if (worker) {
+        if (free_pairs.empty()) {
+          image_pairs.push_back(std::make_unique<ImagePair>());
+          free_pairs.push_back(image_pairs.back().get());
+        }
+        pair = free_pairs.back();
+        free_pairs.pop_back();
+      }
+      sim::GrayImage& left = pair ? pair->first : left_image;
+      sim::GrayImage& right = pair ? pair->second : right_image;
       // Each image is exposed around the frame's time (an instant by default).
       const sim::BodyMotion motion{truth.T_world_body, truth.v_world, truth.omega_world};
-      exposure.Render(*renderer, rig->intrinsics(), motion, rig->T_body_left(), frame.t_s,
-                      &left_image, &rig_xy);
-      exposure.Render(*renderer, rig->intrinsics(), motion, rig->T_body_right(), frame.t_s,
-                      &right_image, &rig_xy);
-      robot::ApplySensorModel(rs.stereo.exposure, rs.stereo.noise_std, noise_seed,
-                              static_cast<std::uint64_t>(frame.index), 0, &left_image);
-      robot::ApplySensorModel(rs.stereo.exposure, rs.stereo.noise_std, noise_seed,
-                              static_cast<std::uint64_t>(frame.index), 1, &right_image);
+      exposure.Render(*renderer, rig->intrinsics(), motion, rig->T_body_left(), frame.t_s, &left,
+                      &rig_xy);
+      exposure.Render(*renderer, rig->intrinsics(), motion, rig->T_body_right(), frame.t_s, &right,
+                      &rig_xy);
       frame.blackout = rs.stereo.InBlackout(frame.t_s);
-      if (frame.blackout) {
-        std::fill(left_image.pixels.begin(), left_image.pixels.end(), 0);
-        std::fill(right_image.pixels.begin(), right_image.pixels.end(), 0);
+      const CameraPipeline finish{rs.stereo, noise_seed, frame.index, frame.blackout};
+      // The sensor model is the camera's last stage. When nothing on this thread looks
+      // at the images, it runs on the worker, off this thread's critical path; the bytes
+      // are the same either way (its noise is keyed by seed, frame and camera).
+      const bool finish_on_worker = pair && !observers.on_stereo && !repeater;
+      const auto rendered = std::chrono::steady_clock::now();
+      render_wall_s += std::chrono::duration<double>(rendered - render_start).count();
+      if (!finish_on_worker) {
+        finish.Apply(&left, &right);
+        sensor_model_wall_s +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - rendered).count();
       }
-      render_wall_s +=
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - render_start).count();
-      frame.left = &left_image;
-      frame.right = &right_image;
+      frame.left = &left;
+      frame.right = &right;
       frame.rig = &*rig;
       frame.ticks[0] = last_ticks[0];
       frame.ticks[1] = last_ticks[1];
       if (observers.on_stereo) observers.on_stereo(frame);
       if (repeater) {
         // Teach & repeat steers from this image alone.
-        const cv::Mat left(left_image.height, left_image.width, CV_8UC1,
-                           const_cast<std::uint8_t*>(left_image.pixels.data()));
+        const cv::Mat left_mat(left.height, left.width, CV_8UC1,
+                               const_cast<std::uint8_t*>(left.pixels.data()));
         const navigation::RepeatCommand c =
-            Timed(&times.control_s, [&] { return repeater->Update(left, frame.t_s); });
+            Timed(&times.control_s, [&] { return repeater->Update(left_mat, frame.t_s); });
         if (observers.on_repeat_step) observers.on_repeat_step({frame.t_s, c});
         repeat_features_lost = c.features_lost;
         repeat_features_recovered = c.features_recovered;
@@ -344,21 +380,19 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& given_obs
           break;
         }
       }
-      if (worker) {
-        // The worker reads copies of the pair: the main thread renders the next one into
-        // the same buffers while visual odometry runs on this one.
-        if (free_pairs.empty()) {
-          image_pairs.push_back(std::make_unique<ImagePair>());
-          free_pairs.push_back(image_pairs.back().get());
-        }
-        ImagePair* pair = free_pairs.back();
-        free_pairs.pop_back();
-        pair->first = left_image;  // same size as last time: no reallocation
-        pair->second = right_image;
+      if (pair) {
+        // The worker owns the pair until the frame's delivery gives it back; the main
+        // thread meanwhile renders the next frames into other buffers.
         const Eigen::Isometry3d T_world_body = truth.T_world_body;
         const double t_s = frame.t_s;
         const bool blackout = frame.blackout;
-        worker->Submit([&, pair, T_world_body, t_s, blackout] {
+        worker->Submit([&, pair, T_world_body, t_s, blackout, finish, finish_on_worker] {
+          if (finish_on_worker) {
+            const auto start = std::chrono::steady_clock::now();
+            finish.Apply(&pair->first, &pair->second);
+            sensor_model_on_worker_s +=
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+          }
           const LocalizationFrame lf =
               LocalizeStereoFrame(*stack, t_s, blackout, pair->first, pair->second);
           worker->Deliver([&, pair, T_world_body, lf] {
@@ -432,12 +466,15 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& given_obs
 
   if (worker) {
     worker->Drain();
-    estimation_wall_s = worker->busy_s();
+    // The sensor model is its own stage, wherever it ran.
+    estimation_wall_s = worker->busy_s() - sensor_model_on_worker_s;
+    sensor_model_wall_s += sensor_model_on_worker_s;
   }
   RunMetrics m = metrics.Metrics();
   m.completed = !failed;
   m.stereo_frames = stereo_index;
   m.render_wall_s = render_wall_s;
+  m.sensor_model_wall_s = sensor_model_wall_s;
   m.estimation_wall_s = estimation_wall_s;
   m.physics_wall_s = times.physics_s;
   m.control_wall_s = times.control_s;

@@ -44,5 +44,44 @@ TEST(LocalizationClosedLoopTest, OnRoughTexturedGroundVisionBeatsWheelOdometryAn
   EXPECT_LT(10.0 * Ate(m, "ekf"), Ate(m, "wheel_odometry_noslip"));
 }
 
+// The sensor model runs on the localization thread when nothing on the main thread looks
+// at the images, and on the main thread when something does (an image export, teach &
+// repeat). Visual odometry must see the same bytes either way: a missing or mis-keyed
+// sensor model, or a blackout not applied, changes its poses.
+TEST(LocalizationClosedLoopTest, VisionSeesTheSameImagesWhicheverThreadRunsTheSensorModel) {
+  const scenes::Scenario s = scenes::LoadScenario(
+      std::string(TRACKBED_SOURCE_DIR) + "/scenes/outdoor.yaml",
+      {{"duration_s", "4"}, {"seed", "3"}, {"robot.stereo.blackouts_s", "[[1.95,0.5]]"}});
+  struct Run {
+    std::vector<Eigen::Matrix4d> vo;
+    std::vector<double> inliers;
+    int blackout_frames = 0;
+    scenes::RunMetrics metrics;
+  };
+  const auto run = [&](bool look_at_images) {
+    Run r;
+    scenes::RunObservers obs;
+    obs.on_localization_frame = [&](const scenes::LocalizationFrame& f) {
+      r.vo.push_back(f.visual_odometry.matrix());
+      r.inliers.push_back(f.report.features);
+      if (f.camera_blackout) ++r.blackout_frames;
+    };
+    if (look_at_images) obs.on_stereo = [](const scenes::StereoFrame&) {};
+    r.metrics = scenes::RunClosedLoop(s, obs);
+    return r;
+  };
+  const Run on_worker = run(false), on_main = run(true);
+  ASSERT_TRUE(on_worker.metrics.completed) << on_worker.metrics.stop_reason;
+  ASSERT_EQ(on_worker.vo.size(), 41u);      // 10 Hz over 4 s, both ends
+  EXPECT_EQ(on_worker.blackout_frames, 5);  // 2.0 … 2.4 s
+  EXPECT_GT(on_worker.inliers[10], 100.0);  // textured ground: VO is at work
+  ASSERT_EQ(on_main.vo.size(), on_worker.vo.size());
+  for (std::size_t i = 0; i < on_worker.vo.size(); ++i) {
+    EXPECT_EQ(on_main.vo[i], on_worker.vo[i]) << "frame " << i;
+    EXPECT_EQ(on_main.inliers[i], on_worker.inliers[i]) << "frame " << i;
+  }
+  EXPECT_EQ(Ate(on_main.metrics, "fused"), Ate(on_worker.metrics, "fused"));
+}
+
 }  // namespace
 }  // namespace trackbed

@@ -91,9 +91,14 @@ struct RunMetrics {
   estimation::IcrFit icr;
   /// Lowest clearance of the centre of mass above the terrain [m].
   double min_com_height_m = 0.0;
-  /// Stereo pairs rendered, and the wall-clock time spent rendering them [s].
+  /// Stereo pairs rendered, and the wall-clock time spent rendering them [s] (on the
+  /// main thread).
   long long stereo_frames = 0;
   double render_wall_s = 0.0;
+  /// Wall-clock time of the cameras' sensor model (exposure, noise, blackouts) [s]: on
+  /// the localization thread when nothing on the main thread looks at the images (an
+  /// image export or teach & repeat does), else on the main thread.
+  double sensor_model_wall_s = 0.0;
   /// Wall-clock time spent in the localization stack [s] (on its own thread when the
   /// camera is on).
   double estimation_wall_s = 0.0;
