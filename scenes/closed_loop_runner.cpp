@@ -124,7 +124,6 @@ auto Timed(double* seconds, F&& f) {
   return f();
 }
 
-// The observers, each call's time added to *io_s (they write the run folder).
 // The camera's stages after rendering: the sensor model (exposure, gain, noise keyed
 // by seed, frame and camera), then the blackout fault, on a rendered pair.
 struct CameraPipeline {
@@ -144,6 +143,7 @@ struct CameraPipeline {
   }
 };
 
+// The observers, each call's time added to *io_s (they write the run folder).
 RunObservers TimedObservers(const RunObservers& o, double* io_s) {
   return CombineObservers(o, o, [io_s](const auto& f, const auto&) -> std::decay_t<decltype(f)> {
     if (!f) return {};
