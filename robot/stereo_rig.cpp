@@ -24,11 +24,7 @@ void StereoRigOptions::Validate() const {
   if (!(far_m > near_m)) throw OptionError("far_m", "must exceed near_m");
   option_check::Positive("exposure", exposure);
   option_check::NonNegative("noise_std", noise_std);
-  if (!(exposure_time_s >= 0.0 && exposure_time_s <= 1.0 / rate_hz)) {
-    throw OptionError("exposure_time_s", "must be in [0, 1 / rate_hz] = [0, " +
-                                             option_check::Describe(1.0 / rate_hz) + "] (got " +
-                                             option_check::Describe(exposure_time_s) + ")");
-  }
+  option_check::InRange("exposure_time_s", exposure_time_s, 0.0, 1.0 / rate_hz);
   if (exposure_samples < 1 || exposure_samples > 64) {
     throw OptionError("exposure_samples",
                       "must be in [1, 64] (got " + std::to_string(exposure_samples) + ")");

@@ -385,8 +385,7 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& given_obs
         // thread meanwhile renders the next frames into other buffers.
         const Eigen::Isometry3d T_world_body = truth.T_world_body;
         const double t_s = frame.t_s;
-        const bool blackout = frame.blackout;
-        worker->Submit([&, pair, T_world_body, t_s, blackout, finish, finish_on_worker] {
+        worker->Submit([&, pair, T_world_body, t_s, finish, finish_on_worker] {
           if (finish_on_worker) {
             const auto start = std::chrono::steady_clock::now();
             finish.Apply(&pair->first, &pair->second);
@@ -394,7 +393,7 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& given_obs
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
           }
           const LocalizationFrame lf =
-              LocalizeStereoFrame(*stack, t_s, blackout, pair->first, pair->second);
+              LocalizeStereoFrame(*stack, t_s, finish.blackout, pair->first, pair->second);
           worker->Deliver([&, pair, T_world_body, lf] {
             free_pairs.push_back(pair);
             estimates.AddFrame(T_world_body, lf);
