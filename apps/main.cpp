@@ -36,6 +36,11 @@ int Run(const std::string& scenario_path, const std::string& out_dir,
               << ")\n";
     return 3;
   }
+  if (m.stop_reason == "stalled") {
+    std::cerr << "trackbed run: the robot stalled at t = " << m.sim_time_s
+              << " s: a track's motor held its torque limit (robot.vehicle.motor.max_torque_nm) "
+                 "without turning for robot.vehicle.stall_time_s\n";
+  }
   if (m.navigation) {
     const trackbed::navigation::NavigationMetrics& n = *m.navigation;
     std::printf(

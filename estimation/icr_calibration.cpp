@@ -1,7 +1,9 @@
 // ICR expansion factor fit (see icr_calibration.h).
 #include "trackbed/estimation/icr_calibration.h"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace trackbed::estimation {
 
@@ -24,6 +26,29 @@ IcrFit FitIcrExpansion(const std::vector<IcrSample>& samples, double min_yaw_rat
   }
   fit.rms_residual_radps = std::sqrt(sse / fit.samples_used);
   return fit;
+}
+
+double RigidPlasticIcrExpansion(const std::vector<double>& station_x_m, double half_track_m) {
+  const double c = half_track_m;
+  if (!(c > 0.0)) throw std::invalid_argument("RigidPlasticIcrExpansion: half_track_m must be > 0");
+  double max_x = 0.0;
+  for (double x : station_x_m) max_x = std::max(max_x, std::abs(x));
+  if (max_x == 0.0) {
+    throw std::invalid_argument("RigidPlasticIcrExpansion: needs a station off the axle");
+  }
+  // The moment Σ (c e − x²)/√(e² + x²) rises monotonically in e from −Σ|x| at 0
+  // to +Σ c at infinity; its root lies in (0, max x² / c]. Bisection to 1e-15.
+  auto moment = [&](double e) {
+    double m = 0.0;
+    for (double x : station_x_m) m += (c * e - x * x) / std::hypot(e, x);
+    return m;
+  };
+  double lo = 0.0, hi = max_x * max_x / c;
+  for (int k = 0; k < 200 && hi - lo > 1e-15 * hi; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (moment(mid) > 0.0 ? hi : lo) = mid;
+  }
+  return (c + 0.5 * (lo + hi)) / c;
 }
 
 }  // namespace trackbed::estimation

@@ -37,8 +37,8 @@ void SprocketMotor::Step(double dt_s, double load_torque_nm) {
       (j * speed_radps_ + dt_s * (kv * reference_radps_ + integral_nm_ - load_torque_nm)) /
       (j + dt_s * (kv + b));
   torque_nm_ = kv * (reference_radps_ - next) + integral_nm_;
-  const bool saturated = std::abs(torque_nm_) > options_.max_torque_nm;
-  if (saturated) {
+  saturated_ = std::abs(torque_nm_) > options_.max_torque_nm;
+  if (saturated_) {
     // Saturated: the torque is the limit, the rest explicit in the load.
     torque_nm_ = std::copysign(options_.max_torque_nm, torque_nm_);
     next = (j * speed_radps_ + dt_s * (torque_nm_ - load_torque_nm)) / (j + dt_s * b);

@@ -8,6 +8,7 @@
 
 #include "trackbed/common/option_error.h"
 #include "trackbed/robot/terramechanics.h"
+#include "trackbed/robot/track_contact.h"
 
 namespace trackbed::robot {
 namespace {
@@ -16,6 +17,48 @@ Eigen::Vector3d ToEigen(const btVector3& v) { return {v.x(), v.y(), v.z()}; }
 btVector3 ToBullet(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
 constexpr double kGravity = 9.81;
+// Speed scale of the sign of a resistance that opposes motion [m/s]: smooths its
+// switch through zero speed, where an exact sign would chatter at a 1 ms step.
+constexpr double kResistanceSignSpeed_mps = 0.01;
+
+// The station positions along body x: given, or evenly over the contact length.
+std::vector<double> StationPositions(const TrackedVehicleOptions& o) {
+  if (!o.station_x_m.empty()) return o.station_x_m;
+  std::vector<double> xs;
+  const int n = o.road_wheels_per_track;
+  for (int i = 0; i < n; ++i) {
+    xs.push_back(-o.track_contact_length_m / 2 + (i + 0.5) * o.track_contact_length_m / n);
+  }
+  return xs;
+}
+
+void ValidateStations(const TrackedVehicleOptions& o) {
+  if (o.station_x_m.empty()) {
+    if (o.road_wheels_per_track < 2 || o.road_wheels_per_track > 32) {
+      throw OptionError("road_wheels_per_track",
+                        "must be in [2, 32] (got " + std::to_string(o.road_wheels_per_track) + ")");
+    }
+  } else if (o.station_x_m.size() < 2 || o.station_x_m.size() > 32) {
+    throw OptionError("station_x_m", "must list 2 to 32 positions (got " +
+                                         std::to_string(o.station_x_m.size()) + ")");
+  }
+  const std::vector<double> xs = StationPositions(o);
+  for (std::size_t k = 0; k < xs.size(); ++k) {
+    const std::string field = "station_x_m[" + std::to_string(k) + "]";
+    option_check::Finite(field.c_str(), xs[k]);
+    if (o.contact == TrackedVehicleOptions::Contact::kTracks &&
+        std::abs(xs[k]) >= o.track_contact_length_m / 2) {
+      throw OptionError(field, "must lie inside the track's contact length (|x| < " +
+                                   option_check::Describe(o.track_contact_length_m / 2) + ")");
+    }
+  }
+  option_check::Positive("road_wheel_contact_length_m", o.road_wheel_contact_length_m);
+  if (o.contact == TrackedVehicleOptions::Contact::kTracks &&
+      o.road_wheel_contact_length_m > o.track_contact_length_m / xs.size()) {
+    throw OptionError("road_wheel_contact_length_m",
+                      "must not exceed track_contact_length_m / stations per side");
+  }
+}
 
 }  // namespace
 
@@ -36,24 +79,19 @@ void TrackedVehicleOptions::Validate() const {
   }
   option_check::Positive("track_contact_length_m", track_contact_length_m);
   option_check::Positive("sprocket_radius_m", sprocket_radius_m);
-  if (road_wheels_per_track < 2 || road_wheels_per_track > 32) {
-    throw OptionError("road_wheels_per_track",
-                      "must be in [2, 32] (got " + std::to_string(road_wheels_per_track) + ")");
-  }
-  option_check::Positive("road_wheel_contact_length_m", road_wheel_contact_length_m);
-  if (road_wheel_contact_length_m > track_contact_length_m / road_wheels_per_track) {
-    throw OptionError("road_wheel_contact_length_m",
-                      "must not exceed track_contact_length_m / road_wheels_per_track");
-  }
+  ValidateStations(*this);
   option_check::Positive("suspension_stiffness_npm", suspension_stiffness_npm);
   option_check::NonNegative("suspension_damping_nspm", suspension_damping_nspm);
   option_check::Positive("suspension_travel_m", suspension_travel_m);
   option_check::NonNegative("shear_damping_s", shear_damping_s);
   option_check::Positive("hull_contact_stiffness_npm", hull_contact_stiffness_npm);
   option_check::NonNegative("hull_friction", hull_friction);
+  option_check::NonNegative("running_gear_resistance_coeff", running_gear_resistance_coeff);
+  option_check::NonNegative("running_gear_speed_coeff_s_per_m", running_gear_speed_coeff_s_per_m);
+  option_check::Positive("stall_time_s", stall_time_s);
   option_check::Nested("motor", motor);
-  const double deflection =
-      mass_kg * kGravity / (2.0 * road_wheels_per_track * suspension_stiffness_npm);
+  const int n = station_x_m.empty() ? road_wheels_per_track : static_cast<int>(station_x_m.size());
+  const double deflection = mass_kg * kGravity / (2.0 * n * suspension_stiffness_npm);
   if (deflection >= suspension_travel_m) {
     throw OptionError("suspension_stiffness_npm",
                       "too soft: the static deflection exceeds suspension_travel_m");
@@ -65,18 +103,21 @@ TrackedVehicle::TrackedVehicle(const TrackedVehicleOptions& options, sim::World*
     : options_(options), world_(world), tracks_{Track(options.motor), Track(options.motor)} {
   options_.Validate();
   const TrackedVehicleOptions& o = options_;
-  const int n = o.road_wheels_per_track;
   const double l = o.track_contact_length_m;
   const double contact_z = -(o.com_height_m + static_deflection_m());
+  const bool wheels = o.contact == TrackedVehicleOptions::Contact::kWheels;
   for (int side = 0; side < 2; ++side) {
     const double y_side = (side == kLeft ? 0.5 : -0.5) * o.track_gauge_m;
-    for (int i = 0; i < n; ++i) {
+    for (double x_station : StationPositions(o)) {
       Station st;
-      const double x_i = -l / 2 + (i + 0.5) * l / n;
-      st.p_body = {x_i, y_side, contact_z};
-      st.offset_from_front_m = l / 2 - x_i;
+      st.p_body = {x_station, y_side, contact_z};
+      st.lead_forward_m = wheels ? o.road_wheel_contact_length_m / 2 : l / 2 - x_station;
+      st.lead_backward_m = wheels ? o.road_wheel_contact_length_m / 2 : l / 2 + x_station;
       tracks_[side].stations.push_back(st);
     }
+    // Front to rear: the order in which stations meet new ground driving forward.
+    std::sort(tracks_[side].stations.begin(), tracks_[side].stations.end(),
+              [](const Station& a, const Station& b) { return a.p_body.x() > b.p_body.x(); });
   }
   // Hull underside: a 3 x 3 grid of contact points, used only if it touches ground.
   const double hull_bottom = -(o.com_height_m - o.ground_clearance_m);
@@ -127,9 +168,21 @@ TrackedVehicle::~TrackedVehicle() {
   }
 }
 
+int TrackedVehicle::stations_per_side() const {
+  return options_.station_x_m.empty() ? options_.road_wheels_per_track
+                                      : static_cast<int>(options_.station_x_m.size());
+}
+
 double TrackedVehicle::static_deflection_m() const {
   return options_.mass_kg * kGravity /
-         (2.0 * options_.road_wheels_per_track * options_.suspension_stiffness_npm);
+         (2.0 * stations_per_side() * options_.suspension_stiffness_npm);
+}
+
+bool TrackedVehicle::stalled() const {
+  for (const Track& t : tracks_) {
+    if (t.state.stall_time_s >= options_.stall_time_s) return true;
+  }
+  return false;
 }
 
 void TrackedVehicle::CommandTrackSpeeds(double left_mps, double right_mps) {
@@ -149,99 +202,164 @@ ChassisState TrackedVehicle::chassis() const {
 }
 
 void TrackedVehicle::ApplyForces(double dt_s) {
-  const TrackedVehicleOptions& o = options_;
   const ChassisState s = chassis();
-  const Eigen::Matrix3d& R = s.T_world_body.linear();
-  const Eigen::Vector3d com = s.T_world_body.translation();
-  const Eigen::Vector3d body_x = R.col(0);
-  const sim::Terrain& terrain = world_->terrain();
-  const int n = o.road_wheels_per_track;
-  const double patch_length = o.track_contact_length_m / n;
-  const double patch_area = patch_length * o.track_width_m;
-  const double r = o.sprocket_radius_m;
-
-  for (int side = 0; side < 2; ++side) {
-    Track& track = tracks_[side];
-    const double u = r * track.motor.speed_radps();  // track surface speed
-    double traction_along = 0.0, load = 0.0, compaction = 0.0;
-    int contacts = 0;
-    for (Station& st : track.stations) {
-      const Eigen::Vector3d p = s.T_world_body * st.p_body;
-      const sim::GroundSample g = terrain.Sample(p.x(), p.y());
-      // Penetration of the unloaded contact point below the (sunk) surface, along the normal.
-      const double depth = (g.height_m - st.sinkage_m - p.z()) * g.normal.z();
-      if (depth <= 0.0) {
-        st.shear_m.setZero();  // a pad that leaves the ground unloads the soil
-        st.sinkage_m = 0.0;
-        continue;
-      }
-      const Eigen::Vector3d v_point = s.v_world + s.omega_world.cross(p - com);
-      const double approach = -v_point.dot(g.normal);
-      double normal = o.suspension_stiffness_npm * std::min(depth, o.suspension_travel_m) +
-                      o.suspension_damping_nspm * approach;
-      if (depth > o.suspension_travel_m) {  // bump stop: twenty times stiffer
-        normal += 20.0 * o.suspension_stiffness_npm * (depth - o.suspension_travel_m);
-      }
-      normal = std::max(normal, 0.0);
-      ++contacts;
-      load += normal;
-
-      // Contact frame on the ground: t along the track, l across (to the left).
-      const Eigen::Vector3d t = (body_x - body_x.dot(g.normal) * g.normal).normalized();
-      const Eigen::Vector3d lat = g.normal.cross(t);
-      const Eigen::Vector3d v_pad = v_point - u * t;
-      const Eigen::Vector2d v_rel(v_pad.dot(t), v_pad.dot(lat));
-
-      // Shear displacement with pad renewal, implicit in the relaxation term.
-      const double lead =
-          u >= 0.0 ? st.offset_from_front_m : o.track_contact_length_m - st.offset_from_front_m;
-      const double relax_rate = std::abs(u) / lead;
-      st.shear_m = (st.shear_m + v_rel * dt_s) / (1.0 + relax_rate * dt_s);
-
-      // Janosi–Hanamoto on the shear-displacement vector, plus elastic-range damping.
-      const sim::TerrainMaterial& m = *g.material;
-      const double strength = ShearStrength(m, normal, patch_area);
-      const double j = st.shear_m.norm();
-      Eigen::Vector2d shear_force = Eigen::Vector2d::Zero();
-      if (j > 1e-12) shear_force = -strength * JanosiHanamotoFraction(m, j) * st.shear_m / j;
-      const double elastic = strength / m.shear_modulus_m * std::exp(-j / m.shear_modulus_m);
-      shear_force -= o.shear_damping_s * elastic * v_rel;
-      const double f_norm = shear_force.norm();
-      if (f_norm > strength) shear_force *= strength / f_norm;
-
-      // Bekker sinkage and compaction resistance (soft ground only).
-      const double peak_pressure = normal / (o.road_wheel_contact_length_m * o.track_width_m);
-      st.sinkage_m = BekkerSinkage(m, peak_pressure, o.track_width_m);
-      const double resistance = CompactionResistance(m, st.sinkage_m, o.track_width_m) / n;
-      const double v_ground = v_point.dot(t);
-      const double r_force = -resistance * std::tanh(v_ground / 0.01);
-      compaction += resistance;
-
-      const Eigen::Vector3d f =
-          normal * g.normal + (shear_force.x() + r_force) * t + shear_force.y() * lat;
-      body_->applyForce(ToBullet(f), ToBullet(p - com));
-      traction_along += shear_force.x();
-    }
-    // The ground pushes the track forward by traction_along: that load opposes the sprocket.
-    track.motor.Step(dt_s, r * traction_along);
-
-    // Ground truth of this track, at its centreline under the centre of mass.
-    const Eigen::Vector3d p_c =
-        s.T_world_body * Eigen::Vector3d(0, track.stations[0].p_body.y(), 0);
-    const Eigen::Vector3d v_c = s.v_world + s.omega_world.cross(p_c - com);
-    TrackState& ts = track.state;
-    ts.sprocket_angle_rad = track.motor.angle_rad();
-    ts.sprocket_speed_radps = track.motor.speed_radps();
-    ts.motor_torque_nm = track.motor.torque_nm();
-    ts.track_speed_mps = r * track.motor.speed_radps();
-    ts.ground_speed_mps = v_c.dot(body_x);
-    ts.slip_velocity_mps = ts.ground_speed_mps - ts.track_speed_mps;
-    ts.normal_load_n = load;
-    ts.traction_n = traction_along;
-    ts.compaction_resistance_n = compaction;
-    ts.stations_in_contact = contacts;
-  }
+  for (Track& track : tracks_) ApplyTrackForces(s, &track, dt_s);
   ApplyHullContacts(s);
+}
+
+double TrackedVehicle::SuspensionLoad(double depth_m, double approach_mps) const {
+  const TrackedVehicleOptions& o = options_;
+  if (depth_m <= 0.0) return 0.0;
+  double normal = o.suspension_stiffness_npm * std::min(depth_m, o.suspension_travel_m) +
+                  o.suspension_damping_nspm * approach_mps;
+  if (depth_m > o.suspension_travel_m) {  // bump stop: twenty times stiffer
+    normal += 20.0 * o.suspension_stiffness_npm * (depth_m - o.suspension_travel_m);
+  }
+  return std::max(normal, 0.0);
+}
+
+double TrackedVehicle::SettleSinkage(const sim::SoilPoint& soil, double previous_m,
+                                     double surface_depth_m, double approach_mps) const {
+  if (soil.IsRigid()) return 0.0;
+  // Solve g(z) = z − Z(N(z)) = 0: the load N falls as the pad sinks (the spring
+  // extends), the sinkage Z rises with the load. g is increasing, so Newton from
+  // the last step's sinkage tracks the root as the load changes;
+  // an explicit update (z = Z(N) of the last load) is unstable where the soil is
+  // softer than the suspension.
+  const TrackedVehicleOptions& o = options_;
+  const double b = o.track_width_m, area = o.road_wheel_contact_length_m * b;
+  // One Newton step a physics step, from the last step's sinkage.
+  const double z = std::clamp(previous_m, 0.0, std::max(surface_depth_m, 0.0));
+  const double depth = surface_depth_m - z;
+  const double normal = SuspensionLoad(depth, approach_mps);
+  const double target = BekkerSinkage(soil, normal / area, b);
+  // dZ/dN = Z / (n N) (Bekker); dN/dz = −spring rate (bump stop beyond travel).
+  const double rate = depth > o.suspension_travel_m ? 21.0 * o.suspension_stiffness_npm
+                                                    : o.suspension_stiffness_npm;
+  const double slope = normal > 0.0 ? 1.0 + target / (soil.bekker_n * normal) * rate : 1.0;
+  return std::clamp(z - (z - target) / slope, 0.0, std::max(surface_depth_m, 0.0));
+}
+
+void TrackedVehicle::ApplyTrackForces(const ChassisState& s, Track* track, double dt_s) {
+  const TrackedVehicleOptions& o = options_;
+  const Eigen::Vector3d com = s.T_world_body.translation();
+  const Eigen::Vector3d body_x = s.T_world_body.linear().col(0);
+  const sim::Terrain& terrain = world_->terrain();
+  const bool wheels = o.contact == TrackedVehicleOptions::Contact::kWheels;
+  const double b = o.track_width_m;
+  // A station's share of the shear area and the length of its side face.
+  const double patch_length =
+      wheels ? o.road_wheel_contact_length_m : o.track_contact_length_m / stations_per_side();
+  const double r = o.sprocket_radius_m;
+  const double u = r * track->motor.speed_radps();  // track surface speed
+
+  // Ground speed of the track's centreline under the centre of mass, along body x.
+  const Eigen::Vector3d p_c = s.T_world_body * Eigen::Vector3d(0, track->stations[0].p_body.y(), 0);
+  const double v_track = (s.v_world + s.omega_world.cross(p_c - com)).dot(body_x);
+
+  TrackState& ts = track->state;
+  ts.traction_n = ts.normal_load_n = ts.compaction_resistance_n = ts.bulldozing_resistance_n = 0.0;
+  ts.stations_in_contact = 0;
+  double rut_m = 0.0;       // the deepest rut the stations ahead have made
+  double rut_work_n = 0.0;  // its compaction resistance, on the soil that made it
+  const int count = static_cast<int>(track->stations.size());
+  for (int k = 0; k < count; ++k) {  // in the order the stations meet new ground
+    Station& st = track->stations[static_cast<std::size_t>(v_track >= 0.0 ? k : count - 1 - k)];
+    const Eigen::Vector3d p = s.T_world_body * st.p_body;
+    const sim::GroundSample g = terrain.Sample(p.x(), p.y());
+    // Penetration of the unloaded contact point below the undisturbed surface.
+    const double surface_depth = (g.height_m - p.z()) * g.normal.z();
+    if (surface_depth <= 0.0) {
+      st = Station{st.p_body, st.lead_forward_m, st.lead_backward_m};  // left the ground
+      continue;
+    }
+    const Eigen::Vector3d v_point = s.v_world + s.omega_world.cross(p - com);
+    const sim::SoilPoint soil = terrain.SoilAt(*g.material, p.x(), p.y());
+    // Contact frame on the ground: t along the track, lat across (to the left).
+    const Eigen::Vector3d t = (body_x - body_x.dot(g.normal) * g.normal).normalized();
+    const Eigen::Vector3d lat = g.normal.cross(t);
+    const double v_along = v_point.dot(t);
+    const double approach = -v_point.dot(g.normal);
+
+    // Sinkage: Bekker's under the road wheel's peak pressure, consistent with the
+    // load it carries, plus the slip sinkage of a pad that digs (Lyasko 2010: the
+    // total is Bekker's times (1 + i)/(1 − 0.5 i) in steady slip i). The pad digs
+    // as soil passes under it, so the slip part approaches its steady value over
+    // one contact length of relative travel (ground and slip). Each station runs in
+    // the deepest compacted rut ahead of it, and deepening that rut costs the
+    // compaction work (multi-pass, Wong §4.2): its resistance is the increment.
+    // Soil a slipping pad digs out is carried back by the shear, whose work the
+    // slip already pays, so it deepens the rut without adding compaction.
+    const double slip = std::abs(u) > 1e-3 ? (u - v_along) / u : 0.0;
+    const double worked =
+        (std::abs(v_along) + std::abs(u - v_along)) * dt_s / o.road_wheel_contact_length_m;
+    const double dug = st.static_sinkage_m * (SlipSinkageFactor(slip) - 1.0);
+    st.slip_sinkage_m = (st.slip_sinkage_m + worked * dug) / (1.0 + worked);  // implicit
+    st.static_sinkage_m =
+        SettleSinkage(soil, st.static_sinkage_m, surface_depth - st.slip_sinkage_m, approach);
+    double compaction = 0.0;
+    if (st.static_sinkage_m > rut_m) {
+      const double rut_work = CompactionResistance(soil, st.static_sinkage_m, b);
+      compaction = std::max(0.0, rut_work - rut_work_n);
+      rut_m = st.static_sinkage_m;
+      rut_work_n = rut_work;
+    }
+    const double rut_after = rut_m;
+    st.sinkage_m = rut_after + st.slip_sinkage_m;
+    const double normal = SuspensionLoad(surface_depth - st.sinkage_m, approach);
+
+    StationKinematics kin;
+    const Eigen::Vector3d v_pad = v_point - u * t;
+    kin.v_pad_mps = {v_pad.dot(t), v_pad.dot(lat)};
+    kin.track_speed_mps = u;
+    kin.lead_m = u >= 0.0 ? st.lead_forward_m : st.lead_backward_m;
+    StationLoad load;
+    load.normal_n = normal;
+    load.area_m2 = patch_length * b;
+    // The station's side face bulldozes soil when it skids sideways in its rut.
+    load.bulldozing_n = BulldozingResistance(soil, st.sinkage_m, patch_length);
+    const Eigen::Vector2d shear =
+        StepStationShear(soil, kin, load, o.shear_damping_s, dt_s, &st.shear_m);
+
+    // Its sign follows the ground speed, smoothed over a speed wide enough that
+    // all stations' slope R/v_s stays within what the explicit step integrates
+    // (time constant m / (2 n R / v_s) of at least two steps).
+    const double resistance_sign_speed =
+        std::max(kResistanceSignSpeed_mps, 4.0 * count * compaction * dt_s / o.mass_kg);
+    const double compaction_n = compaction * std::tanh(v_along / resistance_sign_speed);
+    const Eigen::Vector3d f = normal * g.normal + (shear.x() - compaction_n) * t + shear.y() * lat;
+    body_->applyForce(ToBullet(f), ToBullet(p - com));
+    ++ts.stations_in_contact;
+    ts.normal_load_n += normal;
+    ts.traction_n += shear.x();
+    ts.compaction_resistance_n += std::abs(compaction_n);
+    ts.bulldozing_resistance_n += load.bulldozing_n;
+  }
+
+  // The ground pushes the track forward by the traction: that load opposes the
+  // sprocket, as does the running gear's internal resistance (Bekker, in Wong §4.1),
+  // which loads the motor and not the soil.
+  const double running_gear =
+      0.5 * o.mass_kg * kGravity *
+      (o.running_gear_resistance_coeff + o.running_gear_speed_coeff_s_per_m * std::abs(u));
+  track->motor.Step(dt_s,
+                    r * (ts.traction_n + running_gear * std::tanh(u / kResistanceSignSpeed_mps)));
+  UpdateStall(track, dt_s);
+
+  ts.sprocket_angle_rad = track->motor.angle_rad();
+  ts.sprocket_speed_radps = track->motor.speed_radps();
+  ts.motor_torque_nm = track->motor.torque_nm();
+  ts.track_speed_mps = r * track->motor.speed_radps();
+  ts.ground_speed_mps = v_track;
+  ts.slip_velocity_mps = ts.ground_speed_mps - ts.track_speed_mps;
+  ts.running_gear_resistance_n = running_gear;
+}
+
+void TrackedVehicle::UpdateStall(Track* track, double dt_s) const {
+  const SprocketMotor& m = track->motor;
+  const bool held = m.saturated() && std::abs(m.command_radps()) > 0.0 &&
+                    std::abs(m.speed_radps()) < 0.1 * std::abs(m.command_radps());
+  track->state.stall_time_s = held ? track->state.stall_time_s + dt_s : 0.0;
 }
 
 void TrackedVehicle::ApplyHullContacts(const ChassisState& s) {

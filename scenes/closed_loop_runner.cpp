@@ -461,6 +461,10 @@ RunMetrics RunClosedLoop(const Scenario& scenario, const RunObservers& given_obs
       world.Step();
     });
     clock.Tick();
+    if (vehicle.stalled()) {  // a motor at its torque limit that cannot turn: a result
+      stop_reason = "stalled";
+      break;
+    }
   }
 
   if (worker) {

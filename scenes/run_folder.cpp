@@ -393,7 +393,7 @@ RunMetrics RunToFolderWith(const Scenario& scenario, const fs::path& dir, const 
   scenario.Validate();
   fs::create_directories(dir);
   fs::remove(dir / "metrics.json");  // no stale result may pass for this run's
-  WriteAtomically(dir / "scenario.yaml", ScenarioToYaml(scenario));
+  WriteAtomically(dir / "scenario.yaml", ScenarioToYaml(WithBuiltinMaterialsResolved(scenario)));
 
   RunMetrics metrics;
   try {

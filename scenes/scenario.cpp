@@ -230,4 +230,18 @@ void Scenario::Validate() const {
   }
 }
 
+Scenario WithBuiltinMaterialsResolved(Scenario scenario) {
+  sim::TerrainOptions& terrain = scenario.scene.terrain;
+  std::vector<std::string> used = {terrain.default_material};
+  for (const sim::MaterialRegion& r : terrain.regions) used.push_back(r.material);
+  for (const std::string& name : used) {
+    const auto defines = [&name](const sim::TerrainMaterial& m) { return m.name == name; };
+    if (std::any_of(terrain.materials.begin(), terrain.materials.end(), defines)) continue;
+    const auto& builtins = sim::BuiltinMaterials();
+    const auto it = std::find_if(builtins.begin(), builtins.end(), defines);
+    if (it != builtins.end()) terrain.materials.push_back(*it);
+  }
+  return scenario;
+}
+
 }  // namespace trackbed::scenes

@@ -211,7 +211,16 @@ void Visit(V& v, sim::TerrainMaterial& o) {
   v("bekker_kc", o.bekker_kc);
   v("bekker_kphi", o.bekker_kphi);
   v("bekker_n", o.bekker_n);
+  v("lateral_shear_modulus_ratio", o.lateral_shear_modulus_ratio);
+  v("lateral_strength_ratio", o.lateral_strength_ratio);
+  v("unit_weight_npm3", o.unit_weight_npm3);
   v("albedo", o.albedo);
+}
+
+template <class V>
+void Visit(V& v, sim::SoilVariationOptions& o) {
+  v("amplitude", o.amplitude);
+  v("correlation_length_m", o.correlation_length_m);
 }
 
 template <class V>
@@ -236,6 +245,7 @@ void Visit(V& v, sim::TerrainOptions& o) {
   v("default_material", o.default_material);
   v("materials", o.materials);
   v("regions", o.regions);
+  v("soil_variation", o.soil_variation);
 }
 
 template <class V>
@@ -300,6 +310,9 @@ void Visit(V& v, robot::TrackedVehicleOptions& o) {
   v("track_contact_length_m", o.track_contact_length_m);
   v("sprocket_radius_m", o.sprocket_radius_m);
   v("road_wheels_per_track", o.road_wheels_per_track);
+  v("station_x_m", o.station_x_m);
+  using Contact = robot::TrackedVehicleOptions::Contact;
+  v.Enum("contact", o.contact, {{"tracks", Contact::kTracks}, {"wheels", Contact::kWheels}});
   v("road_wheel_contact_length_m", o.road_wheel_contact_length_m);
   v("suspension_stiffness_npm", o.suspension_stiffness_npm);
   v("suspension_damping_nspm", o.suspension_damping_nspm);
@@ -307,6 +320,9 @@ void Visit(V& v, robot::TrackedVehicleOptions& o) {
   v("shear_damping_s", o.shear_damping_s);
   v("hull_contact_stiffness_npm", o.hull_contact_stiffness_npm);
   v("hull_friction", o.hull_friction);
+  v("running_gear_resistance_coeff", o.running_gear_resistance_coeff);
+  v("running_gear_speed_coeff_s_per_m", o.running_gear_speed_coeff_s_per_m);
+  v("stall_time_s", o.stall_time_s);
   v("motor", o.motor);
 }
 

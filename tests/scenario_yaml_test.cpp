@@ -261,7 +261,8 @@ TEST(ScenarioYamlTest, OutOfRangeValueReportsFullDottedKey) {
             "test.yaml: drive.script: mode script needs at least 1 command");
   EXPECT_EQ(ErrorOf(m + "scene: {terrain: {regions: [{material: mud, min: [0, 0], max: [1, 1]}]}}"),
             "test.yaml: scene.terrain.regions[0].material: unknown material 'mud' (known: "
-            "hard_floor, paving, lete_sand, dry_sand, sandy_loam, clay, grass)");
+            "hard_floor, paving, lete_sand, dry_sand, dry_sand_wong, sandy_loam, clay, grass, "
+            "north_gower_clayey_loam_wong)");
 }
 
 TEST(ScenarioYamlTest, ListIndexInKey) {

@@ -85,6 +85,24 @@ TEST(VehiclePhysicsTest, TurnRateDoesNotDependOnTheStartingHeading) {
   }
 }
 
+TEST(VehiclePhysicsTest, UnevenSoilMakesSeedsDifferOnlyWhenItIsOn) {
+  // A curve on grass: with uniform soil the physics does not depend on the seed;
+  // with soil variation each seed is its own field.
+  auto run = [](std::uint64_t seed, double amplitude) {
+    scenes::Scenario s = FlatTrackSpeedRun("grass", 0.3, 0.5, 10.0);
+    s.seed = seed;
+    s.scene.terrain.soil_variation.amplitude = amplitude;
+    s.scene.terrain.soil_variation.correlation_length_m = 1.0;
+    const RunMetrics m = RunClosedLoop(s);
+    EXPECT_TRUE(m.completed) << m.stop_reason;
+    return m;
+  };
+  EXPECT_EQ(run(1, 0.0).icr.chi, run(2, 0.0).icr.chi);
+  const double a = run(1, 0.4).icr.chi, b = run(2, 0.4).icr.chi;
+  EXPECT_NE(a, b);
+  EXPECT_EQ(a, run(1, 0.4).icr.chi);  // and each seed reproduces itself
+}
+
 TEST(VehiclePhysicsTest, TenMinutesOnTheOutdoorSceneStayFiniteAndAboveGround) {
   const scenes::Scenario s = scenes::LoadScenario(
       std::string(TRACKBED_SOURCE_DIR) + "/scenes/outdoor.yaml",

@@ -28,4 +28,14 @@ struct IcrFit {
 /// when there are none.
 IcrFit FitIcrExpansion(const std::vector<IcrSample>& samples, double min_yaw_rate_radps = 0.05);
 
+/// χ of a skid-steer vehicle turning in place in the rigid-plastic limit: equal
+/// point loads at body x positions `station_x_m` on each side, half track c =
+/// `half_track_m`, isotropic Coulomb friction. Each side's ICR lies e = y_ICR − c
+/// outside it, where the yaw moment of the friction forces vanishes:
+///   Σ_i (c·e − x_i²) / √(e² + x_i²) = 0,
+/// and χ = (c + e)/c (derivation in docs/physics.md). Two stations at ±a give
+/// the closed form 1 + (a/c)². Throws std::invalid_argument when no station is
+/// off the axle (x_i all zero) or c <= 0.
+double RigidPlasticIcrExpansion(const std::vector<double>& station_x_m, double half_track_m);
+
 }  // namespace trackbed::estimation

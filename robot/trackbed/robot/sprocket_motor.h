@@ -41,6 +41,8 @@ class SprocketMotor {
   double speed_radps() const { return speed_radps_; }
   double torque_nm() const { return torque_nm_; }
   double command_radps() const { return command_radps_; }
+  /// True when the last step's torque was at the limit.
+  bool saturated() const { return saturated_; }
 
  private:
   SprocketMotorOptions options_;
@@ -50,6 +52,7 @@ class SprocketMotor {
   double angle_rad_ = 0.0;
   double torque_nm_ = 0.0;
   double integral_nm_ = 0.0;
+  bool saturated_ = false;
 };
 
 }  // namespace trackbed::robot

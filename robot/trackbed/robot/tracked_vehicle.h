@@ -1,23 +1,15 @@
-// The tracked (skid-steer) vehicle: a Bullet chassis on two tracks whose
-// traction on the ground is computed per road wheel from terramechanics.
+// The tracked (skid-steer) vehicle: a Bullet chassis on two tracks (or two
+// rows of wheels) whose traction on the ground is computed per contact station
+// from terramechanics (robot/track_contact.h; docs/physics.md).
 //
-// Each track touches the ground at `road_wheels_per_track` stations along its
-// contact length. Per station and physics step:
-//  - normal load from a spring–damper suspension against the terrain surface
-//    (lowered by the Bekker sinkage of the previous step);
-//  - the pad's velocity relative to the ground, v_pad = v_point − u·t (u = r ω
-//    the track speed), integrated into a 2-D shear-displacement state j with
-//    relaxation: pads enter the contact unsheared and travel back at u, so
-//    j' = v_pad − (|u| / L) j, L the distance from the leading edge. In steady
-//    slip this gives Wong's j(x) = s·x along the track.
-//  - Janosi–Hanamoto traction of magnitude (cA + N tan φ)(1 − e^(−|j|/K))
-//    opposing j, for the vector so that skid turning meets lateral resistance
-//    (Wong & Chiang 2001); a small viscous term in the elastic range damps the
-//    soil-spring oscillation (regularisation, see docs/physics.md);
-//  - Bekker sinkage under the road wheel's peak pressure and the compaction
-//    resistance of making that rut, opposing the motion (soft ground only).
-// The longitudinal traction loads the sprocket motor; the encoder reads the
-// sprocket. Slip therefore emerges from the dynamics: encoders never see the
+// Each side touches the ground at its stations (road wheels under a track, or
+// wheels). Per station and physics step: normal load from a spring–damper
+// suspension; a 2-D shear displacement renewed as pads enter the contact;
+// Janosi–Hanamoto shear on it, anisotropic along and across; Bekker sinkage
+// with slip sinkage, the rut each station runs in, the compaction resistance of
+// deepening it and the bulldozing resistance of its side in a skid. The sprocket
+// carries the longitudinal traction plus the running-gear resistance; the encoder
+// reads the sprocket. Slip emerges from the dynamics: encoders never see the
 // chassis velocity.
 #pragma once
 
@@ -54,10 +46,20 @@ struct TrackedVehicleOptions {
   double track_contact_length_m = 0.55;
   /// Sprocket pitch radius r [m], > 0: track speed = r ω.
   double sprocket_radius_m = 0.10;
-  /// Road wheels (contact stations) per track, in [2, 32].
+  /// Road wheels (contact stations) per track, in [2, 32]; ignored when
+  /// station_x_m is given.
   int road_wheels_per_track = 6;
+  /// Contact-station positions along body x [m], rear to front or any order; when
+  /// not empty it replaces the even spacing over the contact length and its length
+  /// replaces road_wheels_per_track. Four-wheel skid steer: two stations a side.
+  std::vector<double> station_x_m;
+  /// What touches the ground: a continuous track (shear grows from the track's
+  /// leading edge) or wheels (shear restarts in each wheel's own contact patch).
+  enum class Contact { kTracks, kWheels };
+  Contact contact = Contact::kTracks;
   /// Length of track under one road wheel that carries the wheel's load into the
-  /// soil [m], > 0 and <= contact length / road wheels. A flexible track's ground
+  /// soil [m], > 0 and <= contact length / road wheels; for wheels, the length of
+  /// the tyre's contact patch. A flexible track's ground
   /// pressure peaks under the road wheels (Wong, ch. 4); Rowland's mean maximum
   /// pressure puts this length near √(track pitch × road-wheel diameter), here
   /// √(0.02 m × 0.08 m) ≈ 0.04 m. Sets the pressure for Bekker sinkage; shear acts
@@ -71,6 +73,15 @@ struct TrackedVehicleOptions {
   double suspension_travel_m = 0.06;
   /// Time constant of the soil's viscous shear damping in the elastic range [s], >= 0.
   double shear_damping_s = 0.01;
+  /// Running-gear (internal) resistance at rest as a fraction of the weight a side
+  /// carries [-], >= 0; Bekker's R_in = W (222 + 3 V) N (W in t, V in km/h) for
+  /// tracked vehicles, as Wong §4.1 gives it: 222 / 9810.
+  double running_gear_resistance_coeff = 222.0 / 9810.0;
+  /// Its growth with track speed [s/m], >= 0: 3 N/(t·km/h) = 3·3.6 / 9810 s/m.
+  double running_gear_speed_coeff_s_per_m = 3.0 * 3.6 / 9810.0;
+  /// A track whose motor holds its torque limit while its sprocket turns at less
+  /// than a tenth of the command for this long has stalled [s], > 0.
+  double stall_time_s = 1.0;
   /// Hull-to-ground contact stiffness [N/m] (when the hull bottoms out), > 0.
   double hull_contact_stiffness_npm = 2.0e5;
   /// Hull-to-ground friction coefficient [-], >= 0.
@@ -101,8 +112,15 @@ struct TrackState {
   double slip_velocity_mps = 0.0;  ///< ground − track speed (Ham et al. sign).
   double normal_load_n = 0.0;      ///< Sum over stations.
   double traction_n = 0.0;         ///< Longitudinal shear force on the vehicle.
-  double compaction_resistance_n = 0.0;
+  double compaction_resistance_n = 0.0;  ///< Sum of the stations' rut-making resistance.
+  /// Sum of the stations' bulldozing resistance to a sideways skid (its capacity,
+  /// mobilised with the lateral shear).
+  double bulldozing_resistance_n = 0.0;
+  double running_gear_resistance_n = 0.0;  ///< Internal resistance at the track.
   int stations_in_contact = 0;
+  /// How long the motor has held its torque limit with the sprocket below a tenth
+  /// of its command [s] (0 while it is not).
+  double stall_time_s = 0.0;
 };
 
 /// A tracked vehicle in a World. Not copyable; removes its body on destruction.
@@ -127,13 +145,20 @@ class TrackedVehicle {
   const TrackedVehicleOptions& options() const { return options_; }
   /// Static-equilibrium suspension deflection [m] on flat ground.
   double static_deflection_m() const;
+  /// Contact stations per side (station_x_m's size, else road_wheels_per_track).
+  int stations_per_side() const;
+  /// True once a track has been stalled for stall_time_s (see TrackState).
+  bool stalled() const;
 
  private:
   struct Station {
     Eigen::Vector3d p_body;         // unloaded contact point
+    double lead_forward_m = 0.0;    // shear length from its leading edge, driving forward
+    double lead_backward_m = 0.0;   // ... and in reverse
     Eigen::Vector2d shear_m{0, 0};  // (along, across) shear displacement
-    double sinkage_m = 0.0;
-    double offset_from_front_m = 0.0;
+    double static_sinkage_m = 0.0;  // Bekker's, under its own load
+    double slip_sinkage_m = 0.0;    // dug by slip
+    double sinkage_m = 0.0;         // depth of the rut it runs in
   };
   struct Track {
     explicit Track(const SprocketMotorOptions& o) : motor(o) {}
@@ -142,6 +167,11 @@ class TrackedVehicle {
     TrackState state;
   };
 
+  void ApplyTrackForces(const ChassisState& s, Track* track, double dt_s);
+  double SuspensionLoad(double depth_m, double approach_mps) const;
+  double SettleSinkage(const sim::SoilPoint& soil, double previous_m, double surface_depth_m,
+                       double approach_mps) const;
+  void UpdateStall(Track* track, double dt_s) const;
   void ApplyHullContacts(const ChassisState& s);
 
   TrackedVehicleOptions options_;

@@ -265,4 +265,10 @@ struct Scenario {
   void Validate() const;
 };
 
+/// `scenario` with every built-in material its terrain uses (the default and
+/// the regions') copied into scene.terrain.materials with its parameters, unless
+/// the scenario defines it already: the run folder's scenario.yaml then
+/// reproduces the run after the built-in table changes.
+Scenario WithBuiltinMaterialsResolved(Scenario scenario);
+
 }  // namespace trackbed::scenes

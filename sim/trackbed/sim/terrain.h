@@ -14,6 +14,7 @@
 
 #include <Eigen/Core>
 
+#include "trackbed/sim/soil_variation.h"
 #include "trackbed/sim/terrain_material.h"
 
 namespace trackbed::sim {
@@ -65,6 +66,8 @@ struct TerrainOptions {
   /// Materials defined by the scenario in addition to the built-in ones.
   std::vector<TerrainMaterial> materials;
   std::vector<MaterialRegion> regions;
+  /// Seeded point-to-point variation of the soil parameters (off by default).
+  SoilVariationOptions soil_variation;
 
   void Validate() const;
 };
@@ -88,6 +91,9 @@ class Terrain {
   GroundSample Sample(double x, double y) const;
   /// Material at (x, y) (of the grid cell containing the point).
   const TerrainMaterial& MaterialAt(double x, double y) const;
+  /// Mechanical soil parameters at (x, y): `material`'s (the one Sample returned
+  /// there), scaled by the soil variation fields.
+  SoilPoint SoilAt(const TerrainMaterial& material, double x, double y) const;
 
   int cols() const { return cols_; }  ///< Grid points along x.
   int rows() const { return rows_; }  ///< Grid points along y.
@@ -113,7 +119,9 @@ class Terrain {
   double min_h_ = 0.0, max_h_ = 0.0;
   std::vector<double> heights_;
   std::vector<TerrainMaterial> materials_;
+  std::vector<SoilPoint> soils_;  // SoilOf(materials_[k])
   std::vector<std::uint8_t> cell_material_;
+  SoilVariation soil_variation_;
 };
 
 }  // namespace trackbed::sim

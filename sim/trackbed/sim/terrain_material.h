@@ -3,7 +3,7 @@
 // Traction follows the Janosi–Hanamoto shear law τ = (c + σ tan φ)(1 − e^(−j/K))
 // and sinkage follows Bekker's pressure–sinkage law p = (k_c/b + k_φ) z^n
 // (Wong, *Theory of Ground Vehicles*, 4th ed., §2.4 and §2.5). Values and their
-// sources are in terrain_material.cpp and docs/terrain_materials.md.
+// sources are in terrain_material.cpp and docs/physics.md.
 #pragma once
 
 #include <string>
@@ -27,6 +27,14 @@ struct TerrainMaterial {
   double bekker_kphi = 0.0;
   /// Bekker sinkage exponent n [-], > 0.
   double bekker_n = 1.0;
+  /// Lateral (across the track) over longitudinal shear deformation modulus,
+  /// K_y / K [-], > 0. Grousers make the two differ (docs/physics.md).
+  double lateral_shear_modulus_ratio = 1.0;
+  /// Lateral over longitudinal shear strength of a pad [-], > 0 (1: isotropic).
+  double lateral_strength_ratio = 1.0;
+  /// Bulk unit weight γ of the soil [N/m³], >= 0: the weight term of the
+  /// bulldozing resistance in skid turns. Unused on rigid ground.
+  double unit_weight_npm3 = 0.0;
   /// Grey level [0, 1] the renderer uses as the material's base tone.
   double albedo = 0.5;
 
@@ -36,8 +44,48 @@ struct TerrainMaterial {
   void Validate() const;
 };
 
-/// The built-in materials (hard floor, concrete, LETE sand, dry sand, sandy loam,
-/// clay, grass), each documented with its source.
+/// The mechanical parameters of the ground at one point: a material's values,
+/// after the terrain's spatial soil variation (sim/soil_variation.h). What the
+/// track model reads per contact station and step; a plain value, no name.
+struct SoilPoint {
+  double cohesion_pa = 0.0;                ///< c [Pa].
+  double tan_phi = 0.8;                    ///< tan φ [-].
+  double shear_modulus_m = 0.003;          ///< K along the track [m].
+  double lateral_shear_modulus_m = 0.003;  ///< K across the track [m].
+  double lateral_strength_ratio = 1.0;     ///< Lateral / longitudinal shear strength [-].
+  double bekker_kc = 0.0;                  ///< k_c [N/m^(n+1)].
+  double bekker_kphi = 0.0;                ///< k_φ [N/m^(n+2)].
+  double bekker_n = 1.0;                   ///< n [-].
+  double unit_weight_npm3 = 0.0;           ///< γ [N/m³].
+  /// Bekker's passive-pressure coefficients of bulldozing at this φ:
+  /// K_pc = (N_c − tan φ) cos² φ and K_pγ = (2 N_γ / tan φ + 1) cos² φ (see
+  /// BearingCapacity); kept with the point because φ fixes them.
+  double passive_kpc = 0.0;
+  double passive_kpgamma = 0.0;
+
+  /// True when the ground does not sink (k_c = k_φ = 0).
+  bool IsRigid() const { return bekker_kc == 0.0 && bekker_kphi == 0.0; }
+  /// Sets tan φ and the passive-pressure coefficients that follow from it.
+  void SetTanPhi(double tan_phi);
+};
+
+/// Bearing capacity factors for friction angle φ: Prandtl–Reissner
+/// N_q = e^(π tan φ) tan²(45° + φ/2), N_c = (N_q − 1) cot φ (→ π + 2 as φ → 0),
+/// and Vesić's (1973) N_γ = 2 (N_q + 1) tan φ.
+struct BearingCapacityFactors {
+  double n_c = 0.0;
+  double n_q = 0.0;
+  double n_gamma = 0.0;
+};
+BearingCapacityFactors BearingCapacity(double tan_phi);
+
+/// The material's parameters as a SoilPoint (no spatial variation).
+SoilPoint SoilOf(const TerrainMaterial& m);
+
+/// The built-in materials, each documented with its source: rigid floors
+/// (hard_floor, paving), soils for a light vehicle under their common names
+/// (dry_sand, sandy_loam, clay, grass), and Wong's measured sets (lete_sand,
+/// dry_sand_wong, north_gower_clayey_loam_wong).
 const std::vector<TerrainMaterial>& BuiltinMaterials();
 
 /// Looks a built-in material up by name; throws std::invalid_argument listing
