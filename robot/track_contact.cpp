@@ -6,6 +6,12 @@
 #include "trackbed/robot/terramechanics.h"  // ShearStrength; the force as PadShearForce
 
 namespace trackbed::robot {
+namespace {
+
+// Shear displacement, in moduli, past which the soil counts as yielded.
+constexpr double kYieldedModuli = 6.0;
+
+}  // namespace
 
 Eigen::Vector2d StepStationShear(const sim::SoilPoint& soil, const StationKinematics& k,
                                  const StationLoad& load, double damping_s, double dt_s,
@@ -13,6 +19,13 @@ Eigen::Vector2d StepStationShear(const sim::SoilPoint& soil, const StationKinema
   const Eigen::Vector2d before = *shear_m;
   const double renewal_rate = std::abs(k.track_speed_mps) / k.lead_m;
   *shear_m = (before + k.v_pad_mps * dt_s) / (1.0 + renewal_rate * dt_s);
+  // Beyond kYieldedModuli moduli the soil has yielded (99.75 % of its strength
+  // mobilised): further displacement is plastic flow, not stored, so a reversal
+  // unwinds at most that much before the force turns.
+  const Eigen::Vector2d in_moduli(shear_m->x() / soil.shear_modulus_m,
+                                  shear_m->y() / soil.lateral_shear_modulus_m);
+  const double moduli = in_moduli.norm();
+  if (moduli > kYieldedModuli) *shear_m *= kYieldedModuli / moduli;
   const Eigen::Vector2d rate = (*shear_m - before) / dt_s;
 
   const double strength = ShearStrength(soil, load.normal_n, load.area_m2);

@@ -10,6 +10,7 @@
 #include "test_scenarios.h"
 #include "trackbed/estimation/icr_calibration.h"
 #include "trackbed/scenes/closed_loop_runner.h"
+#include "trackbed/scenes/scenario_yaml.h"
 #include "trackbed/sim/terrain_material.h"
 
 namespace trackbed {
@@ -41,15 +42,23 @@ std::vector<double> EvenStations(double length, int n) {
   return xs;
 }
 
+// The calibration run's turns in place, both ways (its first 20 s).
+Scenario CalibrationTurnsInPlace() {
+  return scenes::LoadScenario(
+      std::string(TRACKBED_SOURCE_DIR) + "/scenes/calibration/icr_turns.yaml",
+      {{"duration_s", "20"}});
+}
+
 TEST(SkidSteerTest, RigidPlasticTurnInPlaceMatchesTheMomentBalance) {
   // Today's six road wheels, and two stations a side (closed form 1 + (a/c)²).
   for (const std::vector<double>& xs : {EvenStations(0.55, 6), std::vector<double>{-0.2, 0.2}}) {
-    Scenario s = TurnInPlace("rigid_plastic");
+    Scenario s = CalibrationTurnsInPlace();
+    s.scene.terrain.default_material = "rigid_plastic";
     s.scene.terrain.materials = {RigidPlasticGround()};
     s.robot.vehicle.station_x_m = xs;
     const RunMetrics m = RunClosedLoop(s);
     ASSERT_TRUE(m.completed) << m.stop_reason;
-    ASSERT_GT(m.icr.samples_used, 500);
+    ASSERT_GT(m.icr.samples_used, 1900);  // both directions
     const double c = s.robot.vehicle.track_gauge_m / 2;
     const double expected = estimation::RigidPlasticIcrExpansion(xs, c);
     EXPECT_NEAR(m.icr.chi / expected, 1.0, 0.02)

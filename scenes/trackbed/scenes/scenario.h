@@ -97,8 +97,8 @@ struct EstimationSpec {
   /// Run the estimators (wheel odometry always; VO and fusion when the stereo camera is on).
   bool enabled = true;
   /// ICR expansion factor χ for the effective gauge B_eff = χ·B. Default: the value the
-  /// calibration run scenes/calibration/icr_turns.yaml fits on the hard floor (1.179).
-  double icr_expansion = 1.179;
+  /// calibration run scenes/calibration/icr_turns.yaml fits on the hard floor (1.239).
+  double icr_expansion = 1.239;
   /// Longitudinal ICR offset d [m] (Ham et al. eqs. 3–4).
   double icr_offset_m = 0.0;
   /// Decay time constant of a held slip estimate [s], > 0.
