@@ -32,13 +32,6 @@ Eigen::Vector2d PadShearForce(const sim::SoilPoint& s, double strength_n,
   return {-mobilised * jn.x(), -mobilised * s.lateral_strength_ratio * jn.y()};
 }
 
-Eigen::Vector2d PadShearStiffness(const sim::SoilPoint& s, double strength_n,
-                                  const Eigen::Vector2d& j_m) {
-  const double decay = std::exp(-Normalised(s, j_m).norm());
-  return {strength_n / s.shear_modulus_m * decay,
-          strength_n * s.lateral_strength_ratio / s.lateral_shear_modulus_m * decay};
-}
-
 double BekkerSinkage(const sim::SoilPoint& s, double pressure_pa, double width_m) {
   if (s.IsRigid() || pressure_pa <= 0.0) return 0.0;
   const double k = s.bekker_kc / width_m + s.bekker_kphi;

@@ -240,6 +240,39 @@ double TrackedVehicle::SettleSinkage(const sim::SoilPoint& soil, double previous
   return std::clamp(z - (z - target) / slope, 0.0, std::max(surface_depth_m, 0.0));
 }
 
+double TrackedVehicle::UpdateSinkage(const sim::SoilPoint& soil, double ahead_rut_m,
+                                     double spacing_m, double surface_depth_m, double approach_mps,
+                                     double u_mps, double v_along_mps, double dt_s,
+                                     Station* st) const {
+  const TrackedVehicleOptions& o = options_;
+  // Multi-pass (Wong §4.2): the rut under a station is carried from under the
+  // station ahead as the ground passes, one station spacing of travel to arrive;
+  // at rest nothing moves. A road wheel reloading a rut to the pressure that made
+  // it sinks no further, so deepening the rut is what costs compaction work.
+  const double carried = std::abs(v_along_mps) * dt_s / spacing_m;
+  st->rut_m = soil.IsRigid() ? 0.0 : (st->rut_m + carried * ahead_rut_m) / (1.0 + carried);
+  // Slip sinkage (Lyasko 2010): a slipping pad digs, the total reaching Bekker's
+  // times (1 + i)/(1 − 0.5 i) in steady slip i, over one road-wheel contact length
+  // of relative travel (ground and slip). Soil it digs out is carried back by the
+  // shear, whose work the slip already pays: it deepens the rut without compaction.
+  const double slip = std::abs(u_mps) > 1e-3 ? (u_mps - v_along_mps) / u_mps : 0.0;
+  const double worked = (std::abs(v_along_mps) + std::abs(u_mps - v_along_mps)) * dt_s /
+                        o.road_wheel_contact_length_m;
+  const double dug = st->static_sinkage_m * (SlipSinkageFactor(slip) - 1.0);
+  st->slip_sinkage_m = (st->slip_sinkage_m + worked * dug) / (1.0 + worked);  // implicit
+  // Bekker's sinkage under the road wheel's peak pressure, consistent with its load.
+  st->static_sinkage_m =
+      SettleSinkage(soil, st->static_sinkage_m, surface_depth_m - st->slip_sinkage_m, approach_mps);
+  double compaction_n = 0.0;
+  if (st->static_sinkage_m > st->rut_m) {
+    const double b = o.track_width_m;
+    compaction_n = CompactionResistance(soil, st->static_sinkage_m, b) -
+                   CompactionResistance(soil, st->rut_m, b);
+  }
+  st->sinkage_m = std::max(st->rut_m, st->static_sinkage_m) + st->slip_sinkage_m;
+  return compaction_n;
+}
+
 void TrackedVehicle::ApplyTrackForces(const ChassisState& s, Track* track, double dt_s) {
   const TrackedVehicleOptions& o = options_;
   const Eigen::Vector3d com = s.T_world_body.translation();
@@ -260,11 +293,15 @@ void TrackedVehicle::ApplyTrackForces(const ChassisState& s, Track* track, doubl
   TrackState& ts = track->state;
   ts.traction_n = ts.normal_load_n = ts.compaction_resistance_n = ts.bulldozing_resistance_n = 0.0;
   ts.stations_in_contact = 0;
-  double rut_m = 0.0;       // the deepest rut the stations ahead have made
-  double rut_work_n = 0.0;  // its compaction resistance, on the soil that made it
+  // Each station's compacted depth at the last step: the rut it leaves behind.
+  std::array<double, 32> compacted{};
   const int count = static_cast<int>(track->stations.size());
-  for (int k = 0; k < count; ++k) {  // in the order the stations meet new ground
-    Station& st = track->stations[static_cast<std::size_t>(v_track >= 0.0 ? k : count - 1 - k)];
+  for (int k = 0; k < count; ++k) {
+    const Station& st = track->stations[static_cast<std::size_t>(k)];
+    compacted[static_cast<std::size_t>(k)] = std::max(st.rut_m, st.static_sinkage_m);
+  }
+  for (int k = 0; k < count; ++k) {  // front to rear
+    Station& st = track->stations[static_cast<std::size_t>(k)];
     const Eigen::Vector3d p = s.T_world_body * st.p_body;
     const sim::GroundSample g = terrain.Sample(p.x(), p.y());
     // Penetration of the unloaded contact point below the undisturbed surface.
@@ -281,33 +318,22 @@ void TrackedVehicle::ApplyTrackForces(const ChassisState& s, Track* track, doubl
     const double v_along = v_point.dot(t);
     const double approach = -v_point.dot(g.normal);
 
-    // Sinkage: Bekker's under the road wheel's peak pressure, consistent with the
-    // load it carries, plus the slip sinkage of a pad that digs (Lyasko 2010: the
-    // total is Bekker's times (1 + i)/(1 − 0.5 i) in steady slip i). The pad digs
-    // as soil passes under it, so the slip part approaches its steady value over
-    // one contact length of relative travel (ground and slip). Each station runs in
-    // the deepest compacted rut ahead of it, and deepening that rut costs the
-    // compaction work (multi-pass, Wong §4.2): its resistance is the increment.
-    // Soil a slipping pad digs out is carried back by the shear, whose work the
-    // slip already pays, so it deepens the rut without adding compaction.
-    const double slip = std::abs(u) > 1e-3 ? (u - v_along) / u : 0.0;
-    const double worked =
-        (std::abs(v_along) + std::abs(u - v_along)) * dt_s / o.road_wheel_contact_length_m;
-    const double dug = st.static_sinkage_m * (SlipSinkageFactor(slip) - 1.0);
-    st.slip_sinkage_m = (st.slip_sinkage_m + worked * dug) / (1.0 + worked);  // implicit
-    st.static_sinkage_m =
-        SettleSinkage(soil, st.static_sinkage_m, surface_depth - st.slip_sinkage_m, approach);
-    double compaction = 0.0;
-    if (st.static_sinkage_m > rut_m) {
-      const double rut_work = CompactionResistance(soil, st.static_sinkage_m, b);
-      compaction = std::max(0.0, rut_work - rut_work_n);
-      rut_m = st.static_sinkage_m;
-      rut_work_n = rut_work;
-    }
-    const double rut_after = rut_m;
-    st.sinkage_m = rut_after + st.slip_sinkage_m;
+    // The ground under the station comes from under the station ahead of it (in
+    // the direction the ground passes), or fresh from ahead of the leading one.
+    const int ahead = v_along >= 0.0 ? k - 1 : k + 1;
+    const bool has_ahead = ahead >= 0 && ahead < count;
+    const double ahead_rut_m = has_ahead ? compacted[static_cast<std::size_t>(ahead)] : 0.0;
+    const double spacing_m =
+        has_ahead
+            ? std::abs(st.p_body.x() - track->stations[static_cast<std::size_t>(ahead)].p_body.x())
+            : o.road_wheel_contact_length_m;
+    const double compaction =
+        UpdateSinkage(soil, ahead_rut_m, spacing_m, surface_depth, approach, u, v_along, dt_s, &st);
     const double normal = SuspensionLoad(surface_depth - st.sinkage_m, approach);
-
+    if (normal <= 0.0) {  // in its rut but not pressed: no shear
+      st.shear_m.setZero();
+      continue;
+    }
     StationKinematics kin;
     const Eigen::Vector3d v_pad = v_point - u * t;
     kin.v_pad_mps = {v_pad.dot(t), v_pad.dot(lat)};

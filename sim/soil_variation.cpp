@@ -45,7 +45,7 @@ double SoilVariation::Value(Field f, double x_m, double y_m) const {
 }
 
 SoilPoint SoilVariation::Apply(const SoilPoint& base, double x_m, double y_m) const {
-  if (off()) return base;
+  if (off() || base.IsRigid()) return base;  // floors and paving do not vary
   const double amp = options_.amplitude;
   auto scale = [&](Field f) { return 1.0 + amp * Value(f, x_m, y_m); };
   SoilPoint s = base;
@@ -54,10 +54,8 @@ SoilPoint SoilVariation::Apply(const SoilPoint& base, double x_m, double y_m) co
   const double k_scale = scale(kShearModulus);  // grousers' anisotropy is kept
   s.shear_modulus_m *= k_scale;
   s.lateral_shear_modulus_m *= k_scale;
-  if (!base.IsRigid()) {  // rigid ground stays rigid
-    s.bekker_kc *= scale(kKc);
-    s.bekker_kphi *= scale(kKphi);
-  }
+  s.bekker_kc *= scale(kKc);
+  s.bekker_kphi *= scale(kKphi);
   return s;
 }
 

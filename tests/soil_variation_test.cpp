@@ -3,6 +3,7 @@
 #include "trackbed/sim/soil_variation.h"
 
 #include <cmath>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -66,18 +67,25 @@ TEST(SoilVariationTest, ScaledParametersStayWithinTheAmplitude) {
   EXPECT_LE(hi, 1.25);
   EXPECT_LT(lo, 0.85);  // the field uses its range
   EXPECT_GT(hi, 1.15);
-  // Rigid ground stays rigid.
-  EXPECT_TRUE(v.Apply(SoilOf(BuiltinMaterial("hard_floor")), 1.0, 2.0).IsRigid());
+  // Rigid ground does not vary.
+  const SoilPoint floor = SoilOf(BuiltinMaterial("hard_floor"));
+  EXPECT_EQ(v.Apply(floor, 1.0, 2.0).tan_phi, floor.tan_phi);
+  EXPECT_TRUE(v.Apply(floor, 1.0, 2.0).IsRigid());
 }
 
 TEST(SoilVariationTest, FieldIsSmoothAndDecorrelatesBeyondItsLength) {
   const double length = 2.0;
   const SoilVariation v(Options(0.5, length), 5);
-  // Continuity: a millimetre apart, nearly equal.
-  for (int k = 0; k < 100; ++k) {
-    const double x = 0.313 * k, y = -0.77 * k;
-    EXPECT_NEAR(v.Value(SoilVariation::kCohesion, x, y),
-                v.Value(SoilVariation::kCohesion, x + 1e-3, y), 5e-3);
+  // Continuity, also across the lattice lines (x or y a multiple of the length,
+  // negative ones included): a micrometre apart, nearly equal.
+  for (int k = -50; k < 50; ++k) {
+    for (const auto& [x, y] : {std::pair{length * k, 0.37 * k}, std::pair{0.29 * k, length * k},
+                               std::pair{0.313 * k, -0.77 * k}}) {
+      EXPECT_NEAR(v.Value(SoilVariation::kCohesion, x - 1e-6, y),
+                  v.Value(SoilVariation::kCohesion, x + 1e-6, y), 1e-5);
+      EXPECT_NEAR(v.Value(SoilVariation::kCohesion, x, y - 1e-6),
+                  v.Value(SoilVariation::kCohesion, x, y + 1e-6), 1e-5);
+    }
   }
   // Correlation of pairs a tenth of a length apart against pairs three lengths apart.
   auto correlation = [&](double dx) {

@@ -29,11 +29,6 @@ double JanosiHanamotoFraction(double j_m, double k_m);
 Eigen::Vector2d PadShearForce(const sim::SoilPoint& s, double strength_n,
                               const Eigen::Vector2d& j_m);
 
-/// Tangent stiffness [N/m] of PadShearForce along and across at `j_m`:
-/// the strength over K times e^(−|ĵ|), per direction.
-Eigen::Vector2d PadShearStiffness(const sim::SoilPoint& s, double strength_n,
-                                  const Eigen::Vector2d& j_m);
-
 /// Bekker sinkage [m] of a plate of width `width_m` under pressure `pressure_pa`:
 /// z = (p / (k_c/b + k_φ))^(1/n). Zero on rigid ground.
 double BekkerSinkage(const sim::SoilPoint& s, double pressure_pa, double width_m);

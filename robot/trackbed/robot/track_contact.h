@@ -43,9 +43,10 @@ struct StationLoad {
 
 /// Advances `shear_m` by `dt_s` and returns the shear force on the vehicle
 /// (along, across) [N]: PadShearForce with lateral strength r·S + R_b, plus a
-/// Kelvin–Voigt term, `damping_s` times the tangent stiffness times the rate of
-/// shear displacement, that damps the soil-spring oscillation and vanishes in
-/// steady slip. |F| stays within the strength ellipse.
+/// Kelvin–Voigt term, `damping_s` times each direction's initial stiffness (S/K,
+/// (r·S + R_b)/K_y) decayed by e^(−|ĵ|), times the rate of shear displacement,
+/// that damps the soil-spring oscillation and vanishes in steady slip. |F| stays
+/// within the strength ellipse.
 Eigen::Vector2d StepStationShear(const sim::SoilPoint& soil, const StationKinematics& k,
                                  const StationLoad& load, double damping_s, double dt_s,
                                  Eigen::Vector2d* shear_m);

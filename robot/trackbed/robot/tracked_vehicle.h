@@ -158,7 +158,8 @@ class TrackedVehicle {
     Eigen::Vector2d shear_m{0, 0};  // (along, across) shear displacement
     double static_sinkage_m = 0.0;  // Bekker's, under its own load
     double slip_sinkage_m = 0.0;    // dug by slip
-    double sinkage_m = 0.0;         // depth of the rut it runs in
+    double rut_m = 0.0;             // compacted depth carried from the stations ahead
+    double sinkage_m = 0.0;         // how deep it runs: the deeper of both, plus slip's
   };
   struct Track {
     explicit Track(const SprocketMotorOptions& o) : motor(o) {}
@@ -171,6 +172,11 @@ class TrackedVehicle {
   double SuspensionLoad(double depth_m, double approach_mps) const;
   double SettleSinkage(const sim::SoilPoint& soil, double previous_m, double surface_depth_m,
                        double approach_mps) const;
+  // Advances the station's rut, slip and static sinkage; returns the compaction
+  // resistance [N] of deepening its rut.
+  double UpdateSinkage(const sim::SoilPoint& soil, double ahead_rut_m, double spacing_m,
+                       double surface_depth_m, double approach_mps, double u_mps,
+                       double v_along_mps, double dt_s, Station* st) const;
   void UpdateStall(Track* track, double dt_s) const;
   void ApplyHullContacts(const ChassisState& s);
 

@@ -22,7 +22,8 @@ namespace trackbed::sim {
 struct SoilVariationOptions {
   /// Peak relative change of each parameter [-], in [0, 0.9]; 0 turns variation off.
   double amplitude = 0.0;
-  /// Lattice spacing of the noise [m], > 0: points this far apart are uncorrelated.
+  /// Lattice spacing of the noise [m], > 0: the fields' correlation falls to about
+  /// 0.13 at this distance and to zero at twice it.
   double correlation_length_m = 2.0;
 
   void Validate() const;
@@ -40,7 +41,7 @@ class SoilVariation {
   bool off() const { return options_.amplitude == 0.0; }
   /// Field `f` at (x, y), in [−1, 1]; continuous with a continuous gradient.
   double Value(Field f, double x_m, double y_m) const;
-  /// `base` scaled by the fields at (x, y).
+  /// `base` scaled by the fields at (x, y); rigid ground (floors, paving) unchanged.
   SoilPoint Apply(const SoilPoint& base, double x_m, double y_m) const;
 
  private:
