@@ -46,6 +46,13 @@ void ValidateStations(const TrackedVehicleOptions& o) {
   for (std::size_t k = 0; k < xs.size(); ++k) {
     const std::string field = "station_x_m[" + std::to_string(k) + "]";
     option_check::Finite(field.c_str(), xs[k]);
+    for (std::size_t other = 0; other < k; ++other) {  // a rut travels between them
+      if (std::abs(xs[k] - xs[other]) < 1e-3) {
+        throw OptionError(field, "must be at least 1 mm from station_x_m[" + std::to_string(other) +
+                                     "] (got " + option_check::Describe(xs[k]) + " and " +
+                                     option_check::Describe(xs[other]) + ")");
+      }
+    }
     if (o.contact == TrackedVehicleOptions::Contact::kTracks &&
         std::abs(xs[k]) >= o.track_contact_length_m / 2) {
       throw OptionError(field, "must lie inside the track's contact length (|x| < " +

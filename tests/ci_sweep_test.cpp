@@ -69,7 +69,7 @@ TEST(CiSweepTest, ThePapersOrderingsHoldInEveryCell) {
       EXPECT_LT(fused, wheels);
       // The no-slip baseline uses the floor-calibrated χ, close to the park's own,
       // so on 25 s its error is within 2x of the slip-aware odometry's (seed 1:
-      // 0.075 vs 0.083 m); the slip estimate must still help.
+      // 0.076 vs 0.083 m); the slip estimate must still help.
       EXPECT_LT(wheels, noslip);
     }
   }

@@ -72,10 +72,10 @@ TEST(ChassisClearanceTest, BoxAgainstCirclesAndBoxesByHand) {
   EXPECT_TRUE(std::isinf(scenes::ChassisClearance(T, hull, {poster})));
 }
 
-// Seeds 1-4: on grass (turf, μ 0.5) the robot can hunt about the goal heading in
-// its final turn in place, the skid moving it back and forth across the goal's
-// position tolerance so that the target heading flips between the goal's and the
-// bearing; seed 1 does (final heading 21° off by ground truth, docs/results/
+// Seeds 1-4: on grass (turf, μ 0.5) the skid of the final turn in place can carry
+// the robot across the goal's position tolerance, so the target heading flips
+// between the goal's and the bearing to the goal and the robot turns out and back;
+// seed 1 does and ends 7.9° off by ground truth (docs/results/
 // 2026-12-04-terramechanics.md). The navigator must succeed in at least 3 of 4.
 TEST(ClosedLoopNavigationTest, ReachesTheGoalAroundATreeOnTheFusedEstimate) {
   const std::string yaml =

@@ -240,6 +240,14 @@ TEST(ScenarioYamlTest, OutOfRangeValueReportsFullDottedKey) {
   EXPECT_EQ(ErrorOf(m + "robot: {vehicle: {motor: {max_torque_nm: 0}}}\n"),
             "test.yaml: robot.vehicle.motor.max_torque_nm: must be > 0 (got 0)");
   EXPECT_EQ(ErrorOf(m + "duration_s: 0\n"), "test.yaml: duration_s: must be in (0, 1e6] (got 0)");
+  EXPECT_EQ(ErrorOf(m + "robot: {vehicle: {station_x_m: [0.1, -0.1, 0.1]}}\n"),
+            "test.yaml: robot.vehicle.station_x_m[2]: must be at least 1 mm from "
+            "station_x_m[0] (got 0.1 and 0.1)");
+  EXPECT_EQ(ErrorOf(m + "robot: {vehicle: {station_x_m: [0.1, 0.3]}}\n"),
+            "test.yaml: robot.vehicle.station_x_m[1]: must lie inside the track's contact "
+            "length (|x| < 0.275)");
+  EXPECT_EQ(ErrorOf(m + "scene: {terrain: {soil_variation: {amplitude: 2}}}\n"),
+            "test.yaml: scene.terrain.soil_variation.amplitude: must be in [0, 0.9] (got 2)");
   EXPECT_EQ(ErrorOf(m + "estimation: {min_inliers_for_slip: -5}\n"),
             "test.yaml: estimation.min_inliers_for_slip: must be >= 0 (got -5)");
   EXPECT_EQ(ErrorOf(m + "estimation: {slip_filter_time_s: -0.1}\n"),
