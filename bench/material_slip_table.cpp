@@ -55,7 +55,7 @@ std::vector<double> SegmentChi(const scenes::Scenario& s, std::string* stop_reas
 void MaterialTable(const std::string& root) {
   std::printf(
       "| material | traction coefficient | straight: mean slip ratio (%%) | straight: encoder "
-      "distance error (%%) | chi in place (left, right) | chi arc 1.25 m | chi arc 2.5 m | "
+      "distance error (%%) | chi in place (turning left, right) | chi arc 1.25 m | chi arc 2.5 m | "
       "turns |\n|---|---|---|---|---|---|---|---|\n");
   for (const sim::TerrainMaterial& material : sim::BuiltinMaterials()) {
     const std::vector<scenes::Override> ground = {
