@@ -1,5 +1,5 @@
 // `trackbed eval GT EST`: trajectory metrics like the evo tool and the KITTI devkit
-// (design.md §3): ATE RMSE after alignment, the horizontal unaligned ATE, RPE, KITTI
+// (README.md, "Commands"): ATE RMSE after alignment, the horizontal unaligned ATE, RPE, KITTI
 // t_rel / r_rel, drift over 10 m and final error, as a table or JSON.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The `trackbed` command line (design.md §3).
+// The `trackbed` command line (README.md, "Commands"; docs/scenario_format.md).
 //
 //   trackbed run SCENARIO.yaml --out DIR [--seed N] [--set key=value ...]
 //
@@ -59,7 +59,7 @@ int Run(const std::string& scenario_path, const std::string& out_dir,
       m.distance_m > 0 ? 100.0 * (m.encoder_distance_m - m.distance_m) / m.distance_m : 0.0,
       out_dir.c_str());
   if (!m.estimators.empty()) {
-    // The run's report: every estimator against ground truth (design.md §3).
+    // The run's report: every estimator against ground truth (README.md, "Run folder").
     std::printf("%-22s %10s %12s %12s %14s\n", "estimator", "ATE [m]", "final [m]", "final [%]",
                 "drift/10 m [%]");
     for (const auto& [name, e] : m.estimators) {

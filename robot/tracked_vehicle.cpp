@@ -97,7 +97,7 @@ void TrackedVehicleOptions::Validate() const {
   option_check::NonNegative("running_gear_speed_coeff_s_per_m", running_gear_speed_coeff_s_per_m);
   option_check::Positive("stall_time_s", stall_time_s);
   option_check::Nested("motor", motor);
-  const int n = station_x_m.empty() ? road_wheels_per_track : static_cast<int>(station_x_m.size());
+  const double n = static_cast<double>(StationPositions(*this).size());
   const double deflection = mass_kg * kGravity / (2.0 * n * suspension_stiffness_npm);
   if (deflection >= suspension_travel_m) {
     throw OptionError("suspension_stiffness_npm",

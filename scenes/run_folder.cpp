@@ -408,7 +408,7 @@ RunMetrics RunToFolderWith(const Scenario& scenario, const fs::path& dir, const 
     LogFile slip(dir / "slip.csv",
                  "t,left_true_mps,right_true_mps,left_track_mps,right_track_mps,"
                  "left_ground_mps,right_ground_mps,material,left_est_mps,right_est_mps");
-    // One TUM file per estimator (design.md §3), opened when estimation is on.
+    // One TUM file per estimator (README.md, "Run folder"), opened when estimation is on.
     std::unique_ptr<LogFile> wheel_tum, noslip_tum, ekf_tum, fused_tum, vo_tum, fusion_csv;
     if (scenario.estimation.enabled) {
       wheel_tum = std::make_unique<LogFile>(dir / "wheel_odometry.tum", "");

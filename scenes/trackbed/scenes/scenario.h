@@ -158,7 +158,7 @@ struct NavigationWallSpec {
   double radius_m = 0.1;
 };
 
-/// Point-to-point navigation (Jung & Kim 2014; design.md §1.2). With `enabled`, the
+/// Point-to-point navigation (Jung & Kim 2014; docs/navigation.md). With `enabled`, the
 /// robot drives from `robot.start` to `goal` under `method` instead of following `drive`.
 struct NavigationSpec {
   bool enabled = false;
@@ -210,7 +210,7 @@ struct NavigationSpec {
   void Validate() const;
 };
 
-/// Visual teach & repeat (Choi & Ha 2011; design.md §1.3). With `enabled`, one run
+/// Visual teach & repeat (Choi & Ha 2011; docs/teach_repeat.md). With `enabled`, one run
 /// teaches (drives `drive`'s path, the "manual" drive, recording left images into a
 /// teach map) and then repeats the route from the images alone.
 struct TeachRepeatSpec {
