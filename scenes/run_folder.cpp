@@ -377,6 +377,112 @@ RunMetrics RunKinematicNavigation(const Scenario& scenario, const fs::path& dir)
   return m;
 }
 
+// The run's logs, one file each with its header (README.md, "Run folder"): ground
+// truth, encoders, slip, tracks, IMU, twist, and one TUM file per estimator when
+// estimation is on.
+class RunLogs {
+ public:
+  RunLogs(const fs::path& dir, const Scenario& scenario)
+      : truth_(dir / "ground_truth.tum", ""),
+        encoders_(dir / "encoders.csv", "t,left_ticks,right_ticks"),
+        slip_(dir / "slip.csv",
+              "t,left_true_mps,right_true_mps,left_track_mps,right_track_mps,"
+              "left_ground_mps,right_ground_mps,material,left_est_mps,right_est_mps"),
+        tracks_(dir / "tracks.csv",
+                "t,left_torque_nm,right_torque_nm,left_load_n,right_load_n,"
+                "left_traction_n,right_traction_n,left_compaction_n,right_compaction_n,"
+                "left_contacts,right_contacts"),
+        imu_(dir / "imu.csv",
+             "t,gyro_x_radps,gyro_y_radps,gyro_z_radps,accel_x_mps2,accel_y_mps2,accel_z_mps2"),
+        twist_(dir / "ground_truth_twist.csv",
+               "t,v_x_mps,v_y_mps,v_z_mps,omega_x_radps,omega_y_radps,omega_z_radps") {
+    if (!scenario.estimation.enabled) return;
+    wheel_tum_ = std::make_unique<LogFile>(dir / "wheel_odometry.tum", "");
+    noslip_tum_ = std::make_unique<LogFile>(dir / "wheel_odometry_noslip.tum", "");
+    ekf_tum_ = std::make_unique<LogFile>(dir / "ekf.tum", "");
+    if (!scenario.robot.stereo.enabled) return;
+    fused_tum_ = std::make_unique<LogFile>(dir / "fused.tum", "");
+    vo_tum_ = std::make_unique<LogFile>(dir / "visual_odometry.tum", "");
+    fusion_csv_ = std::make_unique<LogFile>(
+        dir / "fusion.csv",
+        "t,slip_velocity_mps,features,w,vo_status,vo_tracked,camera_blackout,w_rule,"
+        "vo_dynamics_constrained");
+  }
+
+  void Sample(const RunSample& s);
+  void Frame(const LocalizationFrame& f);
+  void Imu(const robot::ImuSample& s);
+  void Close() {
+    for (LogFile* f : {&truth_, &twist_, &encoders_, &slip_, &tracks_, &imu_}) f->Close();
+    for (auto* f : {&wheel_tum_, &noslip_tum_, &ekf_tum_, &fused_tum_, &vo_tum_, &fusion_csv_}) {
+      if (*f) (*f)->Close();
+    }
+  }
+
+ private:
+  LogFile truth_, encoders_, slip_, tracks_, imu_, twist_;
+  std::unique_ptr<LogFile> wheel_tum_, noslip_tum_, ekf_tum_, fused_tum_, vo_tum_, fusion_csv_;
+  char line_[512];
+};
+
+void RunLogs::Sample(const RunSample& s) {
+  truth_.Line(estimation::FormatTumLine({s.t_s, s.chassis.T_world_body}).c_str());
+  std::snprintf(line_, sizeof(line_), "%.6f,%lld,%lld", s.t_s, s.ticks[0], s.ticks[1]);
+  encoders_.Line(line_);
+  const robot::TrackState &l = s.tracks[0], &r = s.tracks[1];
+  const int n =
+      std::snprintf(line_, sizeof(line_), "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%s,", s.t_s,
+                    l.slip_velocity_mps, r.slip_velocity_mps, l.track_speed_mps, r.track_speed_mps,
+                    l.ground_speed_mps, r.ground_speed_mps, s.material ? s.material->c_str() : "");
+  const std::size_t used = static_cast<std::size_t>(n);
+  if (s.estimate) {
+    std::snprintf(line_ + used, sizeof(line_) - used, "%.9g,%.9g", s.estimate->slip.left_mps,
+                  s.estimate->slip.right_mps);
+  } else {
+    std::snprintf(line_ + used, sizeof(line_) - used, ",");
+  }
+  slip_.Line(line_);
+  if (s.estimate) {
+    wheel_tum_->Line(estimation::FormatTumLine({s.t_s, s.estimate->wheel_odometry}).c_str());
+    noslip_tum_->Line(
+        estimation::FormatTumLine({s.t_s, s.estimate->wheel_odometry_noslip}).c_str());
+    ekf_tum_->Line(estimation::FormatTumLine({s.t_s, s.estimate->ekf}).c_str());
+    if (fused_tum_) {
+      fused_tum_->Line(estimation::FormatTumLine({s.t_s, s.estimate->fused}).c_str());
+    }
+  }
+  std::snprintf(line_, sizeof(line_), "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%d", s.t_s,
+                l.motor_torque_nm, r.motor_torque_nm, l.normal_load_n, r.normal_load_n,
+                l.traction_n, r.traction_n, l.compaction_resistance_n, r.compaction_resistance_n,
+                l.stations_in_contact, r.stations_in_contact);
+  tracks_.Line(line_);
+  // Body-frame twist: velocity of the body origin and angular velocity, in body axes.
+  const Eigen::Matrix3d R_body_world = s.chassis.T_world_body.linear().transpose();
+  const Eigen::Vector3d v = R_body_world * s.chassis.v_world;
+  const Eigen::Vector3d w = R_body_world * s.chassis.omega_world;
+  std::snprintf(line_, sizeof(line_), "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", s.t_s, v.x(), v.y(),
+                v.z(), w.x(), w.y(), w.z());
+  twist_.Line(line_);
+}
+
+void RunLogs::Frame(const LocalizationFrame& f) {
+  if (!vo_tum_) return;
+  vo_tum_->Line(estimation::FormatTumLine({f.t_s, f.visual_odometry}).c_str());
+  std::snprintf(line_, sizeof(line_), "%.6f,%.9g,%.0f,%.6f,%s,%d,%d,%.6f,%d", f.t_s,
+                f.report.slip_velocity_mps, f.report.features, f.report.w,
+                estimation::ToString(f.report.vo.status), f.report.vo.tracked,
+                f.camera_blackout ? 1 : 0, f.report.w_rule,
+                f.report.vo.dynamics_constrained ? 1 : 0);
+  fusion_csv_->Line(line_);
+}
+
+void RunLogs::Imu(const robot::ImuSample& s) {
+  std::snprintf(line_, sizeof(line_), "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", s.t_s, s.gyro_radps.x(),
+                s.gyro_radps.y(), s.gyro_radps.z(), s.accel_mps2.x(), s.accel_mps2.y(),
+                s.accel_mps2.z());
+  imu_.Line(line_);
+}
+
 }  // namespace
 
 void WriteMetricsJson(const RunMetrics& metrics, const fs::path& dir) {
@@ -403,35 +509,7 @@ RunMetrics RunToFolderWith(const Scenario& scenario, const fs::path& dir, const 
       WriteMetricsJson(metrics, dir);
       return metrics;
     }
-    LogFile truth(dir / "ground_truth.tum", "");
-    LogFile encoders(dir / "encoders.csv", "t,left_ticks,right_ticks");
-    LogFile slip(dir / "slip.csv",
-                 "t,left_true_mps,right_true_mps,left_track_mps,right_track_mps,"
-                 "left_ground_mps,right_ground_mps,material,left_est_mps,right_est_mps");
-    // One TUM file per estimator (README.md, "Run folder"), opened when estimation is on.
-    std::unique_ptr<LogFile> wheel_tum, noslip_tum, ekf_tum, fused_tum, vo_tum, fusion_csv;
-    if (scenario.estimation.enabled) {
-      wheel_tum = std::make_unique<LogFile>(dir / "wheel_odometry.tum", "");
-      noslip_tum = std::make_unique<LogFile>(dir / "wheel_odometry_noslip.tum", "");
-      ekf_tum = std::make_unique<LogFile>(dir / "ekf.tum", "");
-      if (scenario.robot.stereo.enabled) {
-        fused_tum = std::make_unique<LogFile>(dir / "fused.tum", "");
-        vo_tum = std::make_unique<LogFile>(dir / "visual_odometry.tum", "");
-        fusion_csv = std::make_unique<LogFile>(
-            dir / "fusion.csv",
-            "t,slip_velocity_mps,features,w,vo_status,vo_tracked,camera_blackout,w_rule,"
-            "vo_dynamics_constrained");
-      }
-    }
-    LogFile tracks(dir / "tracks.csv",
-                   "t,left_torque_nm,right_torque_nm,left_load_n,right_load_n,"
-                   "left_traction_n,right_traction_n,left_compaction_n,right_compaction_n,"
-                   "left_contacts,right_contacts");
-    LogFile imu(dir / "imu.csv",
-                "t,gyro_x_radps,gyro_y_radps,gyro_z_radps,accel_x_mps2,accel_y_mps2,accel_z_mps2");
-    LogFile twist(dir / "ground_truth_twist.csv",
-                  "t,v_x_mps,v_y_mps,v_z_mps,omega_x_radps,omega_y_radps,omega_z_radps");
-    char line[512];
+    RunLogs logs(dir, scenario);
     RunObservers observers;
     PlotData plots;
     std::unique_ptr<perception::KittiWriter> kitti;
@@ -460,62 +538,14 @@ RunMetrics RunToFolderWith(const Scenario& scenario, const fs::path& dir, const 
     }
     observers.on_sample = [&](const RunSample& s) {
       plots.Add(s);
-      truth.Line(estimation::FormatTumLine({s.t_s, s.chassis.T_world_body}).c_str());
-      std::snprintf(line, sizeof(line), "%.6f,%lld,%lld", s.t_s, s.ticks[0], s.ticks[1]);
-      encoders.Line(line);
-      const robot::TrackState &l = s.tracks[0], &r = s.tracks[1];
-      const int n = std::snprintf(line, sizeof(line), "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%s,",
-                                  s.t_s, l.slip_velocity_mps, r.slip_velocity_mps,
-                                  l.track_speed_mps, r.track_speed_mps, l.ground_speed_mps,
-                                  r.ground_speed_mps, s.material ? s.material->c_str() : "");
-      const std::size_t used = static_cast<std::size_t>(n);
-      if (s.estimate) {
-        std::snprintf(line + used, sizeof(line) - used, "%.9g,%.9g", s.estimate->slip.left_mps,
-                      s.estimate->slip.right_mps);
-      } else {
-        std::snprintf(line + used, sizeof(line) - used, ",");
-      }
-      slip.Line(line);
-      if (s.estimate) {
-        wheel_tum->Line(estimation::FormatTumLine({s.t_s, s.estimate->wheel_odometry}).c_str());
-        noslip_tum->Line(
-            estimation::FormatTumLine({s.t_s, s.estimate->wheel_odometry_noslip}).c_str());
-        ekf_tum->Line(estimation::FormatTumLine({s.t_s, s.estimate->ekf}).c_str());
-        if (fused_tum) {
-          fused_tum->Line(estimation::FormatTumLine({s.t_s, s.estimate->fused}).c_str());
-        }
-      }
-      std::snprintf(line, sizeof(line), "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%d", s.t_s,
-                    l.motor_torque_nm, r.motor_torque_nm, l.normal_load_n, r.normal_load_n,
-                    l.traction_n, r.traction_n, l.compaction_resistance_n,
-                    r.compaction_resistance_n, l.stations_in_contact, r.stations_in_contact);
-      tracks.Line(line);
-      // Body-frame twist: velocity of the body origin and angular velocity, in body axes.
-      const Eigen::Matrix3d R_body_world = s.chassis.T_world_body.linear().transpose();
-      const Eigen::Vector3d v = R_body_world * s.chassis.v_world;
-      const Eigen::Vector3d w = R_body_world * s.chassis.omega_world;
-      std::snprintf(line, sizeof(line), "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", s.t_s, v.x(), v.y(),
-                    v.z(), w.x(), w.y(), w.z());
-      twist.Line(line);
+      logs.Sample(s);
     };
     observers.on_localization_frame = [&](const LocalizationFrame& f) {
       plots.w.emplace_back(f.t_s, f.report.w);
       plots.estimates["visual_odometry"].push_back({f.t_s, f.visual_odometry});
-      if (!vo_tum) return;
-      vo_tum->Line(estimation::FormatTumLine({f.t_s, f.visual_odometry}).c_str());
-      std::snprintf(line, sizeof(line), "%.6f,%.9g,%.0f,%.6f,%s,%d,%d,%.6f,%d", f.t_s,
-                    f.report.slip_velocity_mps, f.report.features, f.report.w,
-                    estimation::ToString(f.report.vo.status), f.report.vo.tracked,
-                    f.camera_blackout ? 1 : 0, f.report.w_rule,
-                    f.report.vo.dynamics_constrained ? 1 : 0);
-      fusion_csv->Line(line);
+      logs.Frame(f);
     };
-    observers.on_imu = [&](const robot::ImuSample& s) {
-      std::snprintf(line, sizeof(line), "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", s.t_s,
-                    s.gyro_radps.x(), s.gyro_radps.y(), s.gyro_radps.z(), s.accel_mps2.x(),
-                    s.accel_mps2.y(), s.accel_mps2.z());
-      imu.Line(line);
-    };
+    observers.on_imu = [&](const robot::ImuSample& s) { logs.Imu(s); };
     std::unique_ptr<LogFile> navigation_csv;
     std::vector<navigation::NavigationLogEntry> navigation_log;
     if (scenario.navigation.enabled) {
@@ -536,12 +566,9 @@ RunMetrics RunToFolderWith(const Scenario& scenario, const fs::path& dir, const 
                          scenario.navigation.safety_radius_m, scene.start, scene.goal,
                          metrics.navigation_subgoals);
     }
-    for (LogFile* f : {&truth, &twist, &encoders, &slip, &tracks, &imu}) f->Close();
+    logs.Close();
     if (kitti) kitti->Close();
     plots.Write(dir, scenario.scene.name);
-    for (auto* f : {&wheel_tum, &noslip_tum, &ekf_tum, &fused_tum, &vo_tum, &fusion_csv}) {
-      if (*f) (*f)->Close();
-    }
   } catch (const std::exception& e) {
     metrics.completed = false;
     metrics.stop_reason = std::string("failed: ") + e.what();
