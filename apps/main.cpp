@@ -15,15 +15,16 @@
 #include "eval_command.h"
 #include "report_command.h"
 #include "sweep_command.h"
-#include "trackbed/scenes/run_folder.h"
-#include "trackbed/scenes/scenario_yaml.h"
+#include "trackbed/runner/run_folder.h"
+#include "trackbed/scenario/scenario_yaml.h"
 #include "vo_command.h"
 
 namespace {
 
 int Run(const std::string& scenario_path, const std::string& out_dir,
         const std::vector<std::string>& sets, const std::optional<std::uint64_t>& seed) {
-  using namespace trackbed::scenes;
+  using namespace trackbed::scenario;
+  using namespace trackbed::runner;
   std::vector<Override> overrides;
   for (const std::string& s : sets) overrides.push_back(ParseOverride(s));
   if (seed) overrides.push_back({"seed", std::to_string(*seed)});
@@ -71,7 +72,7 @@ int Run(const std::string& scenario_path, const std::string& out_dir,
     }
   }
   if (m.teach_repeat) {
-    const trackbed::scenes::TeachRepeatMetrics& t = *m.teach_repeat;
+    const trackbed::runner::TeachRepeatMetrics& t = *m.teach_repeat;
     std::printf(
         "teach & repeat (%s): %s; %d milestones from %d teach images; lateral error RMS %.3f m, "
         "max %.3f m; end point %.3f m; autonomy %.2f; features lost %lld, recovered %lld\n",

@@ -6,9 +6,11 @@
 #include <memory>
 #include <string>
 
-#include "trackbed/scenes/sweep_report.h"
+#include "trackbed/experiments/sweep_report.h"
 
 namespace trackbed::apps {
+
+using namespace experiments;  // the sweep engine this command line drives
 
 void AddReportCommand(CLI::App& app) {
   auto dir = std::make_shared<std::string>();
@@ -19,7 +21,7 @@ void AddReportCommand(CLI::App& app) {
   report->add_option("dir", *dir, "Sweep folder (the --out of `trackbed sweep`)")->required();
   report->callback([dir]() {
     try {
-      const scenes::SweepCounts n = scenes::WriteSweepReport(*dir);
+      const experiments::SweepCounts n = experiments::WriteSweepReport(*dir);
       std::cout << "trackbed report: " << n.total() << " cells (" << n.ok << " ok, " << n.failed
                 << " failed, " << n.timed_out << " timed out, " << n.interrupted << " interrupted, "
                 << n.pending << " pending) -> " << *dir << "/report.md" << std::endl;

@@ -33,20 +33,22 @@
 #include <string>
 #include <vector>
 
-#include "slurm_backend.h"
-#include "sweep_support.h"
-#include "trackbed/scenes/sweep.h"
-#include "trackbed/scenes/sweep_report.h"
+#include "trackbed/experiments/slurm_backend.h"
+#include "trackbed/experiments/sweep.h"
+#include "trackbed/experiments/sweep_report.h"
+#include "trackbed/experiments/sweep_support.h"
 
 namespace trackbed::apps {
+
+using namespace experiments;  // the sweep engine this command line drives
 namespace {
 
 namespace fs = std::filesystem;
 using Clock = SweepClock;
-using scenes::CellOutcome;
-using scenes::CellStatus;
-using scenes::SweepCell;
-using scenes::SweepPlan;
+using experiments::CellOutcome;
+using experiments::CellStatus;
+using experiments::SweepCell;
+using experiments::SweepPlan;
 
 // Runs cells as child processes, `jobs` at a time.
 class CellRunner {
@@ -132,17 +134,17 @@ class CellRunner {
   }
 
   void Launch(const SweepCell& cell) {
-    const fs::path cell_dir = scenes::CellDir(dir_, cell);
+    const fs::path cell_dir = experiments::CellDir(dir_, cell);
     fs::remove_all(cell_dir);
     fs::create_directories(cell_dir);
     std::vector<std::string> args = {exe_.string(),
                                      "run",
                                      cell.scenario_path.string(),
                                      "--out",
-                                     scenes::CellRunDir(dir_, cell).string(),
+                                     experiments::CellRunDir(dir_, cell).string(),
                                      "--seed",
                                      std::to_string(cell.seed)};
-    for (const scenes::Override& o : cell.overrides) {
+    for (const scenario::Override& o : cell.overrides) {
       args.push_back("--set");
       args.push_back(o.key + "=" + o.value);
     }
@@ -206,11 +208,12 @@ class CellRunner {
 
   void Finished(const Child& c, int wait_status) {
     const SweepCell& cell = *c.cell;
-    const fs::path cell_dir = scenes::CellDir(dir_, cell);
+    const fs::path cell_dir = experiments::CellDir(dir_, cell);
     CellOutcome o;
-    if (scenes::CellFinished(dir_, cell)) {
+    if (experiments::CellFinished(dir_, cell)) {
       // The run wrote its metrics: its own status decides, whatever happened after.
-      o = scenes::OutcomeFromMetrics(scenes::ReadTextFile(scenes::CellMetricsPath(dir_, cell)));
+      o = experiments::OutcomeFromMetrics(
+          experiments::ReadTextFile(experiments::CellMetricsPath(dir_, cell)));
     } else if (c.timed_out) {
       o.status = CellStatus::kTimedOut;
       char buf[96];
@@ -278,20 +281,20 @@ int RunSweep(const SweepArgs& args) {
         "--partition, --max-parallel, --time-limit and --wait are for --backend slurm");
   }
   if (slurm) CheckSlurmAvailable();  // at once, before anything is written
-  const scenes::SweepSpec spec = scenes::LoadSweep(args.sweep_file);
-  const SweepPlan plan = scenes::MakeSweepPlan(spec);
+  const experiments::SweepSpec spec = experiments::LoadSweep(args.sweep_file);
+  const SweepPlan plan = experiments::MakeSweepPlan(spec);
   const fs::path dir = fs::absolute(args.out_dir).lexically_normal();
   fs::create_directories(dir / "cells");
   const FolderLock lock(dir);
   if (fs::exists(dir / "cells.json")) {
-    const std::string conflict = scenes::PlanConflict(scenes::ReadSweepPlan(dir), plan);
+    const std::string conflict = experiments::PlanConflict(experiments::ReadSweepPlan(dir), plan);
     if (!conflict.empty()) {
       throw std::runtime_error(dir.string() + " holds another sweep (" + conflict +
                                "); use another --out");
     }
   }
-  scenes::WriteFileAtomically(dir / "sweep.yaml", scenes::SweepToYaml(spec));
-  scenes::WriteFileAtomically(dir / "cells.json", scenes::SweepPlanJson(plan));
+  experiments::WriteFileAtomically(dir / "sweep.yaml", experiments::SweepToYaml(spec));
+  experiments::WriteFileAtomically(dir / "cells.json", experiments::SweepPlanJson(plan));
 
   const BlockedSignals signals;
   if (slurm) return RunSlurmSweep(dir, plan, args.slurm, signals);
@@ -299,8 +302,8 @@ int RunSweep(const SweepArgs& args) {
   std::vector<const SweepCell*> to_run;
   std::size_t finished = 0;
   for (const SweepCell& cell : plan.cells) {
-    if (scenes::CellFinished(dir, cell)) {
-      if (!fs::exists(scenes::CellJsonPath(dir, cell))) RecoverOutcome(dir, cell);
+    if (experiments::CellFinished(dir, cell)) {
+      if (!fs::exists(experiments::CellJsonPath(dir, cell))) RecoverOutcome(dir, cell);
       ++finished;
     } else {
       to_run.push_back(&cell);
@@ -320,7 +323,7 @@ int RunSweep(const SweepArgs& args) {
   }
   progress.End();
 
-  const scenes::SweepCounts n = scenes::WriteSweepReport(dir);
+  const experiments::SweepCounts n = experiments::WriteSweepReport(dir);
   if (interrupt != 0) {
     std::cerr << "trackbed sweep: interrupted by " << SignalText(interrupt) << ": " << n.ok
               << " ok, " << (n.failed + n.timed_out) << " not ok, " << (n.interrupted + n.pending)
@@ -336,7 +339,7 @@ int RunSweep(const SweepArgs& args) {
 
 int RunSweepCell(const std::string& sweep_dir, std::size_t index, const std::string& list_file) {
   const fs::path dir = fs::absolute(sweep_dir).lexically_normal();
-  const SweepPlan plan = scenes::ReadSweepPlan(dir);
+  const SweepPlan plan = experiments::ReadSweepPlan(dir);
   if (!list_file.empty()) index = CellIndexFromList(list_file, index);
   if (index >= plan.cells.size()) {
     throw std::invalid_argument("cell index " + std::to_string(index) + " out of range (" +
@@ -346,11 +349,11 @@ int RunSweepCell(const std::string& sweep_dir, std::size_t index, const std::str
   const BlockedSignals signals;
   Progress progress(1, 0, false);
   CellOutcome o;
-  if (scenes::CellFinished(dir, cell)) {
-    o = fs::exists(scenes::CellJsonPath(dir, cell)) ? scenes::ReadCellOutcome(dir, cell)
-                                                    : RecoverOutcome(dir, cell);
+  if (experiments::CellFinished(dir, cell)) {
+    o = fs::exists(experiments::CellJsonPath(dir, cell)) ? experiments::ReadCellOutcome(dir, cell)
+                                                         : RecoverOutcome(dir, cell);
     std::cerr << "trackbed sweep-cell: " << cell.name << " finished already ("
-              << scenes::ToString(o.status) << ")" << std::endl;
+              << experiments::ToString(o.status) << ")" << std::endl;
     return o.status == CellStatus::kOk ? kExitAllOk : kExitSomeFailed;
   }
   int interrupt = 0;
@@ -362,7 +365,7 @@ int RunSweepCell(const std::string& sweep_dir, std::size_t index, const std::str
   }
   if (interrupt != 0) {
     // Under Slurm a SIGTERM is Slurm stopping the task: record why, in Slurm's words.
-    o = scenes::ReadCellOutcome(dir, cell);
+    o = experiments::ReadCellOutcome(dir, cell);
     if (o.status == CellStatus::kInterrupted) {
       if (const std::optional<CellOutcome> why = SlurmStopOutcome()) {
         o.status = why->status;
@@ -374,7 +377,7 @@ int RunSweepCell(const std::string& sweep_dir, std::size_t index, const std::str
     }
     return 128 + interrupt;
   }
-  o = scenes::ReadCellOutcome(dir, cell);
+  o = experiments::ReadCellOutcome(dir, cell);
   return o.status == CellStatus::kOk ? kExitAllOk : kExitSomeFailed;
 }
 

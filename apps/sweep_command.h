@@ -15,7 +15,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "slurm_backend.h"
+#include "trackbed/experiments/slurm_backend.h"
 
 namespace trackbed::apps {
 
@@ -23,9 +23,9 @@ namespace trackbed::apps {
 struct SweepArgs {
   std::string sweep_file;
   std::string out_dir;
-  int jobs = 1;                   ///< local: cells run at once, >= 1
-  std::string backend = "local";  ///< local (child processes) or slurm (an array job)
-  SlurmOptions slurm;             ///< with backend slurm
+  int jobs = 1;                     ///< local: cells run at once, >= 1
+  std::string backend = "local";    ///< local (child processes) or slurm (an array job)
+  experiments::SlurmOptions slurm;  ///< with backend slurm
 };
 
 /// Runs the sweep and writes the summary and report; returns the exit status. Prints

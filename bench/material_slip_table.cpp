@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "trackbed/estimation/icr_calibration.h"
-#include "trackbed/scenes/closed_loop_runner.h"
-#include "trackbed/scenes/scenario_yaml.h"
+#include "trackbed/runner/closed_loop_runner.h"
+#include "trackbed/scenario/scenario_yaml.h"
 #include "trackbed/sim/terrain_material.h"
 
 namespace {
@@ -32,18 +32,18 @@ double TractionCoefficient(const sim::TerrainMaterial& m, const robot::TrackedVe
 // χ fitted separately in each scripted segment of icr_turns.yaml (10 s each:
 // in place both ways, then arcs of 1.25 m and 2.5 m radius), skipping each
 // segment's first 2 s of transient. Also returns the run's stop reason.
-std::vector<double> SegmentChi(const scenes::Scenario& s, std::string* stop_reason) {
+std::vector<double> SegmentChi(const scenario::Scenario& s, std::string* stop_reason) {
   std::vector<std::vector<estimation::IcrSample>> segments(4);
   const double r = s.robot.vehicle.sprocket_radius_m, b = s.robot.vehicle.track_gauge_m;
-  scenes::RunObservers obs;
-  obs.on_sample = [&](const scenes::RunSample& x) {
+  runner::RunObservers obs;
+  obs.on_sample = [&](const runner::RunSample& x) {
     const auto k = static_cast<std::size_t>(x.t_s / 10.0);
     if (k >= segments.size() || x.t_s - 10.0 * k < 2.0) return;
     segments[k].push_back(
         {r * (x.tracks[1].sprocket_speed_radps - x.tracks[0].sprocket_speed_radps) / b,
          x.chassis.omega_world.z()});
   };
-  *stop_reason = scenes::RunClosedLoop(s, obs).stop_reason;
+  *stop_reason = runner::RunClosedLoop(s, obs).stop_reason;
   std::vector<double> chi;
   for (const auto& seg : segments) {
     const estimation::IcrFit fit = estimation::FitIcrExpansion(seg);
@@ -58,14 +58,14 @@ void MaterialTable(const std::string& root) {
       "distance error (%%) | chi in place (turning left, right) | chi arc 1.25 m | chi arc 2.5 m | "
       "turns |\n|---|---|---|---|---|---|---|---|\n");
   for (const sim::TerrainMaterial& material : sim::BuiltinMaterials()) {
-    const std::vector<scenes::Override> ground = {
+    const std::vector<scenario::Override> ground = {
         {"scene.terrain.default_material", material.name}};
-    const scenes::Scenario straight =
-        scenes::LoadScenario(root + "/scenes/calibration/straight_line.yaml", ground);
-    const scenes::RunMetrics s = scenes::RunClosedLoop(straight);
+    const scenario::Scenario straight =
+        scenario::LoadScenario(root + "/scenes/calibration/straight_line.yaml", ground);
+    const runner::RunMetrics s = runner::RunClosedLoop(straight);
     std::string stop;
     const std::vector<double> chi = SegmentChi(
-        scenes::LoadScenario(root + "/scenes/calibration/icr_turns.yaml", ground), &stop);
+        scenario::LoadScenario(root + "/scenes/calibration/icr_turns.yaml", ground), &stop);
     std::printf("| %s | %.2f | %.3f | %+.3f | %.3f, %.3f | %.3f | %.3f | %s |\n",
                 material.name.c_str(), TractionCoefficient(material, straight.robot.vehicle),
                 100.0 * Mean(s.slip[0].mean_ratio(), s.slip[1].mean_ratio()),
@@ -79,21 +79,21 @@ void GradeTable(const std::string& root) {
   std::printf("\n| dry sand, uphill | tan θ | steady slip ratio (%%) |\n|---|---|---|\n");
   for (double deg : {0.0, 5.0, 10.0, 15.0, 20.0}) {
     const double slope = std::tan(deg * M_PI / 180.0);
-    const scenes::Scenario s =
-        scenes::LoadScenario(root + "/scenes/calibration/straight_line.yaml",
-                             {{"scene.terrain.default_material", "dry_sand"},
-                              {"scene.terrain.roughness.slope_x", std::to_string(slope)}});
+    const scenario::Scenario s =
+        scenario::LoadScenario(root + "/scenes/calibration/straight_line.yaml",
+                               {{"scene.terrain.default_material", "dry_sand"},
+                                {"scene.terrain.roughness.slope_x", std::to_string(slope)}});
     double sum = 0.0;
     int n = 0;
-    scenes::RunObservers obs;
-    obs.on_sample = [&](const scenes::RunSample& x) {
+    runner::RunObservers obs;
+    obs.on_sample = [&](const runner::RunSample& x) {
       if (x.t_s < 8.0 || x.t_s > 24.0) return;
       for (const robot::TrackState& t : x.tracks) {
         sum += (t.track_speed_mps - t.ground_speed_mps) / t.track_speed_mps;
         ++n;
       }
     };
-    const scenes::RunMetrics m = scenes::RunClosedLoop(s, obs);
+    const runner::RunMetrics m = runner::RunClosedLoop(s, obs);
     std::printf("| %.0f° | %.4f | %.2f%s |\n", deg, slope, 100.0 * sum / n,
                 m.stop_reason == "stalled" ? " (stalled)" : "");
   }

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "bench_args.h"
-#include "trackbed/scenes/closed_loop_runner.h"
-#include "trackbed/scenes/scenario_yaml.h"
+#include "trackbed/runner/closed_loop_runner.h"
+#include "trackbed/scenario/scenario_yaml.h"
 
 int main(int argc, char** argv) {
   double seconds = 0.0;
@@ -21,10 +21,10 @@ int main(int argc, char** argv) {
       trackbed::bench::ScenarioFiles(argc, argv, "--seconds", &seconds);
   try {
     for (const std::string& f : files) {
-      std::vector<trackbed::scenes::Override> overrides = {{"robot.stereo.enabled", "false"}};
+      std::vector<trackbed::scenario::Override> overrides = {{"robot.stereo.enabled", "false"}};
       if (seconds > 0) overrides.push_back({"duration_s", std::to_string(seconds)});
-      const trackbed::scenes::Scenario s = trackbed::scenes::LoadScenario(f, overrides);
-      const trackbed::scenes::RunMetrics m = trackbed::scenes::RunClosedLoop(s);
+      const trackbed::scenario::Scenario s = trackbed::scenario::LoadScenario(f, overrides);
+      const trackbed::runner::RunMetrics m = trackbed::runner::RunClosedLoop(s);
       std::printf("%-10s sim %7.1f s  wall %6.2f s  physics-only real-time factor %6.1fx  (%s)\n",
                   s.scene.name.c_str(), m.sim_time_s, m.wall_time_s, m.real_time_factor(),
                   m.stop_reason.c_str());

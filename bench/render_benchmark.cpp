@@ -15,8 +15,8 @@
 #include "bench_args.h"
 #include "trackbed/estimation/stereo_visual_odometry.h"
 #include "trackbed/robot/stereo_rig.h"
-#include "trackbed/scenes/closed_loop_runner.h"
-#include "trackbed/scenes/scenario_yaml.h"
+#include "trackbed/runner/closed_loop_runner.h"
+#include "trackbed/scenario/scenario_yaml.h"
 #include "trackbed/sim/renderer.h"
 
 int main(int argc, char** argv) {
@@ -27,26 +27,26 @@ int main(int argc, char** argv) {
       bench::ScenarioFiles(argc, argv, "--pairs", &pairs_arg, &sets);
   const int pairs = static_cast<int>(pairs_arg);
   try {
-    std::vector<scenes::Override> overrides{{"robot.stereo.enabled", "true"}};
-    for (const std::string& set : sets) overrides.push_back(scenes::ParseOverride(set));
+    std::vector<scenario::Override> overrides{{"robot.stereo.enabled", "true"}};
+    for (const std::string& set : sets) overrides.push_back(scenario::ParseOverride(set));
     for (const std::string& f : files) {
-      scenes::Scenario s = scenes::LoadScenario(f, overrides);
+      scenario::Scenario s = scenario::LoadScenario(f, overrides);
       // The closed loop as `trackbed run` runs it: nothing on the main thread looks at
       // the images, so the sensor model runs on the localization thread.
-      const scenes::RunMetrics loop = scenes::RunClosedLoop(s);
+      const runner::RunMetrics loop = runner::RunClosedLoop(s);
       // Rendering alone: the poses of the same run's cameras, recorded in a second,
       // untimed run (identical: the same scenario and seed), replayed.
       std::vector<Eigen::Isometry3d> left, right;
       std::vector<Eigen::Vector2d> centers;
-      scenes::RunObservers record;
-      record.on_stereo = [&](const scenes::StereoFrame& frame) {
+      runner::RunObservers record;
+      record.on_stereo = [&](const runner::StereoFrame& frame) {
         left.push_back(frame.T_world_left);
         right.push_back(frame.T_world_right);
         // The terrain's detail centre, as the closed loop passes it.
         centers.push_back(
             0.5 * (frame.T_world_left.translation() + frame.T_world_right.translation()).head<2>());
       };
-      scenes::RunClosedLoop(s, record);
+      runner::RunClosedLoop(s, record);
       const sim::World world(s.scene.world, sim::Terrain(s.scene.terrain, s.seed), s.scene.objects);
       const robot::StereoRig rig(s.robot.stereo);
       sim::Renderer renderer(world, s.scene.appearance, s.scene.occluders, s.seed,

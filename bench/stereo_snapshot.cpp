@@ -9,8 +9,8 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "trackbed/scenes/closed_loop_runner.h"
-#include "trackbed/scenes/scenario_yaml.h"
+#include "trackbed/runner/closed_loop_runner.h"
+#include "trackbed/scenario/scenario_yaml.h"
 
 int main(int argc, char** argv) {
   using namespace trackbed;
@@ -19,17 +19,17 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    const scenes::Scenario s =
-        scenes::LoadScenario(argv[1], {{"duration_s", argv[2]}, {"robot.stereo.enabled", "true"}});
+    const scenario::Scenario s = scenario::LoadScenario(
+        argv[1], {{"duration_s", argv[2]}, {"robot.stereo.enabled", "true"}});
     cv::Mat pair;
-    scenes::RunObservers obs;
-    obs.on_stereo = [&](const scenes::StereoFrame& f) {
+    runner::RunObservers obs;
+    obs.on_stereo = [&](const runner::StereoFrame& f) {
       auto mat = [](const sim::GrayImage& g) {
         return cv::Mat(g.height, g.width, CV_8UC1, const_cast<std::uint8_t*>(g.pixels.data()));
       };
       cv::hconcat(mat(*f.left), mat(*f.right), pair);
     };
-    scenes::RunClosedLoop(s, obs);
+    runner::RunClosedLoop(s, obs);
     if (pair.empty() || !cv::imwrite(argv[3], pair)) {
       std::fprintf(stderr, "stereo_snapshot: could not write %s\n", argv[3]);
       return 1;

@@ -9,9 +9,9 @@
 #include <gtest/gtest.h>
 
 #include "trackbed/robot/range_sensor.h"
-#include "trackbed/scenes/footprint_clearance.h"
-#include "trackbed/scenes/run_folder.h"
-#include "trackbed/scenes/scenario_yaml.h"
+#include "trackbed/runner/footprint_clearance.h"
+#include "trackbed/runner/run_folder.h"
+#include "trackbed/scenario/scenario_yaml.h"
 #include "trackbed/sim/world.h"
 
 namespace trackbed {
@@ -50,26 +50,26 @@ TEST(RangeSensorTest, SeesACylinderAtItsDistanceAndNothingElse) {
 TEST(ChassisClearanceTest, BoxAgainstCirclesAndBoxesByHand) {
   const Eigen::Vector2d hull(0.7, 0.42);
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  EXPECT_NEAR(scenes::ChassisClearance(T, hull, {Cylinder(1.0, 0.0, 0.1)}), 1.0 - 0.35 - 0.1,
+  EXPECT_NEAR(runner::ChassisClearance(T, hull, {Cylinder(1.0, 0.0, 0.1)}), 1.0 - 0.35 - 0.1,
               1e-12);
   T.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  EXPECT_NEAR(scenes::ChassisClearance(T, hull, {Cylinder(1.0, 0.0, 0.1)}), 1.0 - 0.21 - 0.1,
+  EXPECT_NEAR(runner::ChassisClearance(T, hull, {Cylinder(1.0, 0.0, 0.1)}), 1.0 - 0.21 - 0.1,
               1e-12);
   // Diagonal: from the corner (0.35, 0.21) to the centre (1, 1), minus the radius.
   T = Eigen::Isometry3d::Identity();
-  EXPECT_NEAR(scenes::ChassisClearance(T, hull, {Cylinder(1.0, 1.0, 0.1)}),
+  EXPECT_NEAR(runner::ChassisClearance(T, hull, {Cylinder(1.0, 1.0, 0.1)}),
               std::hypot(0.65, 0.79) - 0.1, 1e-12);
-  EXPECT_LT(scenes::ChassisClearance(T, hull, {Cylinder(0.3, 0.0, 0.1)}), 0.0);
+  EXPECT_LT(runner::ChassisClearance(T, hull, {Cylinder(0.3, 0.0, 0.1)}), 0.0);
   sim::StaticObject box;  // a bench 1.5 m × 0.45 m, 1 m ahead of the nose, across
   box.center_m = {0.35 + 1.0 + 0.225, 0.0};
   box.size_m = {1.5, 0.45, 0.45};
   box.yaw_rad = M_PI / 2;
-  EXPECT_NEAR(scenes::ChassisClearance(T, hull, {box}), 1.0, 1e-9);
+  EXPECT_NEAR(runner::ChassisClearance(T, hull, {box}), 1.0, 1e-9);
   box.center_m.x() = 0.5;
-  EXPECT_LT(scenes::ChassisClearance(T, hull, {box}), 0.0);
+  EXPECT_LT(runner::ChassisClearance(T, hull, {box}), 0.0);
   sim::StaticObject poster = box;  // dressing does not count
   poster.collides = false;
-  EXPECT_TRUE(std::isinf(scenes::ChassisClearance(T, hull, {poster})));
+  EXPECT_TRUE(std::isinf(runner::ChassisClearance(T, hull, {poster})));
 }
 
 // Seeds 1-4: on grass (turf, μ 0.5) the skid of the final turn in place can carry
@@ -92,10 +92,10 @@ TEST(ClosedLoopNavigationTest, ReachesTheGoalAroundATreeOnTheFusedEstimate) {
   int successes = 0;
   for (const char* seed : {"1", "2", "3", "4"}) {
     SCOPED_TRACE(std::string("seed ") + seed);
-    const scenes::Scenario s = scenes::ParseScenario(yaml, "one_tree.yaml", {{"seed", seed}});
+    const scenario::Scenario s = scenario::ParseScenario(yaml, "one_tree.yaml", {{"seed", seed}});
     const std::filesystem::path dir = std::filesystem::path(testing::TempDir()) /
                                       (std::string("trackbed_closed_loop_nav_") + seed);
-    const scenes::RunMetrics m = scenes::RunToFolder(s, dir);
+    const runner::RunMetrics m = runner::RunToFolder(s, dir);
     ASSERT_TRUE(m.navigation.has_value());
     EXPECT_EQ(m.navigation->status, "reached");
     std::printf("seed %s: final error %.3f m, %.2f deg\n", seed,

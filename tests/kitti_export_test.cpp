@@ -6,9 +6,9 @@
 #include <opencv2/core.hpp>
 
 #include "trackbed/perception/kitti_sequence.h"
-#include "trackbed/scenes/closed_loop_runner.h"
-#include "trackbed/scenes/run_folder.h"
-#include "trackbed/scenes/scenario_yaml.h"
+#include "trackbed/runner/closed_loop_runner.h"
+#include "trackbed/runner/run_folder.h"
+#include "trackbed/scenario/scenario_yaml.h"
 
 namespace trackbed {
 namespace {
@@ -16,20 +16,20 @@ namespace {
 namespace fs = std::filesystem;
 
 TEST(KittiExportTest, ExportReadsBackAsTheSameImagesCalibrationAndPoses) {
-  const scenes::Scenario s =
-      scenes::LoadScenario(std::string(TRACKBED_SOURCE_DIR) + "/scenes/corridor.yaml",
-                           {{"duration_s", "2"}, {"outputs.save_images", "kitti"}});
+  const scenario::Scenario s =
+      scenario::LoadScenario(std::string(TRACKBED_SOURCE_DIR) + "/scenes/corridor.yaml",
+                             {{"duration_s", "2"}, {"outputs.save_images", "kitti"}});
   const fs::path dir = fs::temp_directory_path() / "trackbed_kitti_export_test";
   fs::remove_all(dir);
-  scenes::RunToFolder(s, dir);
+  runner::RunToFolder(s, dir);
 
   // The same run again, in memory.
   std::vector<cv::Mat> lefts, rights;
   std::vector<Eigen::Isometry3d> T_world_left;
   std::vector<double> times;
   sim::PinholeIntrinsics K;
-  scenes::RunObservers obs;
-  obs.on_stereo = [&](const scenes::StereoFrame& f) {
+  runner::RunObservers obs;
+  obs.on_stereo = [&](const runner::StereoFrame& f) {
     lefts.push_back(cv::Mat(f.left->height, f.left->width, CV_8UC1,
                             const_cast<std::uint8_t*>(f.left->pixels.data()))
                         .clone());
@@ -40,7 +40,7 @@ TEST(KittiExportTest, ExportReadsBackAsTheSameImagesCalibrationAndPoses) {
     times.push_back(f.t_s);
     K = f.rig->intrinsics();
   };
-  scenes::RunClosedLoop(s, obs);
+  runner::RunClosedLoop(s, obs);
   ASSERT_EQ(lefts.size(), 21u);  // 10 Hz over 2 s, both ends
 
   const perception::KittiSequence seq(dir / "images");

@@ -2,24 +2,24 @@
 // the orderings of Ham et al. 2012 that hold today, on ground-truth error.
 #include <gtest/gtest.h>
 
-#include "trackbed/scenes/closed_loop_runner.h"
-#include "trackbed/scenes/scenario_yaml.h"
+#include "trackbed/runner/closed_loop_runner.h"
+#include "trackbed/scenario/scenario_yaml.h"
 
 namespace trackbed {
 namespace {
 
-scenes::RunMetrics RunScene(const std::string& scene, double seconds) {
-  return scenes::RunClosedLoop(
-      scenes::LoadScenario(std::string(TRACKBED_SOURCE_DIR) + "/scenes/" + scene,
-                           {{"duration_s", std::to_string(seconds)}, {"seed", "3"}}));
+runner::RunMetrics RunScene(const std::string& scene, double seconds) {
+  return runner::RunClosedLoop(
+      scenario::LoadScenario(std::string(TRACKBED_SOURCE_DIR) + "/scenes/" + scene,
+                             {{"duration_s", std::to_string(seconds)}, {"seed", "3"}}));
 }
 
-double Ate(const scenes::RunMetrics& m, const char* name) {
+double Ate(const runner::RunMetrics& m, const char* name) {
   return m.estimators.at(name).ate_rmse_m;
 }
 
 TEST(LocalizationClosedLoopTest, InThePlainCorridorWheelOdometryBeatsVision) {
-  const scenes::RunMetrics m = RunScene("corridor.yaml", 30.0);
+  const runner::RunMetrics m = RunScene("corridor.yaml", 30.0);
   ASSERT_TRUE(m.completed) << m.stop_reason;
   // Few corners: most VO frames fail, so VO loses most of the motion.
   EXPECT_GT(m.localization.vo_failures, m.localization.vo_frames / 2);
@@ -30,7 +30,7 @@ TEST(LocalizationClosedLoopTest, InThePlainCorridorWheelOdometryBeatsVision) {
 }
 
 TEST(LocalizationClosedLoopTest, OnRoughTexturedGroundVisionBeatsWheelOdometryAndFusionHelps) {
-  const scenes::RunMetrics m = RunScene("outdoor.yaml", 20.0);
+  const runner::RunMetrics m = RunScene("outdoor.yaml", 20.0);
   ASSERT_TRUE(m.completed) << m.stop_reason;
   EXPECT_LT(m.localization.vo_failures, 3);
   EXPECT_GT(m.localization.mean_inliers, 100.0);
@@ -49,25 +49,25 @@ TEST(LocalizationClosedLoopTest, OnRoughTexturedGroundVisionBeatsWheelOdometryAn
 // repeat). Visual odometry must see the same bytes either way: a missing or mis-keyed
 // sensor model, or a blackout not applied, changes its poses.
 TEST(LocalizationClosedLoopTest, VisionSeesTheSameImagesWhicheverThreadRunsTheSensorModel) {
-  const scenes::Scenario s = scenes::LoadScenario(
+  const scenario::Scenario s = scenario::LoadScenario(
       std::string(TRACKBED_SOURCE_DIR) + "/scenes/outdoor.yaml",
       {{"duration_s", "4"}, {"seed", "3"}, {"robot.stereo.blackouts_s", "[[1.95,0.5]]"}});
   struct Run {
     std::vector<Eigen::Matrix4d> vo;
     std::vector<double> inliers;
     int blackout_frames = 0;
-    scenes::RunMetrics metrics;
+    runner::RunMetrics metrics;
   };
   const auto run = [&](bool look_at_images) {
     Run r;
-    scenes::RunObservers obs;
-    obs.on_localization_frame = [&](const scenes::LocalizationFrame& f) {
+    runner::RunObservers obs;
+    obs.on_localization_frame = [&](const runner::LocalizationFrame& f) {
       r.vo.push_back(f.visual_odometry.matrix());
       r.inliers.push_back(f.report.features);
       if (f.camera_blackout) ++r.blackout_frames;
     };
-    if (look_at_images) obs.on_stereo = [](const scenes::StereoFrame&) {};
-    r.metrics = scenes::RunClosedLoop(s, obs);
+    if (look_at_images) obs.on_stereo = [](const runner::StereoFrame&) {};
+    r.metrics = runner::RunClosedLoop(s, obs);
     return r;
   };
   const Run on_worker = run(false), on_main = run(true);

@@ -9,10 +9,12 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "trackbed/scenes/run_folder.h"
-#include "trackbed/scenes/scenario_yaml.h"
+#include "trackbed/runner/run_folder.h"
+#include "trackbed/scenario/scenario_yaml.h"
 
-namespace trackbed::scenes {
+namespace trackbed::runner {
+
+using namespace scenario;  // the scenarios these tests run
 namespace {
 
 namespace fs = std::filesystem;
@@ -133,4 +135,4 @@ TEST(NavigationRunTest, RandomFieldsComeFromTheSeed) {
 }
 
 }  // namespace
-}  // namespace trackbed::scenes
+}  // namespace trackbed::runner

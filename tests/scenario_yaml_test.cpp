@@ -1,6 +1,6 @@
 // Scenario files: defaults, exact round trips, and errors that name the source
 // (file or --set override), the full dotted key and the reason.
-#include "trackbed/scenes/scenario_yaml.h"
+#include "trackbed/scenario/scenario_yaml.h"
 
 #include <cmath>
 #include <cstdio>
@@ -11,7 +11,7 @@
 
 #include <gtest/gtest.h>
 
-namespace trackbed::scenes {
+namespace trackbed::scenario {
 namespace {
 
 // The smallest valid scenario: a path drive needs its waypoints.
@@ -447,4 +447,4 @@ TEST(ScenarioYamlTest, ObjectTypesPickShapeAndAppearance) {
 }
 
 }  // namespace
-}  // namespace trackbed::scenes
+}  // namespace trackbed::scenario

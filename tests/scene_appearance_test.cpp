@@ -9,7 +9,7 @@
 
 #include "trackbed/perception/harris_corners.h"
 #include "trackbed/robot/stereo_rig.h"
-#include "trackbed/scenes/scenario_yaml.h"
+#include "trackbed/scenario/scenario_yaml.h"
 #include "trackbed/sim/renderer.h"
 
 namespace trackbed {
@@ -17,8 +17,8 @@ namespace {
 
 // Mean Harris corners per left image over `views` poses spread along the scene's route.
 double MeanCornersAlongRoute(const std::string& file, int views, double min_response) {
-  const scenes::Scenario s =
-      scenes::LoadScenario(std::string(TRACKBED_SOURCE_DIR) + "/scenes/" + file);
+  const scenario::Scenario s =
+      scenario::LoadScenario(std::string(TRACKBED_SOURCE_DIR) + "/scenes/" + file);
   const sim::World world(s.scene.world, sim::Terrain(s.scene.terrain, s.seed), s.scene.objects);
   const robot::StereoRig rig(s.robot.stereo);
   sim::Renderer renderer(world, s.scene.appearance, s.scene.occluders, s.seed,

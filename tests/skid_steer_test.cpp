@@ -9,16 +9,16 @@
 
 #include "test_scenarios.h"
 #include "trackbed/estimation/icr_calibration.h"
-#include "trackbed/scenes/closed_loop_runner.h"
-#include "trackbed/scenes/scenario_yaml.h"
+#include "trackbed/runner/closed_loop_runner.h"
+#include "trackbed/scenario/scenario_yaml.h"
 #include "trackbed/sim/terrain_material.h"
 
 namespace trackbed {
 namespace {
 
-using scenes::RunClosedLoop;
-using scenes::RunMetrics;
-using scenes::Scenario;
+using runner::RunClosedLoop;
+using runner::RunMetrics;
+using scenario::Scenario;
 using testing::FlatTrackSpeedRun;
 
 // Turning in place (left −0.2, right +0.2 m/s) on `material`, 10 s.
@@ -44,7 +44,7 @@ std::vector<double> EvenStations(double length, int n) {
 
 // The calibration run's turns in place, both ways (its first 20 s).
 Scenario CalibrationTurnsInPlace() {
-  return scenes::LoadScenario(
+  return scenario::LoadScenario(
       std::string(TRACKBED_SOURCE_DIR) + "/scenes/calibration/icr_turns.yaml",
       {{"duration_s", "20"}});
 }
@@ -71,7 +71,7 @@ TEST(SkidSteerTest, JackalOnTheHardFloorMatchesItsCalibratedMultiplier) {
   // Clearpath Jackal's geometry (scenes/calibration/icr_turns_jackal.yaml, from its
   // URDF); its control.yaml calibrates wheel_separation_multiplier 1.5. The turns
   // in place, both ways.
-  const RunMetrics m = RunClosedLoop(scenes::LoadScenario(
+  const RunMetrics m = RunClosedLoop(scenario::LoadScenario(
       std::string(TRACKBED_SOURCE_DIR) + "/scenes/calibration/icr_turns_jackal.yaml",
       {{"duration_s", "20"}}));
   ASSERT_TRUE(m.completed) << m.stop_reason;
@@ -89,8 +89,8 @@ double SteadyClimbSlip(double slope_deg) {
   s.scene.terrain.roughness.slope_x = std::tan(slope_deg * M_PI / 180.0);
   double sum = 0.0;
   int n = 0;
-  scenes::RunObservers obs;
-  obs.on_sample = [&](const scenes::RunSample& r) {
+  runner::RunObservers obs;
+  obs.on_sample = [&](const runner::RunSample& r) {
     if (r.t_s < 6.0) return;
     for (const robot::TrackState& t : r.tracks) {
       sum += (t.track_speed_mps - t.ground_speed_mps) / t.track_speed_mps;
@@ -125,8 +125,8 @@ TEST(SkidSteerTest, TurningInPlaceCompletesOrReportsAStallOnEveryMaterial) {
   for (const sim::TerrainMaterial& material : sim::BuiltinMaterials()) {
     SCOPED_TRACE(material.name);
     double yaw_rad = 0.0;
-    scenes::RunObservers obs;
-    obs.on_sample = [&](const scenes::RunSample& r) {
+    runner::RunObservers obs;
+    obs.on_sample = [&](const runner::RunSample& r) {
       yaw_rad += std::abs(r.chassis.omega_world.z()) * 0.01;  // encoder rate, 100 Hz
     };
     const RunMetrics m = RunClosedLoop(TurnInPlace(material.name), obs);

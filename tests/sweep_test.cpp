@@ -10,10 +10,12 @@
 
 #include <gtest/gtest.h>
 
-#include "trackbed/scenes/sweep.h"
-#include "trackbed/scenes/sweep_report.h"
+#include "trackbed/experiments/sweep.h"
+#include "trackbed/experiments/sweep_report.h"
 
-namespace trackbed::scenes {
+namespace trackbed::experiments {
+
+using namespace scenario;  // the scenarios these tests run
 namespace {
 
 namespace fs = std::filesystem;
@@ -497,4 +499,4 @@ TEST(SweepShippedTest, ShippedSweepsLoadAndEveryCellValidates) {
 }
 
 }  // namespace
-}  // namespace trackbed::scenes
+}  // namespace trackbed::experiments

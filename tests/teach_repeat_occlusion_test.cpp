@@ -8,10 +8,12 @@
 
 #include <gtest/gtest.h>
 
-#include "trackbed/scenes/run_folder.h"
-#include "trackbed/scenes/scenario_yaml.h"
+#include "trackbed/runner/run_folder.h"
+#include "trackbed/scenario/scenario_yaml.h"
 
-namespace trackbed::scenes {
+namespace trackbed::runner {
+
+using namespace scenario;  // the scenarios these tests run
 namespace {
 
 namespace fs = std::filesystem;
@@ -71,4 +73,4 @@ TEST(TeachRepeatOcclusionTest, ACrossingThatNeverEndsIsRejected) {
 }
 
 }  // namespace
-}  // namespace trackbed::scenes
+}  // namespace trackbed::runner

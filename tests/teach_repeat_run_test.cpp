@@ -7,10 +7,12 @@
 
 #include <gtest/gtest.h>
 
-#include "trackbed/scenes/run_folder.h"
-#include "trackbed/scenes/scenario_yaml.h"
+#include "trackbed/runner/run_folder.h"
+#include "trackbed/scenario/scenario_yaml.h"
 
-namespace trackbed::scenes {
+namespace trackbed::runner {
+
+using namespace scenario;  // the scenarios these tests run
 namespace {
 
 namespace fs = std::filesystem;
@@ -75,4 +77,4 @@ TEST(TeachRepeatRunTest, AMissingOrCorruptMapIsAClearError) {
 }
 
 }  // namespace
-}  // namespace trackbed::scenes
+}  // namespace trackbed::runner

@@ -7,14 +7,14 @@
 #include <gtest/gtest.h>
 
 #include "test_scenarios.h"
-#include "trackbed/scenes/closed_loop_runner.h"
-#include "trackbed/scenes/scenario_yaml.h"
+#include "trackbed/runner/closed_loop_runner.h"
+#include "trackbed/scenario/scenario_yaml.h"
 
 namespace trackbed {
 namespace {
 
-using scenes::RunClosedLoop;
-using scenes::RunMetrics;
+using runner::RunClosedLoop;
+using runner::RunMetrics;
 using testing::FlatTrackSpeedRun;
 
 double MeanAbsSlipRatio(const RunMetrics& m) {
@@ -71,8 +71,8 @@ TEST(VehiclePhysicsTest, TurnRateDoesNotDependOnTheStartingHeading) {
     for (double yaw_deg : {0.0, 30.0, 45.0}) {
       double yaw_sum = 0.0;
       int n = 0;
-      scenes::RunObservers obs;
-      obs.on_sample = [&](const scenes::RunSample& s) {
+      runner::RunObservers obs;
+      obs.on_sample = [&](const runner::RunSample& s) {
         if (s.t_s > 2.0 && s.t_s < 10.0) {
           yaw_sum += s.chassis.omega_world.z();
           ++n;
@@ -89,7 +89,7 @@ TEST(VehiclePhysicsTest, UnevenSoilMakesSeedsDifferOnlyWhenItIsOn) {
   // A curve on grass: with uniform soil the physics does not depend on the seed;
   // with soil variation each seed is its own field.
   auto run = [](std::uint64_t seed, double amplitude) {
-    scenes::Scenario s = FlatTrackSpeedRun("grass", 0.3, 0.5, 10.0);
+    scenario::Scenario s = FlatTrackSpeedRun("grass", 0.3, 0.5, 10.0);
     s.seed = seed;
     s.scene.terrain.soil_variation.amplitude = amplitude;
     s.scene.terrain.soil_variation.correlation_length_m = 1.0;
@@ -104,13 +104,13 @@ TEST(VehiclePhysicsTest, UnevenSoilMakesSeedsDifferOnlyWhenItIsOn) {
 }
 
 TEST(VehiclePhysicsTest, TenMinutesOnTheOutdoorSceneStayFiniteAndAboveGround) {
-  const scenes::Scenario s = scenes::LoadScenario(
+  const scenario::Scenario s = scenario::LoadScenario(
       std::string(TRACKBED_SOURCE_DIR) + "/scenes/outdoor.yaml",
       {{"duration_s", "600"}, {"drive.laps", "10"}, {"robot.stereo.enabled", "false"}});
   double max_speed = 0.0, max_tilt = 0.0, min_clearance = 1e9;
   bool finite = true;
-  scenes::RunObservers obs;
-  obs.on_sample = [&](const scenes::RunSample& r) {
+  runner::RunObservers obs;
+  obs.on_sample = [&](const runner::RunSample& r) {
     finite = finite && r.chassis.T_world_body.matrix().allFinite() &&
              r.chassis.v_world.allFinite() && r.chassis.omega_world.allFinite();
     max_speed = std::max(max_speed, r.chassis.v_world.norm());

@@ -1,0 +1,291 @@
+// The teach & repeat run (see teach_repeat_run.h).
+#include "trackbed/runner/teach_repeat_run.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+#include <tuple>
+#include <utility>
+
+#include "trackbed/estimation/trajectory_io.h"
+#include "trackbed/estimation/wheel_odometry.h"
+#include "trackbed/navigation/funnel_lane_controller.h"
+#include "trackbed/navigation/milestone_builder.h"
+#include "trackbed/navigation/milestone_localizer_3d.h"
+#include "trackbed/navigation/teach_map.h"
+#include "trackbed/navigation/teach_repeat_metrics.h"
+#include "trackbed/perception/kitti_sequence.h"
+#include "trackbed/runner/run_folder.h"
+#include "trackbed/runner/run_plots.h"
+
+namespace trackbed::runner {
+namespace fs = std::filesystem;
+namespace {
+
+double Radians(double deg) { return deg * M_PI / 180.0; }
+
+// The teach pass: the scenario's own drive, images into the builder with the no-slip
+// wheel odometry at each image (metadata; 3D teaching scales milestones by it).
+navigation::TeachMap Teach(const scenario::Scenario& scenario, const fs::path& dir,
+                           std::vector<Eigen::Vector2d>* taught_path) {
+  scenario::Scenario teach = scenario;
+  teach.teach_repeat.enabled = false;
+  const scenario::RobotSpec& rs = scenario.robot;
+  const robot::StereoRig rig(rs.stereo);
+  const sim::PinholeIntrinsics& K = rig.intrinsics();
+  const navigation::CameraIntrinsics camera = navigation::CameraIntrinsics::FromCalibration(
+      perception::StereoCalibration::FromIntrinsics(K.fx, K.fy, K.cx, K.cy, rs.stereo.baseline_m),
+      cv::Size(rs.stereo.width_px, rs.stereo.height_px));
+  navigation::MilestoneBuilderOptions options;
+  options.mode = scenario.teach_repeat.method == "3d" ? navigation::TeachMode::k3d
+                                                      : navigation::TeachMode::k2d;
+  navigation::MilestoneBuilder builder(camera, options);
+  estimation::WheelOdometryOptions wo;
+  wo.sprocket_radius_m = rs.vehicle.sprocket_radius_m;
+  wo.track_gauge_m = rs.vehicle.track_gauge_m;
+  wo.icr_expansion = scenario.estimation.icr_expansion;
+  wo.ticks_per_rev = rs.encoders.ticks_per_rev;
+  wo.estimate_slip = false;
+  estimation::WheelOdometry odometry(wo, {rs.start.x_m, rs.start.y_m, Radians(rs.start.yaw_deg)});
+  RunObservers extra;
+  extra.on_stereo = [&](const StereoFrame& f) {
+    odometry.AddEncoderSample(f.t_s, f.ticks[0], f.ticks[1]);
+    const cv::Mat left(f.left->height, f.left->width, CV_8UC1,
+                       const_cast<std::uint8_t*>(f.left->pixels.data()));
+    builder.AddImage(left, f.t_s, odometry.pose());
+  };
+  extra.on_sample = [&](const RunSample& s) {
+    taught_path->push_back(s.chassis.T_world_body.translation().head<2>());
+  };
+  const RunMetrics m = RunToFolderWith(teach, dir, extra, nullptr);
+  if (!m.completed) throw std::runtime_error("teach pass stopped: " + m.stop_reason);
+  return builder.Finish();
+}
+
+// The taught ground truth of a map saved by an earlier run: its teach/ folder.
+std::vector<Eigen::Vector2d> TaughtPathBeside(const fs::path& map_dir) {
+  std::vector<Eigen::Vector2d> path;
+  const fs::path truth = map_dir.parent_path() / "teach" / "ground_truth.tum";
+  if (!fs::exists(truth)) return path;
+  for (const estimation::StampedPose& p : estimation::ReadTrajectory(truth).poses) {
+    path.push_back(p.T_world_body.translation().head<2>());
+  }
+  return path;
+}
+
+// The repeater's cumulative loss and recovery counts at one frame.
+struct CumulativeRecovery {
+  double t_s;
+  std::int64_t lost, recovered;
+};
+
+// The counts at the last frame at or before `t_s` (zero before the first frame).
+CumulativeRecovery CountsAt(const std::vector<CumulativeRecovery>& counts, double t_s) {
+  CumulativeRecovery c{t_s, 0, 0};
+  for (const CumulativeRecovery& f : counts) {
+    if (f.t_s > t_s) break;
+    c = f;
+  }
+  return c;
+}
+
+// The window of a crossing place: from the walk's start until recovery_window_s after
+// it ends [s].
+std::pair<double, double> PlaceWindow(const sim::OccluderSpec& o, double recovery_window_s) {
+  double length = 0.0;
+  for (std::size_t k = 1; k < o.waypoints.size(); ++k) {
+    length += (o.waypoints[k] - o.waypoints[k - 1]).norm();
+  }
+  return {o.start_s, o.start_s + length / o.speed_mps + recovery_window_s};
+}
+
+// The repeat as in the paper's experiment 1: the robot stands still while a person
+// crosses (the inner repeater sees every image and keeps tracking, losing and
+// recovering features; only its command is held at zero), then drives on.
+class StopsForCrossings final : public navigation::Repeater {
+ public:
+  StopsForCrossings(std::unique_ptr<navigation::Repeater> inner,
+                    std::vector<std::pair<double, double>> windows)
+      : inner_(std::move(inner)), windows_(std::move(windows)) {}
+
+  navigation::RepeatCommand Update(const cv::Mat& gray, double t_s) override {
+    navigation::RepeatCommand c = inner_->Update(gray, t_s);
+    for (const auto& [start, end] : windows_) {
+      if (t_s >= start && t_s < end) c.twist = {};
+    }
+    return c;
+  }
+  const char* method() const override { return inner_->method(); }
+  const navigation::TeachMap& map() const override { return inner_->map(); }
+
+ private:
+  std::unique_ptr<navigation::Repeater> inner_;
+  std::vector<std::pair<double, double>> windows_;
+};
+
+// Choi & Ha's experiment 1, scored: every crossing of teach_repeat.occluders is a place,
+// from its start until recovery_window_s after its walk ends; per place, the features
+// lost and recovered in that window. recovery_rate is the mean of the per-place rates
+// (the paper's 86.18 %), recovery_rate_pooled the pooled one; without crossings both
+// are the pooled rate over the whole repeat.
+void ScorePlaces(const scenario::TeachRepeatSpec& tr, const std::vector<CumulativeRecovery>& counts,
+                 TeachRepeatMetrics* t) {
+  std::vector<navigation::RecoveryCounts> places;
+  for (const sim::OccluderSpec& o : tr.occluders) {
+    TeachRepeatMetrics::Place p;
+    std::tie(p.start_s, p.end_s) = PlaceWindow(o, tr.recovery_window_s);
+    // Counts of frames strictly before the start belong to earlier places.
+    const CumulativeRecovery before =
+        CountsAt(counts, std::nextafter(p.start_s, -std::numeric_limits<double>::infinity()));
+    const CumulativeRecovery after = CountsAt(counts, p.end_s);
+    p.lost = after.lost - before.lost;
+    p.recovered = after.recovered - before.recovered;
+    places.push_back({p.lost, std::min(p.recovered, p.lost)});
+    t->places.push_back(p);
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (places.empty()) {
+    t->recovery_rate = t->features_lost > 0 ? static_cast<double>(t->features_recovered) /
+                                                  static_cast<double>(t->features_lost)
+                                            : nan;
+    t->recovery_rate_pooled = t->recovery_rate;
+    return;
+  }
+  const navigation::RecoveryMetrics r = navigation::EvaluateRecovery(places);
+  for (std::size_t k = 0; k < t->places.size(); ++k) t->places[k].rate = r.per_place_rate[k];
+  t->recovery_rate = r.mean_rate;
+  t->recovery_rate_pooled = r.pooled_rate;
+}
+
+}  // namespace
+
+RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& dir) {
+  scenario.Validate();
+  fs::create_directories(dir);
+  const scenario::TeachRepeatSpec& tr = scenario.teach_repeat;
+  std::vector<Eigen::Vector2d> taught;
+  navigation::TeachMap map;
+  if (tr.map.empty()) {
+    map = Teach(scenario, dir / "teach", &taught);
+    navigation::SaveTeachMap(map, (dir / "teach_map").string());
+  } else {
+    map = navigation::LoadTeachMap(tr.map);
+    taught = TaughtPathBeside(tr.map);
+  }
+
+  // The repeat starts near the taught start: the file's offset plus a seeded
+  // perturbation of up to 5 cm and 2°.
+  scenario::Scenario repeat = scenario;
+  double dx = tr.start_offset.x_m, dy = tr.start_offset.y_m, dyaw = tr.start_offset.yaw_deg;
+  if (tr.start_perturbation) {
+    std::mt19937_64 rng(scenario.seed ^ 0x7eac4ULL);
+    const auto unit = [&rng] { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
+    const double r = 0.05 * std::sqrt(unit()), a = 2.0 * M_PI * unit();
+    dx += r * std::cos(a);
+    dy += r * std::sin(a);
+    dyaw += 2.0 * (2.0 * unit() - 1.0);
+  }
+  const double yaw0 = Radians(scenario.robot.start.yaw_deg);
+  repeat.robot.start.x_m += std::cos(yaw0) * dx - std::sin(yaw0) * dy;
+  repeat.robot.start.y_m += std::sin(yaw0) * dx + std::cos(yaw0) * dy;
+  repeat.robot.start.yaw_deg += dyaw;
+  // The crossing people are there in the repeat only.
+  repeat.scene.occluders.insert(repeat.scene.occluders.end(), tr.occluders.begin(),
+                                tr.occluders.end());
+
+  navigation::FunnelLaneOptions o2;
+  o2.forward_speed_mps = tr.repeat_speed_mps;
+  o2.turn_rate_radps = Radians(tr.repeat_turn_rate_deg_s);
+  navigation::Localizer3dOptions o3;
+  o3.forward_speed_mps = tr.repeat_speed_mps;
+  o3.max_yaw_rate_radps = Radians(tr.repeat_turn_rate_deg_s);
+  const int milestones = static_cast<int>(map.milestones.size());
+  const int teach_images = static_cast<int>(map.images.size());
+  std::unique_ptr<navigation::Repeater> repeater =
+      navigation::MakeRepeater(tr.method, std::move(map), o2, o3);
+  if (tr.stop_for_crossings && !tr.occluders.empty()) {
+    std::vector<std::pair<double, double>> windows;
+    for (const sim::OccluderSpec& o : tr.occluders) {
+      windows.push_back(PlaceWindow(o, tr.recovery_window_s));
+    }
+    repeater = std::make_unique<StopsForCrossings>(std::move(repeater), std::move(windows));
+  }
+
+  std::vector<Eigen::Vector2d> repeated;
+  // teach_repeat.csv: what the repeater saw and did at every frame.
+  std::ofstream csv(dir / "teach_repeat.csv", std::ios::out | std::ios::trunc);
+  csv << "t,status,v_mps,yaw_rate_radps,milestone,switched,features,tracked,votes_left,"
+         "votes_right,votes_straight,mean_error_px,lost,recovered,lateral_offset_m,"
+         "heading_error_rad,fallback_2d,progress\n";
+  RunObservers extra;
+  std::vector<CumulativeRecovery> counts;  // per repeat frame
+  extra.on_repeat_step = [&](const std::pair<double, navigation::RepeatCommand>& step) {
+    const navigation::RepeatCommand& c = step.second;
+    counts.push_back({step.first, c.features_lost, c.features_recovered});
+    char line[512];
+    std::snprintf(line, sizeof(line),
+                  "%.6f,%s,%.6g,%.6g,%d,%d,%d,%d,%d,%d,%d,%.6g,%d,%d,%.6g,%.6g,%d,%.6g\n",
+                  step.first, navigation::ToString(c.status), c.twist.v_mps, c.twist.yaw_rate_radps,
+                  c.milestone, c.switched ? 1 : 0, c.features, c.tracked, c.votes_left,
+                  c.votes_right, c.votes_straight, c.mean_error_px, c.lost, c.recovered,
+                  c.lateral_offset_m, c.heading_error_rad, c.fallback_2d ? 1 : 0, c.progress);
+    csv << line;
+  };
+  extra.on_sample = [&](const RunSample& s) {
+    repeated.push_back(s.chassis.T_world_body.translation().head<2>());
+  };
+  RunMetrics m = RunToFolderWith(repeat, dir, extra, repeater.get());
+  csv.close();
+  if (!csv) throw std::runtime_error((dir / "teach_repeat.csv").string() + ": cannot write");
+
+  TeachRepeatMetrics t;
+  t.method = tr.method;
+  t.status = m.stop_reason.rfind("repeat ", 0) == 0 ? m.stop_reason.substr(7) : m.stop_reason;
+  t.milestones = milestones;
+  t.teach_images = teach_images;
+  t.features_lost = m.repeat_features_lost;
+  t.features_recovered = m.repeat_features_recovered;
+  ScorePlaces(tr, counts, &t);
+  if (!t.places.empty()) {
+    std::vector<BarValue> bars;
+    for (std::size_t k = 0; k < t.places.size(); ++k) {
+      const TeachRepeatMetrics::Place& p = t.places[k];
+      char label[64], note[64];
+      std::snprintf(label, sizeof(label), "place %zu (%.0f s)", k + 1, p.start_s);
+      std::snprintf(note, sizeof(note), "%lld of %lld", static_cast<long long>(p.recovered),
+                    static_cast<long long>(p.lost));
+      bars.push_back({label, std::isfinite(p.rate) ? 100.0 * p.rate : 0.0, note});
+    }
+    char title[160];
+    std::snprintf(title, sizeof(title), "%s: features recovered per crossing (%s; mean %.1f %%)",
+                  scenario.scene.name.c_str(), tr.method.c_str(),
+                  std::isfinite(t.recovery_rate) ? 100.0 * t.recovery_rate : 0.0);
+    WriteBarPlot(dir / "teach_repeat_recovery.png", title, "recovered of lost [%]", bars, 100.0);
+  }
+  if (!taught.empty() && !repeated.empty()) {
+    const navigation::RepeatPathMetrics p =
+        navigation::EvaluateRepeatPath(taught, repeated, t.status == "finished");
+    t.completed = p.completed;
+    t.autonomy = p.autonomy;
+    t.end_point_error_m = p.end_point_error_m;
+    t.lateral_rms_m = p.lateral_rms_m;
+    t.lateral_max_m = p.lateral_max_m;
+    t.lateral_start_m = p.lateral_start_m;
+    t.lateral_end_rms_m = p.lateral_end_rms_m;
+    t.taught_length_m = p.taught_length_m;
+    WriteTrajectoryPlot(
+        dir / "teach_repeat.png",
+        scenario.scene.name + ": teach & repeat (" + tr.method + ", " + t.status + ")",
+        {{"taught (ground truth)", taught}, {"repeated (ground truth)", repeated}});
+  }
+  m.teach_repeat = t;
+  WriteMetricsJson(m, dir);  // again, now with the score
+  return m;
+}
+
+}  // namespace trackbed::runner

@@ -1,0 +1,63 @@
+// Point-to-point navigation on the simulated tracked robot (issue 5, `closed_loop`
+// mode): at each control period the navigator sees the robot's estimated pose and the
+// obstacle circles clustered from the latest range scan, and its body twist becomes
+// track speeds through the effective gauge χ·B. Ground truth is logged beside it for
+// the metrics (path, clearance of the chassis box against the real objects).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "trackbed/estimation/skid_steer.h"
+#include "trackbed/navigation/navigation_metrics.h"
+#include "trackbed/navigation/navigator.h"
+#include "trackbed/navigation/scan_clustering.h"
+#include "trackbed/robot/range_sensor.h"
+#include "trackbed/scenario/scenario.h"
+
+namespace trackbed::runner {
+
+class ClosedLoopNavigation {
+ public:
+  explicit ClosedLoopNavigation(const scenario::Scenario& scenario);
+  ClosedLoopNavigation(const ClosedLoopNavigation&) = delete;
+  ClosedLoopNavigation& operator=(const ClosedLoopNavigation&) = delete;
+
+  /// Control period [s].
+  double period_s() const { return period_s_; }
+  /// Keeps the latest scan for the next control step.
+  void AddScan(const robot::RangeScanSample& scan) { scan_ = scan; }
+  /// One control step at `t_s`: `pose` is what the robot believes, `T_world_body` the
+  /// truth (logged, never shown to the navigator). Returns the track speeds to command.
+  estimation::TrackSpeeds Update(double t_s, const estimation::Pose2& pose,
+                                 const Eigen::Isometry3d& T_world_body,
+                                 const std::vector<sim::StaticObject>& objects);
+  /// The navigator has ended the run (reached, goal in obstacle, stalled).
+  bool finished() const { return status_ != navigation::NavigationStatus::kDriving; }
+  const navigation::NavigationLogEntry& last_entry() const { return log_.back(); }
+  /// Metrics over the logged ground truth; `time_limit` when the run ran out of time.
+  navigation::NavigationMetrics Metrics(bool time_limit) const;
+  std::vector<navigation::SubgoalRecord> subgoals() const { return navigator_->subgoals(); }
+  const std::vector<navigation::Circle>& last_obstacles() const { return obstacles_; }
+
+ private:
+  std::unique_ptr<navigation::Navigator> navigator_;
+  navigation::Pose2 goal_;
+  double period_s_;
+  double time_limit_s_;
+  double gauge_eff_m_;
+  double max_yaw_rate_radps_;
+  Eigen::Vector2d mount_xy_m_;
+  Eigen::Vector2d hull_xy_m_;
+  navigation::ScanClusteringOptions clustering_;
+  std::optional<robot::RangeScanSample> scan_;
+  std::vector<navigation::Circle> obstacles_;
+  std::vector<navigation::NavigationLogEntry> log_;
+  navigation::NavigationStatus status_ = navigation::NavigationStatus::kDriving;
+};
+
+}  // namespace trackbed::runner

@@ -1,0 +1,67 @@
+// Scores the localization stack's estimators against ground truth as a run
+// goes (design.md §3 definitions): every estimate is paired with the true
+// pose at the same simulation time.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "trackbed/estimation/trajectory.h"
+
+namespace trackbed::runner {
+
+struct EstimateSample;
+struct LocalizationFrame;
+struct RunSample;
+
+/// The figures of one estimator (design.md §3).
+struct EstimatorMetrics {
+  double ate_rmse_m = 0.0;        ///< RMS horizontal error, no alignment.
+  double ate3d_se3_rmse_m = 0.0;  ///< 3-D ATE after SE(3) alignment (evo-style).
+  double final_error_m = 0.0;     ///< Horizontal error at the end.
+  double final_error_pct = 0.0;   ///< final_error_m / distance_m, in %.
+  /// Mean drift over 10 m of true path, % of 10 m; NaN (null in metrics.json) when the
+  /// path is shorter than 10 m.
+  double rpe_trans_pct = 0.0;
+  long long samples = 0;
+};
+
+/// Visual odometry and fusion over a run.
+struct LocalizationSummary {
+  long long vo_frames = 0;
+  long long vo_failures = 0;  ///< Frames with too few inliers (no motion).
+  /// Frames whose motion is the constant-velocity prediction's consensus (RANSAC's broke
+  /// the dynamics bounds).
+  long long vo_dynamics_constrained = 0;
+  /// Failed frames over which VO's pose went on at the last valid velocity.
+  long long vo_coasted = 0;
+  long long camera_blackout_frames = 0;  ///< Frames a camera fault blanked.
+  double mean_inliers = 0.0;
+  double mean_fusion_w = 0.0;           ///< Mean weight of wheel odometry.
+  double slip_estimate_rmse_mps = 0.0;  ///< Estimated vs true slip velocity, both tracks.
+};
+
+class EstimatorScoring {
+ public:
+  void Add(const RunSample& truth, const EstimateSample& estimate);
+  void AddFrame(const Eigen::Isometry3d& T_world_body_true, const LocalizationFrame& frame);
+
+  /// Metrics per estimator name; `distance_m` is the run's true path length.
+  std::map<std::string, EstimatorMetrics> Metrics(double distance_m) const;
+  LocalizationSummary Summary() const;
+  bool empty() const { return truth_.empty(); }
+
+ private:
+  estimation::Trajectory truth_, wheel_, wheel_noslip_, fused_, ekf_;
+  estimation::Trajectory vo_truth_, vo_;
+  bool has_camera_ = false;
+  long long vo_failures_ = 0, vo_constrained_ = 0, vo_coasted_ = 0, blackout_frames_ = 0;
+  double inliers_sum_ = 0.0, w_sum_ = 0.0;
+  double slip_sq_sum_ = 0.0;
+  long long slip_samples_ = 0;
+};
+
+}  // namespace trackbed::runner

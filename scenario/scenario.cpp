@@ -1,0 +1,253 @@
+// Validation of the scenario structs. Field names are the scenario file's keys
+// (docs/scenario_format.md), so the YAML reader can report `robot.vehicle.mass_kg`
+// straight from an OptionError.
+#include "trackbed/scenario/scenario.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "trackbed/common/option_error.h"
+#include "trackbed/navigation/navigator_factory.h"
+#include "trackbed/sim/terrain_material.h"
+
+namespace trackbed::scenario {
+namespace {
+
+std::string Indexed(const std::string& name, std::size_t k) {
+  return name + "[" + std::to_string(k) + "]";
+}
+
+void Finite(const std::string& field, double value) { option_check::Finite(field.c_str(), value); }
+
+// Throws unless `value` is one of `accepted`, listing them.
+void OneOf(const std::string& field, const std::string& value,
+           const std::vector<std::string>& accepted) {
+  if (std::find(accepted.begin(), accepted.end(), value) != accepted.end()) return;
+  std::string names;
+  for (const std::string& a : accepted) names += (names.empty() ? "" : ", ") + a;
+  throw OptionError(field, "must be one of " + names + " (got '" + value + "')");
+}
+
+// Throws unless `name` is a built-in material or one the terrain defines.
+void KnownMaterial(const std::string& field, const std::string& name,
+                   const sim::TerrainOptions& terrain) {
+  std::string known;
+  for (const auto* list : {&sim::BuiltinMaterials(), &terrain.materials}) {
+    for (const sim::TerrainMaterial& m : *list) {
+      if (m.name == name) return;
+      known += (known.empty() ? "" : ", ") + m.name;
+    }
+  }
+  throw OptionError(field, "unknown material '" + name + "' (known: " + known + ")");
+}
+
+}  // namespace
+
+void SceneSpec::Validate() const {
+  if (name.empty()) throw OptionError("name", "must not be empty");
+  option_check::Nested("world", world);
+  option_check::Nested("terrain", terrain);
+  KnownMaterial("terrain.default_material", terrain.default_material, terrain);
+  for (std::size_t k = 0; k < terrain.regions.size(); ++k) {
+    KnownMaterial("terrain." + Indexed("regions", k) + ".material", terrain.regions[k].material,
+                  terrain);
+  }
+  for (std::size_t k = 0; k < objects.size(); ++k) {
+    option_check::Nested(Indexed("objects", k), objects[k]);
+  }
+  option_check::Nested("appearance", appearance);
+  for (std::size_t k = 0; k < occluders.size(); ++k) {
+    option_check::Nested(Indexed("occluders", k), occluders[k]);
+  }
+}
+
+void RobotSpec::Validate() const {
+  option_check::Finite("start.x_m", start.x_m);
+  option_check::Finite("start.y_m", start.y_m);
+  option_check::Finite("start.yaw_deg", start.yaw_deg);
+  option_check::Nested("vehicle", vehicle);
+  option_check::Nested("encoders", encoders);
+  option_check::Nested("imu", imu);
+  option_check::Nested("stereo", stereo);
+  option_check::Nested("range_sensor", range_sensor);
+}
+
+void DriveSpec::Validate() const {
+  if (laps < 1) throw OptionError("laps", "must be >= 1 (got " + std::to_string(laps) + ")");
+  option_check::Positive("speed_mps", speed_mps);
+  option_check::Positive("lookahead_m", lookahead_m);
+  option_check::Positive("rate_hz", rate_hz);
+  option_check::Positive("goal_tolerance_m", goal_tolerance_m);
+  if (mode == Mode::kPath) {
+    if (waypoints.size() < 2) {
+      throw OptionError("waypoints", "mode path needs at least 2 waypoints (got " +
+                                         std::to_string(waypoints.size()) + ")");
+    }
+    for (std::size_t k = 0; k < waypoints.size(); ++k) {
+      if (!waypoints[k].allFinite()) {
+        throw OptionError(Indexed("waypoints", k), "must be finite");
+      }
+    }
+  } else {
+    if (script.empty()) throw OptionError("script", "mode script needs at least 1 command");
+    for (std::size_t k = 0; k < script.size(); ++k) {
+      const DriveCommand& c = script[k];
+      const std::string at = Indexed("script", k);
+      option_check::NonNegative((at + ".t_s").c_str(), c.t_s);
+      if (k > 0 && c.t_s < script[k - 1].t_s) {
+        throw OptionError(at + ".t_s", "must not be earlier than the previous command's t_s");
+      }
+      if (c.track_speeds) {
+        Finite(at + ".left_mps", c.left_mps);
+        Finite(at + ".right_mps", c.right_mps);
+      } else {
+        Finite(at + ".v_mps", c.v_mps);
+        Finite(at + ".yaw_rate_radps", c.yaw_rate_radps);
+      }
+    }
+  }
+}
+
+void EstimationSpec::Validate() const {
+  option_check::InRange("icr_expansion", icr_expansion, 0.2, 5.0);
+  option_check::Finite("icr_offset_m", icr_offset_m);
+  option_check::Positive("slip_decay_time_s", slip_decay_time_s);
+  option_check::NonNegative("slip_filter_time_s", slip_filter_time_s);
+  if (min_inliers_for_slip < 0) {
+    throw OptionError("min_inliers_for_slip",
+                      "must be >= 0 (got " + std::to_string(min_inliers_for_slip) + ")");
+  }
+  option_check::NonNegative("fusion_weight_rise_time_s", fusion_weight_rise_time_s);
+  option_check::NonNegative("vo_coast_time_s", vo_coast_time_s);
+  option_check::Positive("vo_max_translation_per_frame_m", vo_max_translation_per_frame_m);
+  option_check::InRange("vo_max_rotation_per_frame_deg", vo_max_rotation_per_frame_deg, 1e-3,
+                        180.0);
+  option_check::Positive("vo_max_acceleration_mps2", vo_max_acceleration_mps2);
+  option_check::Positive("vo_max_angular_acceleration_dps2", vo_max_angular_acceleration_dps2);
+  option_check::Positive("vo_max_gyro_rotation_error_deg", vo_max_gyro_rotation_error_deg);
+  option_check::Nested("ekf", ekf);
+}
+
+const std::vector<std::string>& NavigationFieldNames() {
+  static const std::vector<std::string> names = {
+      "none",   "random",     "paper_left",       "paper_right",
+      "u_trap", "narrow_gap", "goal_beside_wall", "narrow_corridor"};
+  return names;
+}
+
+void NavigationSpec::Validate() const {
+  OneOf("method", method, navigation::NavigationMethodNames());
+  OneOf("pose_source", pose_source, {"fused", "wheel_odometry", "ground_truth"});
+  OneOf("field", field, NavigationFieldNames());
+  Finite("goal.x_m", goal.x_m);
+  Finite("goal.y_m", goal.y_m);
+  Finite("goal.yaw_deg", goal.yaw_deg);
+  for (std::size_t k = 0; k < obstacles.size(); ++k) {
+    if (!obstacles[k].center.allFinite()) {
+      throw OptionError(Indexed("obstacles", k) + ".center", "must be finite");
+    }
+    option_check::NonNegative((Indexed("obstacles", k) + ".radius_m").c_str(),
+                              obstacles[k].radius_m);
+  }
+  for (std::size_t k = 0; k < walls.size(); ++k) {
+    if (!walls[k].from.allFinite() || !walls[k].to.allFinite()) {
+      throw OptionError(Indexed("walls", k), "from and to must be finite");
+    }
+    option_check::NonNegative((Indexed("walls", k) + ".radius_m").c_str(), walls[k].radius_m);
+  }
+  option_check::Positive("safety_radius_m", safety_radius_m);
+  option_check::NonNegative("footprint_radius_m", footprint_radius_m);
+  option_check::Positive("control_period_s", control_period_s);
+  option_check::Positive("wheel_radius_m", wheel_radius_m);
+  option_check::Positive("wheel_separation_m", wheel_separation_m);
+  option_check::Positive("max_wheel_speed_radps", max_wheel_speed_radps);
+  option_check::Positive("stall_time_s", stall_time_s);
+  option_check::Positive("max_speed_mps", max_speed_mps);
+  option_check::Positive("max_yaw_rate_radps", max_yaw_rate_radps);
+  option_check::Positive("stop_position_tolerance_m", stop_position_tolerance_m);
+  option_check::InRange("stop_heading_tolerance_deg", stop_heading_tolerance_deg, 1e-3, 180.0);
+}
+
+void TeachRepeatSpec::Validate() const {
+  OneOf("method", method, {"2d", "3d"});
+  option_check::Positive("repeat_speed_mps", repeat_speed_mps);
+  option_check::Positive("repeat_turn_rate_deg_s", repeat_turn_rate_deg_s);
+  Finite("start_offset.x_m", start_offset.x_m);
+  Finite("start_offset.y_m", start_offset.y_m);
+  Finite("start_offset.yaw_deg", start_offset.yaw_deg);
+  for (std::size_t k = 0; k < occluders.size(); ++k) {
+    option_check::Nested(Indexed("occluders", k), occluders[k]);
+    if (occluders[k].back_and_forth) {
+      throw OptionError(Indexed("occluders", k) + ".back_and_forth",
+                        "must be false: a crossing is one walk, scored as one place");
+    }
+  }
+  option_check::NonNegative("recovery_window_s", recovery_window_s);
+}
+
+void OutputsSpec::Validate() const {
+  if (save_images != "none" && save_images != "kitti") {
+    throw OptionError("save_images", "must be none or kitti (got '" + save_images + "')");
+  }
+}
+
+void Scenario::Validate() const {
+  if (!(std::isfinite(duration_s) && duration_s > 0.0 && duration_s <= 1e6)) {
+    throw OptionError("duration_s",
+                      "must be in (0, 1e6] (got " + option_check::Describe(duration_s) + ")");
+  }
+  option_check::Nested("scene", scene);
+  option_check::Nested("robot", robot);
+  // A navigation run drives itself: the `drive` section is not used then.
+  if (!navigation.enabled) option_check::Nested("drive", drive);
+  option_check::Nested("estimation", estimation);
+  option_check::Nested("navigation", navigation);
+  option_check::Nested("teach_repeat", teach_repeat);
+  if (teach_repeat.enabled) {
+    if (!robot.stereo.enabled) {
+      throw OptionError("teach_repeat.enabled", "teach & repeat needs robot.stereo.enabled: true");
+    }
+    if (navigation.enabled) {
+      throw OptionError("teach_repeat.enabled", "teach & repeat and navigation exclude each other");
+    }
+  }
+  option_check::Nested("outputs", outputs);
+  if (navigation.enabled && navigation.mode == NavigationSpec::Mode::kClosedLoop) {
+    if (!robot.range_sensor.enabled) {
+      throw OptionError("robot.range_sensor.enabled",
+                        "navigation.mode closed_loop needs the range sensor (set it true)");
+    }
+    if (navigation.pose_source != "ground_truth" && !estimation.enabled) {
+      throw OptionError("navigation.pose_source",
+                        navigation.pose_source + " needs estimation.enabled: true");
+    }
+    if (navigation.pose_source == "fused" && !robot.stereo.enabled) {
+      throw OptionError("navigation.pose_source", "fused needs robot.stereo.enabled: true");
+    }
+    if (navigation.field != "none" || !navigation.obstacles.empty() || !navigation.walls.empty()) {
+      throw OptionError("navigation.mode",
+                        "closed_loop senses the scene's objects; navigation.field, obstacles "
+                        "and walls are for kinematic mode");
+    }
+  }
+  if (outputs.save_images == "kitti" && !robot.stereo.enabled) {
+    throw OptionError("outputs.save_images", "kitti needs robot.stereo.enabled: true");
+  }
+}
+
+Scenario WithBuiltinMaterialsResolved(Scenario scenario) {
+  sim::TerrainOptions& terrain = scenario.scene.terrain;
+  std::vector<std::string> used = {terrain.default_material};
+  for (const sim::MaterialRegion& r : terrain.regions) used.push_back(r.material);
+  for (const std::string& name : used) {
+    const auto defines = [&name](const sim::TerrainMaterial& m) { return m.name == name; };
+    if (std::any_of(terrain.materials.begin(), terrain.materials.end(), defines)) continue;
+    const auto& builtins = sim::BuiltinMaterials();
+    const auto it = std::find_if(builtins.begin(), builtins.end(), defines);
+    if (it != builtins.end()) terrain.materials.push_back(*it);
+  }
+  return scenario;
+}
+
+}  // namespace trackbed::scenario

@@ -1,0 +1,277 @@
+// A scenario: everything one closed-loop run needs, as plain values.
+//
+// The YAML file format mirrors these structs key for key (scenario_yaml.h);
+// docs/scenario_format.md lists every key with its unit and default.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "trackbed/estimation/ekf_odometry.h"
+#include "trackbed/robot/encoder.h"
+#include "trackbed/robot/imu.h"
+#include "trackbed/robot/range_sensor.h"
+#include "trackbed/robot/stereo_rig.h"
+#include "trackbed/robot/tracked_vehicle.h"
+#include "trackbed/sim/occluder.h"
+#include "trackbed/sim/renderer.h"
+#include "trackbed/sim/static_object.h"
+#include "trackbed/sim/terrain.h"
+#include "trackbed/sim/world.h"
+
+namespace trackbed::scenario {
+
+/// The world the robot drives in.
+struct SceneSpec {
+  /// Free-form name (corridor, outdoor, …).
+  std::string name = "unnamed";
+  sim::WorldOptions world;
+  sim::TerrainOptions terrain;
+  std::vector<sim::StaticObject> objects;
+  /// Light and visual dressing for the cameras.
+  sim::SceneAppearance appearance;
+  /// People walking scripted paths (seen by the cameras).
+  std::vector<sim::OccluderSpec> occluders;
+
+  void Validate() const;
+};
+
+/// Where the robot starts (on the ground, aligned with its slope).
+struct StartPose {
+  double x_m = 0.0;
+  double y_m = 0.0;
+  double yaw_deg = 0.0;
+};
+
+struct RobotSpec {
+  StartPose start;
+  robot::TrackedVehicleOptions vehicle;
+  robot::EncoderOptions encoders;
+  robot::ImuOptions imu;
+  robot::StereoRigOptions stereo;
+  robot::RangeSensorOptions range_sensor;
+
+  void Validate() const;
+};
+
+/// One command of a time-stamped script, held until the next one.
+/// Either a body twist (v, yaw rate; converted with the nominal gauge) or track speeds.
+struct DriveCommand {
+  double t_s = 0.0;
+  bool track_speeds = false;
+  double v_mps = 0.0;
+  double yaw_rate_radps = 0.0;
+  double left_mps = 0.0;
+  double right_mps = 0.0;
+};
+
+/// How the robot is commanded: a replayed script, or a pure-pursuit driver
+/// following a reference path on ground truth (the paper's human driver).
+struct DriveSpec {
+  enum class Mode { kScript, kPath };
+  Mode mode = Mode::kPath;
+  std::vector<DriveCommand> script;
+  /// Reference path vertices [m], world frame.
+  std::vector<Eigen::Vector2d> waypoints;
+  /// Whether the path closes back on its first vertex.
+  bool closed = false;
+  /// Laps of a closed path to drive, >= 1.
+  int laps = 1;
+  /// Cruise speed [m/s], > 0.
+  double speed_mps = 0.4;
+  /// Pure-pursuit look-ahead distance [m], > 0.
+  double lookahead_m = 0.8;
+  /// Rate of the driver [Hz], > 0.
+  double rate_hz = 20.0;
+  /// Distance to the path's end at which the driver stops [m], > 0.
+  double goal_tolerance_m = 0.1;
+
+  void Validate() const;
+};
+
+/// The localization stack run on the robot's sensors (Ham et al. 2012).
+struct EstimationSpec {
+  /// Run the estimators (wheel odometry always; VO and fusion when the stereo camera is on).
+  bool enabled = true;
+  /// ICR expansion factor χ for the effective gauge B_eff = χ·B. Default: the value the
+  /// calibration run scenes/calibration/icr_turns.yaml fits on the hard floor (1.239).
+  double icr_expansion = 1.239;
+  /// Longitudinal ICR offset d [m] (Ham et al. eqs. 3–4).
+  double icr_offset_m = 0.0;
+  /// Decay time constant of a held slip estimate [s], > 0.
+  double slip_decay_time_s = 3.0;
+  /// Time constant of the low-pass filter on slip measurements [s], >= 0
+  /// (WheelOdometryOptions::slip_filter_time_s).
+  double slip_filter_time_s = 0.2;
+  /// Inliers a VO frame needs before its velocity updates the slip estimate, >= 0
+  /// (LocalizationOptions::min_inliers_for_slip).
+  int min_inliers_for_slip = 30;
+  /// FLL file with the fusion rule base; empty: the built-in Table 1.
+  std::string fusion_rules;
+  /// Time constant with which the fusion's wheel weight may rise [s], >= 0 (it falls at
+  /// once; 0: the rule base's weight of each frame as it is).
+  double fusion_weight_rise_time_s = 3.0;
+  /// Visual odometry's pose coasts at the last valid velocity over failed frames for up
+  /// to this long [s], >= 0 (LocalizationOptions::vo_coast_time_s).
+  double vo_coast_time_s = 1.0;
+  /// Visual odometry's per-frame motion bounds for this robot [m], [deg]: a frame that
+  /// claims more is a failure, not a motion (the robot tops out at 1.5 m/s, 10 Hz).
+  double vo_max_translation_per_frame_m = 0.5;
+  double vo_max_rotation_per_frame_deg = 20.0;
+  /// Visual odometry's dynamics bounds for this robot [m/s²], [deg/s²]: a frame's motion
+  /// may depart from the last frame's (constant velocity) by at most a·dt², α·dt²
+  /// (StereoVisualOdometryOptions::max_acceleration_mps2). Measured (docs/localization.md):
+  /// the camera's true translation changes by under 4 cm from one frame to the next
+  /// outdoors (4 m/s²); with a few dozen inliers VO's consensus can be 0.12 m off (seed 7),
+  /// which 8 m/s² (0.08 m at 10 Hz) rejects, where 30 let it through. The angular
+  /// bound applies only to frames without gyro samples: the robot's rotation changes by
+  /// up to 5.6 deg per 0.1 s when it starts or stops a turn on the spot
+  /// (ClosedLoopNavigationTest's run).
+  double vo_max_acceleration_mps2 = 8.0;
+  double vo_max_angular_acceleration_dps2 = 1000.0;
+  /// A VO frame's rotation may differ from the gyro's over the frame interval by at most
+  /// this [deg] (StereoVisualOdometryOptions::max_rotation_prior_error_deg); with a right
+  /// consensus VO's rotation error stayed under 0.6 deg per frame in the outdoor runs of
+  /// seeds 3 and 6.
+  double vo_max_gyro_rotation_error_deg = 2.0;
+  /// The EKF baseline's noise model (estimation/ekf_odometry.h), as `estimation.ekf.*`.
+  estimation::EkfOdometryOptions ekf;
+
+  void Validate() const;
+};
+
+/// A circular obstacle of a navigation scene: centre [m] (world frame) and physical
+/// radius [m] (0: the paper's point obstacle).
+struct NavigationObstacleSpec {
+  Eigen::Vector2d center{0.0, 0.0};
+  double radius_m = 0.0;
+};
+
+/// A wall of a navigation scene, seen by the avoider as a chain of circles of radius
+/// `radius_m` no farther apart than the safety radius d_max (issue 5, "Definitions").
+struct NavigationWallSpec {
+  Eigen::Vector2d from{0.0, 0.0};
+  Eigen::Vector2d to{0.0, 0.0};
+  double radius_m = 0.1;
+};
+
+/// The accepted values of `navigation.field`, "none" first.
+const std::vector<std::string>& NavigationFieldNames();
+
+/// Point-to-point navigation (Jung & Kim 2014; docs/navigation.md). With `enabled`, the
+/// robot drives from `robot.start` to `goal` under `method` instead of following `drive`.
+struct NavigationSpec {
+  bool enabled = false;
+  /// gauss_newton_subgoal, potential_field or dwa.
+  std::string method = "gauss_newton_subgoal";
+  /// kinematic: the paper's differential-drive simulation (no physics, no camera; the
+  /// navigator sees the true pose and the exact circles). closed_loop: the tracked
+  /// vehicle in the scene, the navigator seeing `pose_source` and the obstacle circles
+  /// clustered from the range sensor's scans (robot.range_sensor).
+  enum class Mode { kKinematic, kClosedLoop };
+  Mode mode = Mode::kKinematic;
+  /// Goal pose (x_m, y_m, yaw_deg).
+  StartPose goal;
+  std::vector<NavigationObstacleSpec> obstacles;
+  std::vector<NavigationWallSpec> walls;
+  /// A generated scene: none, random (issue 5's seeded field, `field_seed`), paper_left,
+  /// paper_right, u_trap, narrow_gap, goal_beside_wall, narrow_corridor. A generated
+  /// scene sets the start, the goal and its obstacles; `obstacles` and `walls` add to it.
+  std::string field = "none";
+  /// Seed of the random field (issue 5 uses 0–99).
+  std::uint64_t field_seed = 0;
+  /// Safety radius d_max [m], > 0 (the paper's 1 m).
+  double safety_radius_m = 1.0;
+  /// Footprint radius for collisions and clearance in kinematic mode [m], >= 0.
+  double footprint_radius_m = 0.35;
+  /// Control period [s], > 0 (the paper's 100 ms).
+  double control_period_s = 0.1;
+  /// The kinematic robot (the paper's: r = 0.2 m, W = 0.5 m, |wheel speed| <= 25 rad/s).
+  double wheel_radius_m = 0.2;
+  double wheel_separation_m = 0.5;
+  double max_wheel_speed_radps = 25.0;
+  /// A run without progress toward the goal for this long ends as "stalled" [s], > 0.
+  double stall_time_s = 30.0;
+  /// closed_loop: the pose the navigator sees: fused (needs the stereo camera),
+  /// wheel_odometry, or ground_truth.
+  std::string pose_source = "fused";
+  /// closed_loop: top speed of the tracked robot under navigation [m/s], > 0 (the
+  /// navigator's wheel-speed limit is this over the sprocket radius).
+  double max_speed_mps = 0.4;
+  /// closed_loop: yaw-rate limit [rad/s], > 0; a faster command is scaled down with its
+  /// forward speed (same curvature). Turning in place at full track speed (1.4 rad/s)
+  /// sweeps 8° between camera frames, more than visual odometry tracks reliably.
+  double max_yaw_rate_radps = 0.5;
+  /// The navigator stops when its pose is this close to the goal [m], [deg]; success is
+  /// judged by ground truth at 0.1 m and 2° (issue 5), so a closed-loop run aims tighter.
+  double stop_position_tolerance_m = 0.1;
+  double stop_heading_tolerance_deg = 2.0;
+
+  void Validate() const;
+};
+
+/// Visual teach & repeat (Choi & Ha 2011; docs/teach_repeat.md). With `enabled`, one run
+/// teaches (drives `drive`'s path, the "manual" drive, recording left images into a
+/// teach map) and then repeats the route from the images alone.
+struct TeachRepeatSpec {
+  bool enabled = false;
+  /// 2d (Chen & Birchfield 2006, funnel lane) or 3d (Diosi et al. 2007).
+  std::string method = "2d";
+  /// A teach map folder (a run folder's teach_map/) to repeat instead of teaching,
+  /// relative to the scenario file; empty: teach first.
+  std::string map;
+  /// Repeat: constant forward speed [m/s] and turn rate [deg/s], > 0 (paper's lab:
+  /// 0.05 m/s, 4°/s).
+  double repeat_speed_mps = 0.05;
+  double repeat_turn_rate_deg_s = 4.0;
+  /// The repeat starts at robot.start moved by this offset (in the start's frame) …
+  StartPose start_offset;
+  /// … and by a seeded perturbation of up to 5 cm and 2° (false: none).
+  bool start_perturbation = true;
+  /// People crossing the view in the repeat only (the teach pass does not see them):
+  /// each is one place of Choi & Ha's experiment 1, where features lost and recovered
+  /// are counted from its start_s until `recovery_window_s` after its walk ends.
+  /// Same keys as scene.occluders; back_and_forth must be false (a walk that ends).
+  std::vector<sim::OccluderSpec> occluders;
+  /// How long after a crossing's walk ends its place still counts recoveries [s], >= 0.
+  double recovery_window_s = 3.0;
+  /// The robot stands still through each crossing's window, as in the paper's
+  /// experiment 1 (its vision runs on); false: it drives on while people cross.
+  bool stop_for_crossings = true;
+
+  void Validate() const;
+};
+
+struct OutputsSpec {
+  /// Camera images to save: none, or kitti (KITTI odometry layout in images/;
+  /// needs robot.stereo.enabled).
+  std::string save_images = "none";
+
+  void Validate() const;
+};
+
+struct Scenario {
+  std::uint64_t seed = 1;
+  /// Simulated time limit [s], > 0. A path drive may end sooner.
+  double duration_s = 60.0;
+  SceneSpec scene;
+  RobotSpec robot;
+  DriveSpec drive;
+  EstimationSpec estimation;
+  NavigationSpec navigation;
+  TeachRepeatSpec teach_repeat;
+  OutputsSpec outputs;
+
+  void Validate() const;
+};
+
+/// `scenario` with every built-in material its terrain uses (the default and
+/// the regions') copied into scene.terrain.materials with its parameters, unless
+/// the scenario defines it already: the run folder's scenario.yaml then
+/// reproduces the run after the built-in table changes.
+Scenario WithBuiltinMaterialsResolved(Scenario scenario);
+
+}  // namespace trackbed::scenario
