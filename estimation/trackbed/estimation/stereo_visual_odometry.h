@@ -32,7 +32,7 @@
 //      remaining correspondences, if that one keeps within them;
 //   5. keep the inliers as features and replenish the grid cells that have too few with
 //      new Harris corners (stereo-matched for the next frame).
-// Fewer than min_inliers inliers is a failure (design.md §3): no motion (identity),
+// Fewer than min_inliers inliers is a failure (docs/localization.md): no motion (identity),
 // inliers = 0, a status that says why, and all features are detected afresh so that
 // the next frame can recover.
 #pragma once
@@ -205,7 +205,7 @@ struct StereoVisualOdometryOptions {
   /// Seed of the RANSAC generator (std::mt19937_64); the same seed and images give the
   /// same result.
   std::uint64_t seed = 1;
-  /// Fewer inliers than this is a failure (design.md §3), >= 3.
+  /// Fewer inliers than this is a failure (docs/localization.md), >= 3.
   int min_inliers = 6;
   /// Per-frame motion bounds of the platform: a frame whose estimated motion moves the
   /// camera farther [m] or turns it more [deg] is a failure (kImplausibleMotion), not a
