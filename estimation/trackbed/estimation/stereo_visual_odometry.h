@@ -170,7 +170,7 @@ MotionRefinementResult RefineMotionReprojection(
     const std::vector<unsigned char>& mask, const StereoCamera& camera,
     const Eigen::Isometry3d& T_init, const MotionRefinementOptions& options);
 
-/// HarrisOptions{} with min_response = 1e-5: the VO's default detector.
+/// HarrisOptions{} with min_response = 2e-6: the VO's default detector.
 inline perception::HarrisOptions DefaultVoHarrisOptions() {
   perception::HarrisOptions h;
   h.min_response = 2e-6;
@@ -180,7 +180,7 @@ inline perception::HarrisOptions DefaultVoHarrisOptions() {
 /// Options of StereoVisualOdometry. Nested structs carry their own documentation.
 struct StereoVisualOdometryOptions {
   /// Harris detector for new features (absolute threshold: see harris_corners.h for
-  /// the scale of min_response; the VO default 1e-5 keeps corners of contrast ≳ 0.2).
+  /// the scale of min_response; the VO default 2e-6 keeps corners of contrast ≳ 0.13).
   perception::HarrisOptions harris = DefaultVoHarrisOptions();
   /// Bucketing grid for new features: cols × rows cells over the image, >= 1 each.
   int grid_cols = 12;
