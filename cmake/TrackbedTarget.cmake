@@ -1,5 +1,6 @@
 # Per-target settings for trackbed's own code: language level and warnings.
-# Used instead of global CMAKE_CXX_FLAGS edits (style.md §1).
+# Used instead of global CMAKE_CXX_FLAGS edits: one target per folder, each with its
+# own settings (docs/architecture.md).
 function(trackbed_settings target)
   get_target_property(_type ${target} TYPE)
   if(_type STREQUAL "INTERFACE_LIBRARY")

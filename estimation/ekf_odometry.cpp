@@ -36,7 +36,8 @@ EkfOdometry::EkfOdometry(const EkfOdometryOptions& options, const Pose2& initial
   x_(kX) = initial_pose.x;
   x_(kY) = initial_pose.y;
   x_(kTheta) = initial_pose.yaw;
-  // The start pose is known (design.md §3); velocity, yaw rate and bias are not.
+  // The start pose is known (every estimator starts at the true initial pose,
+  // docs/run_folder.md); velocity, yaw rate and bias are not.
   P_.diagonal().head<7>() << 1e-8, 1e-8, 1e-8, 0.1, 0.1, 0.1, 1e-4;
   ClonePose();
 }

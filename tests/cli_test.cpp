@@ -1,5 +1,5 @@
 // The `trackbed` command line end to end: the shipped scenes, the run-folder
-// contract of README.md ("Commands", "Run folder"), determinism, and errors on bad input.
+// contract (README.md "Commands", docs/run_folder.md), determinism, and errors on bad input.
 #include <sys/wait.h>
 
 #include <algorithm>

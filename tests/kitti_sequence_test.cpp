@@ -204,7 +204,7 @@ TEST_F(KittiSequenceTest, WriterReaderRoundTrip) {
     EXPECT_NEAR(sequence.times_s()[k], times[k], 1e-6);
   }
 
-  // KITTI's own number style, as the brief asks of the writer.
+  // KITTI's own number style, as KITTI's calib.txt files have it.
   const std::string calib = ReadText(seq / "calib.txt");
   EXPECT_EQ(calib.rfind("P0: 4.001250000000e+02 0.000000000000e+00 3.197500000000e+02 ", 0), 0u)
       << calib;

@@ -1,7 +1,7 @@
 // Point-to-point navigation runs through the scenario file and the run folder
 // (issue 5, kinematic mode): the paper's scenes reach the goal pose with a
 // sub-goal, bad input ends with a clear status or a clear error, and the run
-// folder holds what design.md §3 promises.
+// folder holds what docs/run_folder.md promises.
 #include <filesystem>
 #include <fstream>
 #include <string>

@@ -30,7 +30,7 @@ using testing::TestCamera;
 constexpr double kDeg = M_PI / 180.0;
 
 // ---------------------------------------------------------------------------------------
-// The rules (design.md §1.3; Choi & Ha 2011 eq. 1).
+// The rules (Choi & Ha 2011 eq. 1; docs/teach_repeat.md).
 
 TEST(FunnelLaneVoteTest, RightWhenTheFeatureIsRightOfCentreAndItsDestinationLeftOfIt) {
   EXPECT_EQ(FunnelLaneVote(10.0, -5.0), TurnVote::kRight);  // f_c > 0 and f_d < 0

@@ -31,7 +31,7 @@ namespace trackbed::navigation::testing {
 constexpr double kCameraForward = 0.2;  // [m] ahead of the body origin
 constexpr double kCameraHeight = 0.4;   // [m] above the floor
 
-/// The project's camera: 640×480, fx = fy = 381.4 px (design.md, the robot's stereo rig).
+/// The project's camera: 640×480, fx = fy = 381.4 px (docs/rendering.md, the robot's stereo rig).
 inline CameraIntrinsics TestCamera() {
   CameraIntrinsics c;
   c.fx = 381.4;

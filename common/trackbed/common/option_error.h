@@ -1,6 +1,6 @@
 // Errors for invalid options structs.
 //
-// Every options struct in trackbed validates itself once (style.md §2) and
+// Every options struct in trackbed validates itself once (docs/architecture.md) and
 // throws OptionError naming the offending field. The scenario reader catches it
 // and prefixes the file and the dotted key, so a user sees
 // `scenes/x.yaml: robot.vehicle.mass_kg: must be > 0 (got -3)`.

@@ -28,8 +28,9 @@ struct LocalizationOptions {
   StereoVisualOdometryOptions vo;
   /// FLL rule file for the fusion weight; empty: the built-in Ham et al. Table 1.
   std::string fusion_rules_file;
-  /// Inliers a VO frame needs before its velocity updates the slip estimate (design.md
-  /// §1.1 "whenever VO is valid (enough inliers)"), >= the VO's own minimum.
+  /// Inliers a VO frame needs before its velocity updates the slip estimate (slip is
+  /// measured against VO whenever VO is valid, with enough inliers: docs/localization.md,
+  /// our reading of Ham et al. 2012 eqs. 1–5), >= the VO's own minimum.
   int min_inliers_for_slip = 30;
   /// Time constant with which the wheel weight w may rise [s], >= 0 (0: the rule's
   /// value each frame). It falls at once. The slip estimate lags the ground by its
@@ -62,7 +63,7 @@ struct LocalizationFrameReport {
 };
 
 /// Runs the estimators side by side. Every estimator starts at the robot's
-/// true initial pose (design.md §3), planar ones at its height. Not copyable.
+/// true initial pose (docs/run_folder.md), planar ones at its height. Not copyable.
 class LocalizationStack {
  public:
   /// `T_body_left`: the left camera (OpenCV axes) in the body frame.

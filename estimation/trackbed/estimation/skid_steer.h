@@ -30,7 +30,7 @@ inline TrackSpeeds TrackSpeedsFromTwist(const BodyTwist& t, double gauge_m) {
 }
 
 /// Distance [m] the encoders imply for one sample interval: |r (Δφ_l + Δφ_r) / 2|
-/// (design.md §3, `encoder_distance_m`).
+/// (docs/run_folder.md, `encoder_distance_m`).
 inline double EncoderDistanceIncrement(double delta_left_rad, double delta_right_rad,
                                        double sprocket_radius_m) {
   const double d = sprocket_radius_m * (delta_left_rad + delta_right_rad) / 2.0;

@@ -1,5 +1,5 @@
 // Reading and writing trajectories in the benchmark formats, and associating two
-// trajectories pose by pose (design.md §3 `trackbed eval`, §6 format pitfalls).
+// trajectories pose by pose (`trackbed eval`; the formats and their pitfalls below).
 //
 //   TUM       `t x y z qx qy qz qw` per line, whitespace-separated, t in seconds, `#`
 //             comments (TUM RGB-D benchmark). ORB-SLAM3 writes these columns with

@@ -1,11 +1,11 @@
 // Trajectory metrics against ground truth, as the evo tool and the KITTI odometry
-// devkit compute them, plus the run-folder figures of design.md §3.
+// devkit compute them, plus the run-folder figures of docs/run_folder.md.
 //
 // Every function takes *associated* trajectories: gt[k] and est[k] are the same instant
 // (see Associate in trajectory_io.h); they throw std::invalid_argument (message starting
 // with the function's name) if the two differ in size or are empty. Poses are
 // T_world_body; positions in metres, angles as the names say. Pure functions returning
-// values (style.md §3, §7).
+// values.
 #pragma once
 
 #include <cstddef>
@@ -67,7 +67,7 @@ struct ErrorStats {
 ErrorStats ComputeStats(std::vector<double> values);
 
 /// evo's APE (translation part): |p_gt,k − p_est,k| [m] per pose, after moving est by
-/// Align(gt, est, mode). With kSe3 its rmse is design.md's `ate3d_se3_rmse_m`.
+/// Align(gt, est, mode). With kSe3 its rmse is metrics.json's `ate3d_se3_rmse_m`.
 struct AbsoluteError {
   Alignment alignment;
   ErrorStats error_m;
@@ -75,17 +75,17 @@ struct AbsoluteError {
 AbsoluteError AbsoluteTrajectoryError(const Trajectory& gt, const Trajectory& est,
                                       AlignmentMode mode);
 
-/// design.md §3 `ate_rmse_m`: the RMS horizontal (x, y) position error [m], without any
-/// alignment (every estimator starts at the true initial pose; the papers compare on the
-/// ground plane).
+/// metrics.json's `ate_rmse_m` (docs/run_folder.md): the RMS horizontal (x, y) position
+/// error [m], without any alignment (every estimator starts at the true initial pose;
+/// the papers compare on the ground plane).
 double HorizontalAteRmse(const Trajectory& gt, const Trajectory& est);
 
 /// Error at the last associated pose, without alignment.
 struct FinalError {
-  double horizontal_m = 0.0;  ///< |(x, y)_est − (x, y)_gt| at the end (design.md final_error_m)
+  double horizontal_m = 0.0;  ///< |(x, y)_est − (x, y)_gt| at the end (final_error_m)
   double error_3d_m = 0.0;    ///< the same in 3-D
   double gt_path_length_m = 0.0;  ///< PathLength(gt) of the associated poses
-  /// 100 · horizontal_m / gt_path_length_m (design.md final_error_pct); 0 for a path of
+  /// 100 · horizontal_m / gt_path_length_m (as final_error_pct); 0 for a path of
   /// length 0.
   double pct = 0.0;
 };
@@ -152,9 +152,9 @@ SegmentDrift SegmentDriftError(const Trajectory& gt, const Trajectory& est,
 /// every 10 frames). Needs a ground-truth path longer than 100 m (else segments == 0).
 SegmentDrift KittiOdometryError(const Trajectory& gt, const Trajectory& est);
 
-/// design.md §3 `rpe_trans_pct`: the mean translational drift over 10 m segments of the
-/// ground-truth path (a segment starting at every pose), in % of the segment length;
-/// std::nullopt when the path is shorter than 10 m.
+/// metrics.json's `rpe_trans_pct` (docs/run_folder.md): the mean translational drift
+/// over 10 m segments of the ground-truth path (a segment starting at every pose), in %
+/// of the segment length; std::nullopt when the path is shorter than 10 m.
 std::optional<double> RpeTransPct(const Trajectory& gt, const Trajectory& est);
 
 // ---------------------------------------------------------------------------------------
@@ -199,11 +199,11 @@ struct TrajectoryEvaluation {
   double gt_path_length_m = 0.0;
   double est_path_length_m = 0.0;       ///< of the estimate as given (before any scale)
   AbsoluteError ate;                    ///< 3-D, after `align`
-  double ate_rmse_m = 0.0;              ///< horizontal, unaligned (design.md)
+  double ate_rmse_m = 0.0;              ///< horizontal, unaligned (docs/run_folder.md)
   RpeResult rpe;                        ///< on the aligned estimate
   SegmentDrift kitti;                   ///< on the aligned estimate; segments 0 if < 100 m
-  std::optional<double> rpe_trans_pct;  ///< design.md; on the aligned estimate
-  FinalError final_error;               ///< unaligned (design.md)
+  std::optional<double> rpe_trans_pct;  ///< docs/run_folder.md; on the aligned estimate
+  FinalError final_error;               ///< unaligned (docs/run_folder.md)
   double final_error_aligned_m = 0.0;   ///< 3-D, after `align`
 };
 

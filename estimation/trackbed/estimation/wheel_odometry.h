@@ -1,7 +1,7 @@
 // Wheel odometry of a tracked robot with slip estimation (Ham et al. 2012,
 // eqs. 1–6), and the plain no-slip skid-steer odometry as its baseline.
 //
-// How we read the paper (design.md §1.1). Eqs. 1–2 compute each track's slip
+// How we read the paper (docs/localization.md). Eqs. 1–2 compute each track's slip
 // velocity from "the robot's velocity from the previous step" and the
 // encoders; eqs. 3–5 then add the slip back to the track speeds. If the
 // velocity in eqs. 1–2 were the odometry's own previous output, the two

@@ -1,5 +1,5 @@
 // Repeat 2D: qualitative, funnel-lane path following (Chen & Birchfield 2006, as Choi &
-// Ha 2011 §II state it; design.md §1.3).
+// Ha 2011 §II state it; docs/teach_repeat.md).
 //
 // For feature i, f_c is its x in the current image and f_d its x in the milestone's
 // destination (last) image, both relative to the principal point (> 0 right of it). The

@@ -35,7 +35,7 @@
 //   0 (default) turns in place exactly; 1 is the literal diag(1, 1, 1).
 //
 // Equation numbers are those the paper's text refers to (the typeset equations are lost
-// in our copy of the paper, seeds/001); design.md §1.2 restates them.
+// in our copy of Jung & Kim 2014); docs/navigation.md maps them to code.
 //
 // The step is deadbeat: an unsaturated step removes the weighted error in one control
 // period (the robot stops on the point of its heading line nearest the target, or

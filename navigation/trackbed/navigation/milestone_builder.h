@@ -1,4 +1,4 @@
-// The teach phase of visual teach & repeat (Choi & Ha 2011 §II–III; design.md §1.3):
+// The teach phase of visual teach & repeat (Choi & Ha 2011 §II–III; docs/teach_repeat.md):
 // cuts the taught image sequence into milestones and records each milestone's features.
 //
 // Per milestone: Harris corners (absolute threshold, bucketed over a grid so that they

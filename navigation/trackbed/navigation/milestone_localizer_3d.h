@@ -1,5 +1,5 @@
 // Repeat 3D: milestone-relative localization, steering and feature recovery (Diosi et
-// al. 2007, as Choi & Ha 2011 §III describe it; design.md §1.3).
+// al. 2007, as Choi & Ha 2011 §III describe it; docs/teach_repeat.md).
 //
 // Per frame, for the active milestone (3-D points p_first of its features in its first
 // camera's frame, and its last camera T_first_last, from teaching):

@@ -1,4 +1,4 @@
-// The teach map of visual teach & repeat (Choi & Ha 2011; design.md §1.3): the
+// The teach map of visual teach & repeat (Choi & Ha 2011; docs/teach_repeat.md): the
 // milestones cut from the taught image sequence, and its on-disk format.
 //
 // A milestone spans the teach images first_image … last_image. Its features were

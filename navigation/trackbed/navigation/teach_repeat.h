@@ -39,7 +39,7 @@ enum class RepeatStatus {
 /// "driving", "finished", "lost".
 const char* ToString(RepeatStatus status);
 
-/// One feature's funnel-lane vote (Chen & Birchfield 2006; design.md §1.3).
+/// One feature's funnel-lane vote (Chen & Birchfield 2006; Choi & Ha 2011 eq. 1).
 enum class TurnVote : std::int8_t { kLeft = 1, kStraight = 0, kRight = -1 };
 /// "left", "straight", "right".
 const char* ToString(TurnVote vote);

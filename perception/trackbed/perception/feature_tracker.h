@@ -1,6 +1,6 @@
 // Pyramidal Lucas–Kanade feature tracking (Bouguet's implementation in OpenCV,
 // cv::calcOpticalFlowPyrLK) from a previous to a current image, with the two checks
-// OpenCV leaves to its caller (design.md §6):
+// OpenCV leaves to its caller:
 //   - bounds: calcOpticalFlowPyrLK can report status 1 for a point it has moved
 //     outside the image, so every tracked point is checked against the image;
 //   - forward–backward consistency (Kalal et al. 2010): the tracked point is tracked

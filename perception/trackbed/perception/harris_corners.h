@@ -1,7 +1,7 @@
 // Harris corners (Harris & Stephens 1988) with an absolute response threshold.
 //
 // OpenCV's goodFeaturesToTrack thresholds at `qualityLevel` × the image's strongest
-// response, so its counts are not comparable across images or scenes (design.md §6).
+// response, so its counts are not comparable across images or scenes.
 // Here R is computed on a fixed, documented scale and thresholded absolutely, so the
 // number of corners says how much texture a scene has — which the fuzzy fusion uses.
 //

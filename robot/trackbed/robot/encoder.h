@@ -9,7 +9,7 @@ namespace trackbed::robot {
 struct EncoderOptions {
   /// Counts per sprocket revolution (after quadrature decoding), >= 1.
   int ticks_per_rev = 4096;
-  /// Sampling rate [Hz], >= 100 (design.md §2).
+  /// Sampling rate [Hz], >= 100 (docs/scenario_format.md, `robot.encoders.rate_hz`).
   double rate_hz = 100.0;
 
   void Validate() const;
