@@ -1,4 +1,4 @@
-// `trackbed vo KITTI_DIR --out DIR [--poses FILE]` (design.md §3): stereo visual
+// `trackbed vo KITTI_DIR --out DIR [--poses FILE]`: stereo visual
 // odometry on a real sequence in KITTI layout.
 //
 // Writes, in DIR (created if needed):

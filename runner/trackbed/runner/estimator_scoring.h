@@ -1,5 +1,5 @@
 // Scores the localization stack's estimators against ground truth as a run
-// goes (design.md §3 definitions): every estimate is paired with the true
+// goes (definitions: docs/run_folder.md): every estimate is paired with the true
 // pose at the same simulation time.
 #pragma once
 
@@ -17,7 +17,7 @@ struct EstimateSample;
 struct LocalizationFrame;
 struct RunSample;
 
-/// The figures of one estimator (design.md §3).
+/// The figures of one estimator (docs/run_folder.md).
 struct EstimatorMetrics {
   double ate_rmse_m = 0.0;        ///< RMS horizontal error, no alignment.
   double ate3d_se3_rmse_m = 0.0;  ///< 3-D ATE after SE(3) alignment (evo-style).

@@ -1,4 +1,4 @@
-// From a scenario's `navigation` section (design.md §1.2, issue 5) to what the
+// From a scenario's `navigation` section (Jung & Kim 2014; docs/navigation.md) to what the
 // navigation library runs: the scene (start, goal, obstacle circles), the
 // navigators' options and the kinematic simulation's options.
 #pragma once

@@ -1,4 +1,4 @@
-// A run folder (design.md §3): the resolved scenario, ground truth, sensor
+// A run folder (docs/run_folder.md): the resolved scenario, ground truth, sensor
 // logs and metrics.json, streamed while the run goes so that a run that stops
 // early leaves readable files. metrics.json is written last, atomically, and
 // says whether the run completed and why it stopped.

@@ -1,4 +1,4 @@
-// One teach & repeat run (issue 6; Choi & Ha 2011, design.md §1.3): the teach pass
+// One teach & repeat run (Choi & Ha 2011; docs/teach_repeat.md): the teach pass
 // drives the scenario's path (the "manual" drive) and records the left images into a
 // teach map; the repeat pass starts near the taught start and follows the route from
 // the images alone. Both passes are full run folders: DIR/teach/ and DIR itself, with

@@ -1,4 +1,4 @@
-// Scenario files: YAML in, YAML out (design.md §3, docs/scenario_format.md).
+// Scenario files: YAML in, YAML out (docs/scenario_format.md).
 //
 // The reader is strict: unknown keys, wrong types and out-of-range values are
 // rejected with a one-line message `<source>: <dotted.key>: <reason>`, where the
