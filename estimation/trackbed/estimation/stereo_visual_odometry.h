@@ -225,7 +225,8 @@ struct StereoVisualOdometryOptions {
   /// With a few dozen inliers a short-baseline rig's consensus can be 0.1 m off where
   /// the true translations differ by 1 cm from frame to frame: a bound just above the
   /// platform's true accelerations rejects it (the tracked robot's scenarios use
-  /// 8 m/s², scenario/trackbed/scenario/scenario.h). Defaults leave room for a car braking at 3 g. > 0.
+  /// 8 m/s², scenario/trackbed/scenario/scenario.h). Defaults leave room for a car braking at 3 g.
+  /// > 0.
   double max_acceleration_mps2 = 30.0;
   double max_angular_acceleration_dps2 = 1000.0;
   /// With a rotation prior (a gyro's rotation over the frame interval, passed to

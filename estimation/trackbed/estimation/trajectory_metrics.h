@@ -82,8 +82,8 @@ double HorizontalAteRmse(const Trajectory& gt, const Trajectory& est);
 
 /// Error at the last associated pose, without alignment.
 struct FinalError {
-  double horizontal_m = 0.0;  ///< |(x, y)_est − (x, y)_gt| at the end (final_error_m)
-  double error_3d_m = 0.0;    ///< the same in 3-D
+  double horizontal_m = 0.0;      ///< |(x, y)_est − (x, y)_gt| at the end (final_error_m)
+  double error_3d_m = 0.0;        ///< the same in 3-D
   double gt_path_length_m = 0.0;  ///< PathLength(gt) of the associated poses
   /// 100 · horizontal_m / gt_path_length_m (as final_error_pct); 0 for a path of
   /// length 0.
