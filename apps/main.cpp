@@ -15,7 +15,7 @@
 #include "eval_command.h"
 #include "report_command.h"
 #include "sweep_command.h"
-#include "trackbed/runner/run_folder.h"
+#include "trackbed/runner/run_scenario.h"
 #include "trackbed/scenario/scenario_yaml.h"
 #include "vo_command.h"
 

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "trackbed/estimation/icr_calibration.h"
-#include "trackbed/runner/closed_loop_runner.h"
+#include "trackbed/runner/closed_loop.h"
 #include "trackbed/scenario/scenario_yaml.h"
 #include "trackbed/sim/terrain_material.h"
 

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "bench_args.h"
-#include "trackbed/runner/closed_loop_runner.h"
+#include "trackbed/runner/closed_loop.h"
 #include "trackbed/scenario/scenario_yaml.h"
 
 int main(int argc, char** argv) {

@@ -15,7 +15,7 @@
 #include "bench_args.h"
 #include "trackbed/estimation/stereo_visual_odometry.h"
 #include "trackbed/robot/stereo_rig.h"
-#include "trackbed/runner/closed_loop_runner.h"
+#include "trackbed/runner/closed_loop.h"
 #include "trackbed/scenario/scenario_yaml.h"
 #include "trackbed/sim/renderer.h"
 

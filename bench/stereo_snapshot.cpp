@@ -9,7 +9,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "trackbed/runner/closed_loop_runner.h"
+#include "trackbed/runner/closed_loop.h"
 #include "trackbed/scenario/scenario_yaml.h"
 
 int main(int argc, char** argv) {

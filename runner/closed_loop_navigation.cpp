@@ -3,10 +3,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <utility>
 
 #include "trackbed/navigation/navigator_factory.h"
 #include "trackbed/runner/footprint_clearance.h"
 #include "trackbed/runner/navigation_scenario.h"
+#include "trackbed/runner/run_metrics.h"
 
 namespace trackbed::runner {
 namespace {
@@ -36,8 +39,14 @@ navigation::NavigatorOptions OptionsFor(const scenario::Scenario& s) {
 
 }  // namespace
 
-ClosedLoopNavigation::ClosedLoopNavigation(const scenario::Scenario& s)
-    : goal_{s.navigation.goal.x_m, s.navigation.goal.y_m, Radians(s.navigation.goal.yaw_deg)},
+ClosedLoopNavigation::ClosedLoopNavigation(const scenario::Scenario& s,
+                                           std::vector<sim::StaticObject> objects,
+                                           StepObserver on_step)
+    : method_(s.navigation.method),
+      pose_source_(s.navigation.pose_source),
+      objects_(std::move(objects)),
+      on_step_(std::move(on_step)),
+      goal_{s.navigation.goal.x_m, s.navigation.goal.y_m, Radians(s.navigation.goal.yaw_deg)},
       period_s_(s.navigation.control_period_s),
       time_limit_s_(s.duration_s),
       gauge_eff_m_(s.estimation.icr_expansion * s.robot.vehicle.track_gauge_m),
@@ -48,9 +57,30 @@ ClosedLoopNavigation::ClosedLoopNavigation(const scenario::Scenario& s)
   clustering_.wall_spacing_m = std::min(clustering_.wall_spacing_m, s.navigation.safety_radius_m);
 }
 
-estimation::TrackSpeeds ClosedLoopNavigation::Update(
-    double t_s, const estimation::Pose2& pose, const Eigen::Isometry3d& T_world_body,
-    const std::vector<sim::StaticObject>& objects) {
+ControlOutput ClosedLoopNavigation::Update(const ControlInput& input) {
+  const auto believed = [&] {
+    if (pose_source_ == "ground_truth") return estimation::PlanarPose(input.T_world_body);
+    // The scenario's validation makes estimation on for the other pose sources.
+    if (!input.estimates)
+      throw std::logic_error("navigation: " + pose_source_ + " has no estimate");
+    return estimation::PlanarPose(pose_source_ == "fused" ? input.estimates->fused()
+                                                          : input.estimates->wheel_odometry());
+  };
+  ControlOutput out;
+  out.tracks = Command(input.t_s, believed(), input.T_world_body);
+  if (on_step_) on_step_(log_.back());
+  if (finished()) out.stop_reason = "navigation " + Metrics(false).status;
+  return out;
+}
+
+void ClosedLoopNavigation::AddMetrics(bool time_ran_out, RunMetrics* metrics) const {
+  metrics->navigation_method = method_;
+  metrics->navigation = Metrics(time_ran_out);
+  metrics->navigation_subgoals = subgoals();
+}
+
+estimation::TrackSpeeds ClosedLoopNavigation::Command(double t_s, const estimation::Pose2& pose,
+                                                      const Eigen::Isometry3d& T_world_body) {
   obstacles_.clear();
   if (scan_) {
     // The scan is placed where the robot believes its sensor is.
@@ -74,7 +104,7 @@ estimation::TrackSpeeds ClosedLoopNavigation::Update(
   e.target_x_m = c.target.x();
   e.target_y_m = c.target.y();
   e.subgoal_active = c.subgoal_active;
-  e.clearance_m = ChassisClearance(T_world_body, hull_xy_m_, objects);
+  e.clearance_m = ChassisClearance(T_world_body, hull_xy_m_, objects_);
   log_.push_back(e);
   estimation::BodyTwist twist{c.twist.v_mps, c.twist.yaw_rate_radps};
   if (std::abs(twist.yaw_rate_radps) > max_yaw_rate_radps_) {

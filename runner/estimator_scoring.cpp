@@ -5,7 +5,7 @@
 #include <limits>
 
 #include "trackbed/estimation/trajectory_metrics.h"
-#include "trackbed/runner/closed_loop_runner.h"
+#include "trackbed/runner/run_sample.h"
 
 namespace trackbed::runner {
 

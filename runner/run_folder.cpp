@@ -1,71 +1,28 @@
 // Run folder writer (see run_folder.h).
 #include "trackbed/runner/run_folder.h"
 
-#include <cerrno>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
-#include <fstream>
+#include <map>
 #include <memory>
-#include <stdexcept>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 
-#include "trackbed/perception/kitti_sequence.h"
-
-#include "trackbed/estimation/pose2.h"
 #include "trackbed/estimation/trajectory.h"
 #include "trackbed/estimation/trajectory_metrics.h"
-#include "trackbed/runner/closed_loop_runner.h"
+#include "trackbed/perception/kitti_sequence.h"
+#include "trackbed/runner/log_file.h"
+#include "trackbed/runner/navigation_log.h"
 #include "trackbed/runner/navigation_scenario.h"
 #include "trackbed/runner/run_plots.h"
-#include "trackbed/runner/teach_repeat_run.h"
 #include "trackbed/scenario/scenario_yaml.h"
 
 namespace trackbed::runner {
 namespace {
 
 namespace fs = std::filesystem;
-
-// A text file with a large buffer; checks every write.
-class LogFile {
- public:
-  LogFile(const fs::path& path, const std::string& header) : path_(path) {
-    file_.rdbuf()->pubsetbuf(buffer_, sizeof(buffer_));
-    file_.open(path, std::ios::out | std::ios::trunc);
-    if (!file_) Fail("cannot create");
-    if (!header.empty()) Line(header.c_str());
-  }
-  void Line(const char* text) {
-    file_ << text << '\n';
-    if (!file_) Fail("cannot write");
-  }
-  void Close() {
-    file_.close();
-    if (!file_) Fail("cannot close");
-  }
-
- private:
-  [[noreturn]] void Fail(const char* what) const {
-    throw std::runtime_error(path_.string() + ": " + what + ": " + std::strerror(errno));
-  }
-  fs::path path_;
-  char buffer_[1 << 16];
-  std::ofstream file_;
-};
-
-void WriteAtomically(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::out | std::ios::trunc);
-    f << text;
-    f.close();
-    if (!f) throw std::runtime_error(tmp.string() + ": cannot write: " + std::strerror(errno));
-  }
-  fs::rename(tmp, path);
-}
 
 nlohmann::ordered_json SlipJson(const SlipStats& s) {
   nlohmann::ordered_json j;
@@ -156,226 +113,6 @@ struct PlotData {
          {"right slip [m/s]", {{"true", slip_right_true}, {"estimated", slip_right_est}}}});
   }
 };
-
-}  // namespace
-
-std::string MetricsJson(const RunMetrics& m) {
-  nlohmann::ordered_json j;
-  j["status"] = m.completed ? "completed" : "failed";
-  j["stop_reason"] = m.stop_reason;
-  j["sim_time_s"] = m.sim_time_s;
-  j["wall_time_s"] = m.wall_time_s;
-  j["real_time_factor"] = m.real_time_factor();
-  j["distance_m"] = m.distance_m;
-  j["encoder_distance_m"] = m.encoder_distance_m;
-  j["encoder_distance_error_pct"] =
-      m.distance_m > 0 ? 100.0 * (m.encoder_distance_m - m.distance_m) / m.distance_m : 0.0;
-  j["min_com_height_m"] = m.min_com_height_m;
-  nlohmann::ordered_json slip;
-  slip["left"] = SlipJson(m.slip[robot::kLeft]);
-  slip["right"] = SlipJson(m.slip[robot::kRight]);
-  nlohmann::ordered_json by_material = nlohmann::ordered_json::object();
-  for (const auto& [name, stats] : m.slip_by_material) by_material[name] = SlipJson(stats);
-  slip["by_material"] = by_material;
-  j["slip"] = slip;
-  j["icr_expansion"] = {{"chi", m.icr.chi},
-                        {"samples", m.icr.samples_used},
-                        {"rms_residual_radps", m.icr.rms_residual_radps}};
-  j["stereo_frames"] = m.stereo_frames;
-  nlohmann::ordered_json estimators = nlohmann::ordered_json::object();
-  for (const auto& [name, e] : m.estimators) {
-    estimators[name] = {
-        {"ate_rmse_m", e.ate_rmse_m},       {"ate3d_se3_rmse_m", e.ate3d_se3_rmse_m},
-        {"final_error_m", e.final_error_m}, {"final_error_pct", e.final_error_pct},
-        {"rpe_trans_pct", e.rpe_trans_pct}, {"samples", e.samples}};
-  }
-  j["estimators"] = estimators;
-  const LocalizationSummary& loc = m.localization;
-  j["localization"] = {{"vo_frames", loc.vo_frames},
-                       {"camera_blackout_frames", loc.camera_blackout_frames},
-                       {"vo_failures", loc.vo_failures},
-                       {"vo_dynamics_constrained", loc.vo_dynamics_constrained},
-                       {"vo_coasted", loc.vo_coasted},
-                       {"mean_inliers", loc.mean_inliers},
-                       {"mean_fusion_w", loc.mean_fusion_w},
-                       {"slip_estimate_rmse_mps", loc.slip_estimate_rmse_mps}};
-  j["timing"] = {{"render_s", m.render_wall_s},
-                 {"sensor_model_s", m.sensor_model_wall_s},
-                 {"estimation_s", m.estimation_wall_s},
-                 {"physics_s", m.physics_wall_s},
-                 {"control_s", m.control_wall_s},
-                 {"sensing_s", m.sensing_wall_s},
-                 {"io_s", m.io_wall_s}};
-  j["memory"] = {{"peak_rss_mb", m.peak_rss_mb}};
-  if (m.teach_repeat) {
-    const TeachRepeatMetrics& t = *m.teach_repeat;
-    const auto finite_or_null = [](double v) {
-      return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json();
-    };
-    j["teach_repeat"] = {{"method", t.method},
-                         {"status", t.status},
-                         {"completed", t.completed},
-                         {"autonomy", t.autonomy},
-                         {"end_point_error_m", t.end_point_error_m},
-                         {"lateral_rms_m", t.lateral_rms_m},
-                         {"lateral_max_m", t.lateral_max_m},
-                         {"lateral_start_m", t.lateral_start_m},
-                         {"lateral_end_rms_m", t.lateral_end_rms_m},
-                         {"taught_length_m", t.taught_length_m},
-                         {"features_lost", t.features_lost},
-                         {"features_recovered", t.features_recovered},
-                         {"recovery_rate", finite_or_null(t.recovery_rate)},
-                         {"recovery_rate_pooled", finite_or_null(t.recovery_rate_pooled)},
-                         {"milestones", t.milestones},
-                         {"teach_images", t.teach_images}};
-    nlohmann::ordered_json places = nlohmann::ordered_json::array();
-    for (const TeachRepeatMetrics::Place& p : t.places) {
-      places.push_back({{"start_s", p.start_s},
-                        {"end_s", p.end_s},
-                        {"lost", p.lost},
-                        {"recovered", p.recovered},
-                        {"rate", finite_or_null(p.rate)}});
-    }
-    j["teach_repeat"]["places"] = places;
-  }
-  if (m.navigation) {
-    const navigation::NavigationMetrics& n = *m.navigation;
-    const auto finite_or_null = [](double v) {
-      return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json();
-    };
-    j["navigation"] = {
-        {"method", m.navigation_method},
-        {"success", n.success},
-        {"status", n.status},
-        {"time_to_goal_s",
-         n.time_to_goal_s ? nlohmann::ordered_json(*n.time_to_goal_s) : nlohmann::ordered_json()},
-        {"duration_s", n.duration_s},
-        {"path_length_m", n.path_length_m},
-        {"final_position_error_m", n.final_position_error_m},
-        {"final_heading_error_deg", n.final_heading_error_deg},
-        {"min_clearance_m", finite_or_null(n.min_clearance_m)},
-        {"mean_clearance_m", finite_or_null(n.mean_clearance_m)},
-        {"collisions", n.collisions},
-        {"integrated_abs_jerk", n.integrated_abs_jerk},
-        {"subgoals", n.subgoals}};
-  }
-  return j.dump(2) + "\n";
-}
-
-namespace {
-
-// Observers that call `a`'s and then `b`'s.
-RunObservers Chained(const RunObservers& a, const RunObservers& b) {
-  return CombineObservers(a, b, [](const auto& f, const auto& g) -> std::decay_t<decltype(f)> {
-    if (!f) return g;
-    if (!g) return f;
-    return [f, g](const auto& x) {
-      f(x);
-      g(x);
-    };
-  });
-}
-
-constexpr char kNavigationCsvHeader[] =
-    "t,x_m,y_m,yaw_rad,v_mps,yaw_rate_radps,left_radps,right_radps,target_x_m,target_y_m,"
-    "subgoal_active,clearance_m";
-
-std::string NavigationCsvRow(const navigation::NavigationLogEntry& e) {
-  char line[512];
-  std::snprintf(line, sizeof(line), "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%.9g",
-                e.t_s, e.x_m, e.y_m, e.yaw_rad, e.v_mps, e.yaw_rate_radps, e.left_radps,
-                e.right_radps, e.target_x_m, e.target_y_m, e.subgoal_active ? 1 : 0, e.clearance_m);
-  return line;
-}
-
-// The path among the obstacles, their safety circles and the sub-goals (Jung & Kim
-// 2014, figs. 5–8).
-void WriteNavigationMap(const fs::path& png, const std::string& title,
-                        const std::vector<navigation::NavigationLogEntry>& log,
-                        const std::vector<navigation::Circle>& obstacles, double safety_radius_m,
-                        const estimation::Pose2& start, const estimation::Pose2& goal,
-                        const std::vector<navigation::SubgoalRecord>& subgoals) {
-  std::vector<PlotCircle> circles;
-  for (const navigation::Circle& c : obstacles) {
-    circles.push_back({c.centre, c.radius_m + safety_radius_m, false});
-  }
-  for (const navigation::Circle& c : obstacles) circles.push_back({c.centre, c.radius_m});
-  std::vector<PlotMarker> markers = {{{start.x, start.y}, "start"}, {{goal.x, goal.y}, "goal"}};
-  for (std::size_t k = 0; k < subgoals.size(); ++k) {
-    markers.push_back({subgoals[k].position, "sub-goal " + std::to_string(k + 1)});
-  }
-  PlotSeries path{"path (ground truth)", {}};
-  for (const navigation::NavigationLogEntry& e : log) path.points.emplace_back(e.x_m, e.y_m);
-  WriteMapPlot(png, title, {path}, circles, markers);
-}
-
-// The scene's colliding objects as circles, for the map: cylinders as they are, boxes
-// as chains of circles along their longer side.
-std::vector<navigation::Circle> ObjectCircles(const std::vector<sim::StaticObject>& objects) {
-  std::vector<navigation::Circle> circles;
-  for (const sim::StaticObject& o : objects) {
-    if (!o.collides) continue;
-    if (o.shape == sim::StaticObject::Shape::kCylinder) {
-      circles.push_back({o.center_m, o.radius_m});
-      continue;
-    }
-    const bool along_x = o.size_m.x() >= o.size_m.y();
-    const double half_long = 0.5 * (along_x ? o.size_m.x() : o.size_m.y());
-    const double radius = 0.5 * (along_x ? o.size_m.y() : o.size_m.x());
-    const double axis_yaw = o.yaw_rad + (along_x ? 0.0 : M_PI / 2);
-    const Eigen::Vector2d u(std::cos(axis_yaw), std::sin(axis_yaw));
-    const double reach = std::max(half_long - radius, 0.0);
-    const std::vector<navigation::Circle> chain = navigation::WallCircles(
-        o.center_m - reach * u, o.center_m + reach * u, radius, std::max(radius, 0.05));
-    circles.insert(circles.end(), chain.begin(), chain.end());
-  }
-  return circles;
-}
-
-// `navigation.mode: kinematic`: the paper's differential-drive simulation, no physics
-// and no camera. Writes ground_truth.tum (the simulated pose), navigation.csv, the map
-// plot and metrics.json.
-RunMetrics RunKinematicNavigation(const scenario::Scenario& scenario, const fs::path& dir) {
-  const auto wall_start = std::chrono::steady_clock::now();
-  const navigation::NavigationScene scene = NavigationSceneOf(scenario);
-  const std::unique_ptr<navigation::Navigator> navigator = navigation::MakeNavigator(
-      scenario.navigation.method, NavigatorOptionsOf(scenario), scene.goal);
-  const navigation::KinematicRun run =
-      navigation::RunKinematicSimulation(scene, *navigator, KinematicOptionsOf(scenario));
-
-  LogFile truth(dir / "ground_truth.tum", "");
-  LogFile csv(dir / "navigation.csv", kNavigationCsvHeader);
-  RunMetrics m;
-  for (std::size_t k = 0; k < run.log.size(); ++k) {
-    const navigation::NavigationLogEntry& e = run.log[k];
-    truth.Line(
-        estimation::FormatTumLine({e.t_s, estimation::ToIsometry({e.x_m, e.y_m, e.yaw_rad}, 0.0)})
-            .c_str());
-    csv.Line(NavigationCsvRow(e).c_str());
-    if (k > 0) {
-      // The commanded wheel travel of the step: what encoders on this robot would count.
-      m.encoder_distance_m += std::abs(run.log[k - 1].v_mps) * (e.t_s - run.log[k - 1].t_s);
-    }
-  }
-  truth.Close();
-  csv.Close();
-
-  WriteNavigationMap(
-      dir / "navigation.png",
-      scenario.scene.name + ": " + scenario.navigation.method + " (" + run.metrics.status + ")",
-      run.log, scene.obstacles, scenario.navigation.safety_radius_m, scene.start, scene.goal,
-      run.subgoals);
-
-  m.completed = true;
-  m.stop_reason = "navigation " + run.metrics.status;
-  m.sim_time_s = run.metrics.duration_s;
-  m.distance_m = run.metrics.path_length_m;
-  m.navigation_method = scenario.navigation.method;
-  m.navigation = run.metrics;
-  m.wall_time_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  return m;
-}
 
 // The run's logs, one file each with its header (README.md, "Run folder"): ground
 // truth, encoders, slip, tracks, IMU, twist, and one TUM file per estimator when
@@ -485,99 +222,199 @@ void RunLogs::Imu(const robot::ImuSample& s) {
 
 }  // namespace
 
+std::string MetricsJson(const RunMetrics& m) {
+  nlohmann::ordered_json j;
+  j["status"] = m.completed ? "completed" : "failed";
+  j["stop_reason"] = m.stop_reason;
+  j["sim_time_s"] = m.sim_time_s;
+  j["wall_time_s"] = m.wall_time_s;
+  j["real_time_factor"] = m.real_time_factor();
+  j["distance_m"] = m.distance_m;
+  j["encoder_distance_m"] = m.encoder_distance_m;
+  j["encoder_distance_error_pct"] =
+      m.distance_m > 0 ? 100.0 * (m.encoder_distance_m - m.distance_m) / m.distance_m : 0.0;
+  j["min_com_height_m"] = m.min_com_height_m;
+  nlohmann::ordered_json slip;
+  slip["left"] = SlipJson(m.slip[robot::kLeft]);
+  slip["right"] = SlipJson(m.slip[robot::kRight]);
+  nlohmann::ordered_json by_material = nlohmann::ordered_json::object();
+  for (const auto& [name, stats] : m.slip_by_material) by_material[name] = SlipJson(stats);
+  slip["by_material"] = by_material;
+  j["slip"] = slip;
+  j["icr_expansion"] = {{"chi", m.icr.chi},
+                        {"samples", m.icr.samples_used},
+                        {"rms_residual_radps", m.icr.rms_residual_radps}};
+  j["stereo_frames"] = m.stereo_frames;
+  nlohmann::ordered_json estimators = nlohmann::ordered_json::object();
+  for (const auto& [name, e] : m.estimators) {
+    estimators[name] = {
+        {"ate_rmse_m", e.ate_rmse_m},       {"ate3d_se3_rmse_m", e.ate3d_se3_rmse_m},
+        {"final_error_m", e.final_error_m}, {"final_error_pct", e.final_error_pct},
+        {"rpe_trans_pct", e.rpe_trans_pct}, {"samples", e.samples}};
+  }
+  j["estimators"] = estimators;
+  const LocalizationSummary& loc = m.localization;
+  j["localization"] = {{"vo_frames", loc.vo_frames},
+                       {"camera_blackout_frames", loc.camera_blackout_frames},
+                       {"vo_failures", loc.vo_failures},
+                       {"vo_dynamics_constrained", loc.vo_dynamics_constrained},
+                       {"vo_coasted", loc.vo_coasted},
+                       {"mean_inliers", loc.mean_inliers},
+                       {"mean_fusion_w", loc.mean_fusion_w},
+                       {"slip_estimate_rmse_mps", loc.slip_estimate_rmse_mps}};
+  j["timing"] = {{"render_s", m.render_wall_s},
+                 {"sensor_model_s", m.sensor_model_wall_s},
+                 {"estimation_s", m.estimation_wall_s},
+                 {"physics_s", m.physics_wall_s},
+                 {"control_s", m.control_wall_s},
+                 {"sensing_s", m.sensing_wall_s},
+                 {"io_s", m.io_wall_s}};
+  j["memory"] = {{"peak_rss_mb", m.peak_rss_mb}};
+  if (m.teach_repeat) {
+    const TeachRepeatMetrics& t = *m.teach_repeat;
+    const auto finite_or_null = [](double v) {
+      return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json();
+    };
+    j["teach_repeat"] = {{"method", t.method},
+                         {"status", t.status},
+                         {"completed", t.completed},
+                         {"autonomy", t.autonomy},
+                         {"end_point_error_m", t.end_point_error_m},
+                         {"lateral_rms_m", t.lateral_rms_m},
+                         {"lateral_max_m", t.lateral_max_m},
+                         {"lateral_start_m", t.lateral_start_m},
+                         {"lateral_end_rms_m", t.lateral_end_rms_m},
+                         {"taught_length_m", t.taught_length_m},
+                         {"features_lost", t.features_lost},
+                         {"features_recovered", t.features_recovered},
+                         {"recovery_rate", finite_or_null(t.recovery_rate)},
+                         {"recovery_rate_pooled", finite_or_null(t.recovery_rate_pooled)},
+                         {"milestones", t.milestones},
+                         {"teach_images", t.teach_images}};
+    nlohmann::ordered_json places = nlohmann::ordered_json::array();
+    for (const TeachRepeatMetrics::Place& p : t.places) {
+      places.push_back({{"start_s", p.start_s},
+                        {"end_s", p.end_s},
+                        {"lost", p.lost},
+                        {"recovered", p.recovered},
+                        {"rate", finite_or_null(p.rate)}});
+    }
+    j["teach_repeat"]["places"] = places;
+  }
+  if (m.navigation) {
+    const navigation::NavigationMetrics& n = *m.navigation;
+    const auto finite_or_null = [](double v) {
+      return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json();
+    };
+    j["navigation"] = {
+        {"method", m.navigation_method},
+        {"success", n.success},
+        {"status", n.status},
+        {"time_to_goal_s",
+         n.time_to_goal_s ? nlohmann::ordered_json(*n.time_to_goal_s) : nlohmann::ordered_json()},
+        {"duration_s", n.duration_s},
+        {"path_length_m", n.path_length_m},
+        {"final_position_error_m", n.final_position_error_m},
+        {"final_heading_error_deg", n.final_heading_error_deg},
+        {"min_clearance_m", finite_or_null(n.min_clearance_m)},
+        {"mean_clearance_m", finite_or_null(n.mean_clearance_m)},
+        {"collisions", n.collisions},
+        {"integrated_abs_jerk", n.integrated_abs_jerk},
+        {"subgoals", n.subgoals}};
+  }
+  return j.dump(2) + "\n";
+}
+
 void WriteMetricsJson(const RunMetrics& metrics, const fs::path& dir) {
   WriteAtomically(dir / "metrics.json", MetricsJson(metrics));
 }
 
-RunMetrics RunToFolder(const scenario::Scenario& scenario, const fs::path& dir) {
-  if (scenario.teach_repeat.enabled) return RunTeachRepeat(scenario, dir);
-  return RunToFolderWith(scenario, dir, {}, nullptr);
-}
+// Everything the folder holds besides metrics.json, opened at the start.
+struct RunFolderWriter::Files {
+  Files(const fs::path& dir, const scenario::Scenario& scenario) : logs(dir, scenario) {}
+  RunLogs logs;
+  PlotData plots;
+  std::unique_ptr<perception::KittiWriter> kitti;
+  Eigen::Isometry3d T_world_cam0 = Eigen::Isometry3d::Identity();
+  std::unique_ptr<LogFile> navigation_csv;
+  std::vector<navigation::NavigationLogEntry> navigation_log;
+};
 
-RunMetrics RunToFolderWith(const scenario::Scenario& scenario, const fs::path& dir,
-                           const RunObservers& extra, navigation::Repeater* repeater) {
-  scenario.Validate();
+RunFolderWriter::RunFolderWriter(const scenario::Scenario& scenario, const fs::path& dir)
+    : dir_(dir) {
   fs::create_directories(dir);
   fs::remove(dir / "metrics.json");  // no stale result may pass for this run's
   WriteAtomically(dir / "scenario.yaml",
                   scenario::ScenarioToYaml(scenario::WithBuiltinMaterialsResolved(scenario)));
-
-  RunMetrics metrics;
-  try {
-    if (scenario.navigation.enabled &&
-        scenario.navigation.mode == scenario::NavigationSpec::Mode::kKinematic) {
-      metrics = RunKinematicNavigation(scenario, dir);
-      WriteMetricsJson(metrics, dir);
-      return metrics;
+  files_ = std::make_unique<Files>(dir, scenario);
+  if (scenario.robot.stereo.enabled) {
+    const robot::StereoRig rig(scenario.robot.stereo);
+    WriteAtomically(dir / "stereo_calibration.json", StereoCalibrationJson(rig));
+    if (scenario.outputs.save_images == "kitti") {
+      const sim::PinholeIntrinsics& K = rig.intrinsics();
+      files_->kitti = std::make_unique<perception::KittiWriter>(
+          dir / "images", perception::StereoCalibration::FromIntrinsics(
+                              K.fx, K.fy, K.cx, K.cy, scenario.robot.stereo.baseline_m));
     }
-    RunLogs logs(dir, scenario);
-    RunObservers observers;
-    PlotData plots;
-    std::unique_ptr<perception::KittiWriter> kitti;
-    Eigen::Isometry3d T_world_cam0 = Eigen::Isometry3d::Identity();
-    if (scenario.robot.stereo.enabled) {
-      const robot::StereoRig rig(scenario.robot.stereo);
-      WriteAtomically(dir / "stereo_calibration.json", StereoCalibrationJson(rig));
-      if (scenario.outputs.save_images == "kitti") {
-        const sim::PinholeIntrinsics& K = rig.intrinsics();
-        kitti = std::make_unique<perception::KittiWriter>(
-            dir / "images", perception::StereoCalibration::FromIntrinsics(
-                                K.fx, K.fy, K.cx, K.cy, scenario.robot.stereo.baseline_m));
-      }
-    }
-    // Only with an image export: a run that looks at no image on the main thread lets
-    // the sensor model run on the localization thread (closed_loop_runner.cpp).
-    if (kitti) {
-      observers.on_stereo = [&](const StereoFrame& f) {
-        if (f.index == 0) T_world_cam0 = f.T_world_left;
-        auto as_mat = [](const sim::GrayImage& g) {
-          return cv::Mat(g.height, g.width, CV_8UC1, const_cast<std::uint8_t*>(g.pixels.data()));
-        };
-        kitti->Add(f.t_s, as_mat(*f.left), as_mat(*f.right),
-                   T_world_cam0.inverse() * f.T_world_left);
-      };
-    }
-    observers.on_sample = [&](const RunSample& s) {
-      plots.Add(s);
-      logs.Sample(s);
-    };
-    observers.on_localization_frame = [&](const LocalizationFrame& f) {
-      plots.w.emplace_back(f.t_s, f.report.w);
-      plots.estimates["visual_odometry"].push_back({f.t_s, f.visual_odometry});
-      logs.Frame(f);
-    };
-    observers.on_imu = [&](const robot::ImuSample& s) { logs.Imu(s); };
-    std::unique_ptr<LogFile> navigation_csv;
-    std::vector<navigation::NavigationLogEntry> navigation_log;
-    if (scenario.navigation.enabled) {
-      navigation_csv = std::make_unique<LogFile>(dir / "navigation.csv", kNavigationCsvHeader);
-      observers.on_navigation_step = [&](const navigation::NavigationLogEntry& e) {
-        navigation_csv->Line(NavigationCsvRow(e).c_str());
-        navigation_log.push_back(e);
-      };
-    }
-    metrics = RunClosedLoop(scenario, Chained(observers, extra), repeater);
-    if (navigation_csv) {
-      navigation_csv->Close();
-      const navigation::NavigationScene scene = NavigationSceneOf(scenario);
-      WriteNavigationMap(dir / "navigation.png",
-                         scenario.scene.name + ": " + scenario.navigation.method + " (" +
-                             metrics.navigation->status + ")",
-                         navigation_log, ObjectCircles(scenario.scene.objects),
-                         scenario.navigation.safety_radius_m, scene.start, scene.goal,
-                         metrics.navigation_subgoals);
-    }
-    logs.Close();
-    if (kitti) kitti->Close();
-    plots.Write(dir, scenario.scene.name);
-  } catch (const std::exception& e) {
-    metrics.completed = false;
-    metrics.stop_reason = std::string("failed: ") + e.what();
-    WriteMetricsJson(metrics, dir);
-    throw;
   }
-  WriteMetricsJson(metrics, dir);
-  return metrics;
+  if (scenario.navigation.enabled) {
+    files_->navigation_csv =
+        std::make_unique<LogFile>(dir / "navigation.csv", kNavigationCsvHeader);
+  }
+}
+
+RunFolderWriter::~RunFolderWriter() = default;
+
+RunObservers RunFolderWriter::observers() {
+  Files& f = *files_;
+  RunObservers o;
+  // Only with an image export: a run that looks at no image on the main thread lets
+  // the sensor model run on the localization thread (closed_loop.cpp).
+  if (f.kitti) {
+    o.on_stereo = [&f](const StereoFrame& s) {
+      if (s.index == 0) f.T_world_cam0 = s.T_world_left;
+      auto as_mat = [](const sim::GrayImage& g) {
+        return cv::Mat(g.height, g.width, CV_8UC1, const_cast<std::uint8_t*>(g.pixels.data()));
+      };
+      f.kitti->Add(s.t_s, as_mat(*s.left), as_mat(*s.right),
+                   f.T_world_cam0.inverse() * s.T_world_left);
+    };
+  }
+  o.on_sample = [&f](const RunSample& s) {
+    f.plots.Add(s);
+    f.logs.Sample(s);
+  };
+  o.on_localization_frame = [&f](const LocalizationFrame& l) {
+    f.plots.w.emplace_back(l.t_s, l.report.w);
+    f.plots.estimates["visual_odometry"].push_back({l.t_s, l.visual_odometry});
+    f.logs.Frame(l);
+  };
+  o.on_imu = [&f](const robot::ImuSample& s) { f.logs.Imu(s); };
+  if (f.navigation_csv) {
+    o.on_navigation_step = [&f](const navigation::NavigationLogEntry& e) {
+      f.navigation_csv->Line(NavigationCsvRow(e).c_str());
+      f.navigation_log.push_back(e);
+    };
+  }
+  return o;
+}
+
+void RunFolderWriter::Close(const scenario::Scenario& scenario, const RunMetrics& metrics) {
+  Files& f = *files_;
+  if (f.navigation_csv) {
+    f.navigation_csv->Close();
+    const navigation::NavigationScene scene = NavigationSceneOf(scenario);
+    WriteNavigationMap(dir_ / "navigation.png",
+                       scenario.scene.name + ": " + scenario.navigation.method + " (" +
+                           metrics.navigation->status + ")",
+                       f.navigation_log, ObjectCircles(scenario.scene.objects),
+                       scenario.navigation.safety_radius_m, scene.start, scene.goal,
+                       metrics.navigation_subgoals);
+  }
+  f.logs.Close();
+  if (f.kitti) f.kitti->Close();
+  f.plots.Write(dir_, scenario.scene.name);
+  WriteMetricsJson(metrics, dir_);
 }
 
 }  // namespace trackbed::runner

@@ -20,6 +20,8 @@
 #include "trackbed/navigation/teach_map.h"
 #include "trackbed/navigation/teach_repeat_metrics.h"
 #include "trackbed/perception/kitti_sequence.h"
+#include "trackbed/runner/closed_loop.h"
+#include "trackbed/runner/repeat_commander.h"
 #include "trackbed/runner/run_folder.h"
 #include "trackbed/runner/run_plots.h"
 
@@ -62,7 +64,10 @@ navigation::TeachMap Teach(const scenario::Scenario& scenario, const fs::path& d
   extra.on_sample = [&](const RunSample& s) {
     taught_path->push_back(s.chassis.T_world_body.translation().head<2>());
   };
-  const RunMetrics m = RunToFolderWith(teach, dir, extra, nullptr);
+  ClosedLoopOptions loop;
+  loop.dir = dir;
+  loop.observers = extra;
+  const RunMetrics m = ClosedLoop(teach, std::move(loop)).Run();
   if (!m.completed) throw std::runtime_error("teach pass stopped: " + m.stop_reason);
   return builder.Finish();
 }
@@ -162,6 +167,51 @@ void ScorePlaces(const scenario::TeachRepeatSpec& tr, const std::vector<Cumulati
   t->recovery_rate_pooled = r.pooled_rate;
 }
 
+// The repeat pass's scenario: the robot starts near the taught start (the file's
+// offset plus a seeded perturbation of up to 5 cm and 2°) and the crossing people are
+// there in the repeat only.
+scenario::Scenario RepeatScenario(const scenario::Scenario& scenario) {
+  const scenario::TeachRepeatSpec& tr = scenario.teach_repeat;
+  scenario::Scenario repeat = scenario;
+  double dx = tr.start_offset.x_m, dy = tr.start_offset.y_m, dyaw = tr.start_offset.yaw_deg;
+  if (tr.start_perturbation) {
+    std::mt19937_64 rng(scenario.seed ^ 0x7eac4ULL);
+    const auto unit = [&rng] { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
+    const double r = 0.05 * std::sqrt(unit()), a = 2.0 * M_PI * unit();
+    dx += r * std::cos(a);
+    dy += r * std::sin(a);
+    dyaw += 2.0 * (2.0 * unit() - 1.0);
+  }
+  const double yaw0 = Radians(scenario.robot.start.yaw_deg);
+  repeat.robot.start.x_m += std::cos(yaw0) * dx - std::sin(yaw0) * dy;
+  repeat.robot.start.y_m += std::sin(yaw0) * dx + std::cos(yaw0) * dy;
+  repeat.robot.start.yaw_deg += dyaw;
+  repeat.scene.occluders.insert(repeat.scene.occluders.end(), tr.occluders.begin(),
+                                tr.occluders.end());
+
+  return repeat;
+}
+
+// teach_repeat_recovery.png: the features recovered per crossing place.
+void WriteRecoveryPlot(const scenario::Scenario& scenario, const TeachRepeatMetrics& t,
+                       const fs::path& dir) {
+  const scenario::TeachRepeatSpec& tr = scenario.teach_repeat;
+  std::vector<BarValue> bars;
+  for (std::size_t k = 0; k < t.places.size(); ++k) {
+    const TeachRepeatMetrics::Place& p = t.places[k];
+    char label[64], note[64];
+    std::snprintf(label, sizeof(label), "place %zu (%.0f s)", k + 1, p.start_s);
+    std::snprintf(note, sizeof(note), "%lld of %lld", static_cast<long long>(p.recovered),
+                  static_cast<long long>(p.lost));
+    bars.push_back({label, std::isfinite(p.rate) ? 100.0 * p.rate : 0.0, note});
+  }
+  char title[160];
+  std::snprintf(title, sizeof(title), "%s: features recovered per crossing (%s; mean %.1f %%)",
+                scenario.scene.name.c_str(), tr.method.c_str(),
+                std::isfinite(t.recovery_rate) ? 100.0 * t.recovery_rate : 0.0);
+  WriteBarPlot(dir / "teach_repeat_recovery.png", title, "recovered of lost [%]", bars, 100.0);
+}
+
 }  // namespace
 
 RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& dir) {
@@ -178,25 +228,7 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
     taught = TaughtPathBeside(tr.map);
   }
 
-  // The repeat starts near the taught start: the file's offset plus a seeded
-  // perturbation of up to 5 cm and 2°.
-  scenario::Scenario repeat = scenario;
-  double dx = tr.start_offset.x_m, dy = tr.start_offset.y_m, dyaw = tr.start_offset.yaw_deg;
-  if (tr.start_perturbation) {
-    std::mt19937_64 rng(scenario.seed ^ 0x7eac4ULL);
-    const auto unit = [&rng] { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
-    const double r = 0.05 * std::sqrt(unit()), a = 2.0 * M_PI * unit();
-    dx += r * std::cos(a);
-    dy += r * std::sin(a);
-    dyaw += 2.0 * (2.0 * unit() - 1.0);
-  }
-  const double yaw0 = Radians(scenario.robot.start.yaw_deg);
-  repeat.robot.start.x_m += std::cos(yaw0) * dx - std::sin(yaw0) * dy;
-  repeat.robot.start.y_m += std::sin(yaw0) * dx + std::cos(yaw0) * dy;
-  repeat.robot.start.yaw_deg += dyaw;
-  // The crossing people are there in the repeat only.
-  repeat.scene.occluders.insert(repeat.scene.occluders.end(), tr.occluders.begin(),
-                                tr.occluders.end());
+  const scenario::Scenario repeat = RepeatScenario(scenario);
 
   navigation::FunnelLaneOptions o2;
   o2.forward_speed_mps = tr.repeat_speed_mps;
@@ -224,7 +256,7 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
          "heading_error_rad,fallback_2d,progress\n";
   RunObservers extra;
   std::vector<CumulativeRecovery> counts;  // per repeat frame
-  extra.on_repeat_step = [&](const std::pair<double, navigation::RepeatCommand>& step) {
+  const auto log_step = [&](const std::pair<double, navigation::RepeatCommand>& step) {
     const navigation::RepeatCommand& c = step.second;
     counts.push_back({step.first, c.features_lost, c.features_recovered});
     char line[512];
@@ -239,7 +271,13 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
   extra.on_sample = [&](const RunSample& s) {
     repeated.push_back(s.chassis.T_world_body.translation().head<2>());
   };
-  RunMetrics m = RunToFolderWith(repeat, dir, extra, repeater.get());
+  ClosedLoopOptions options;
+  options.dir = dir;
+  options.observers = extra;
+  options.commander = std::make_unique<RepeatCommander>(
+      repeater.get(), repeat.estimation.icr_expansion * repeat.robot.vehicle.track_gauge_m,
+      log_step);
+  RunMetrics m = ClosedLoop(repeat, std::move(options)).Run();
   csv.close();
   if (!csv) throw std::runtime_error((dir / "teach_repeat.csv").string() + ": cannot write");
 
@@ -251,22 +289,7 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
   t.features_lost = m.repeat_features_lost;
   t.features_recovered = m.repeat_features_recovered;
   ScorePlaces(tr, counts, &t);
-  if (!t.places.empty()) {
-    std::vector<BarValue> bars;
-    for (std::size_t k = 0; k < t.places.size(); ++k) {
-      const TeachRepeatMetrics::Place& p = t.places[k];
-      char label[64], note[64];
-      std::snprintf(label, sizeof(label), "place %zu (%.0f s)", k + 1, p.start_s);
-      std::snprintf(note, sizeof(note), "%lld of %lld", static_cast<long long>(p.recovered),
-                    static_cast<long long>(p.lost));
-      bars.push_back({label, std::isfinite(p.rate) ? 100.0 * p.rate : 0.0, note});
-    }
-    char title[160];
-    std::snprintf(title, sizeof(title), "%s: features recovered per crossing (%s; mean %.1f %%)",
-                  scenario.scene.name.c_str(), tr.method.c_str(),
-                  std::isfinite(t.recovery_rate) ? 100.0 * t.recovery_rate : 0.0);
-    WriteBarPlot(dir / "teach_repeat_recovery.png", title, "recovered of lost [%]", bars, 100.0);
-  }
+  if (!t.places.empty()) WriteRecoveryPlot(scenario, t, dir);
   if (!taught.empty() && !repeated.empty()) {
     const navigation::RepeatPathMetrics p =
         navigation::EvaluateRepeatPath(taught, repeated, t.status == "finished");

@@ -1,3 +1,4 @@
+// trackbed-lint: long-file (procedural texture recipes, one per appearance)
 // Seeded procedural textures (see procedural_texture.h), composed per appearance from a
 // few periodic building blocks: gradient noise on a wrapped lattice (Perlin 2002),
 // cellular noise on a wrapped lattice (Worley 1996), antialiased shapes painted with

@@ -10,7 +10,7 @@
 
 #include "trackbed/robot/range_sensor.h"
 #include "trackbed/runner/footprint_clearance.h"
-#include "trackbed/runner/run_folder.h"
+#include "trackbed/runner/run_scenario.h"
 #include "trackbed/scenario/scenario_yaml.h"
 #include "trackbed/sim/world.h"
 

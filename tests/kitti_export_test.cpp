@@ -6,8 +6,8 @@
 #include <opencv2/core.hpp>
 
 #include "trackbed/perception/kitti_sequence.h"
-#include "trackbed/runner/closed_loop_runner.h"
-#include "trackbed/runner/run_folder.h"
+#include "trackbed/runner/closed_loop.h"
+#include "trackbed/runner/run_scenario.h"
 #include "trackbed/scenario/scenario_yaml.h"
 
 namespace trackbed {

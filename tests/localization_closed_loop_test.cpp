@@ -2,7 +2,7 @@
 // the orderings of Ham et al. 2012 that hold today, on ground-truth error.
 #include <gtest/gtest.h>
 
-#include "trackbed/runner/closed_loop_runner.h"
+#include "trackbed/runner/closed_loop.h"
 #include "trackbed/scenario/scenario_yaml.h"
 
 namespace trackbed {

@@ -9,7 +9,7 @@
 
 #include "test_scenarios.h"
 #include "trackbed/estimation/icr_calibration.h"
-#include "trackbed/runner/closed_loop_runner.h"
+#include "trackbed/runner/closed_loop.h"
 #include "trackbed/scenario/scenario_yaml.h"
 #include "trackbed/sim/terrain_material.h"
 

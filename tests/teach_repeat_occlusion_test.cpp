@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "trackbed/runner/run_folder.h"
+#include "trackbed/runner/run_scenario.h"
 #include "trackbed/scenario/scenario_yaml.h"
 
 namespace trackbed::runner {

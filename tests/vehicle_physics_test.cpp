@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "test_scenarios.h"
-#include "trackbed/runner/closed_loop_runner.h"
+#include "trackbed/runner/closed_loop.h"
 #include "trackbed/scenario/scenario_yaml.h"
 
 namespace trackbed {

@@ -5,6 +5,7 @@
 // the metrics (path, clearance of the chassis box against the real objects).
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -17,25 +18,34 @@
 #include "trackbed/navigation/navigator.h"
 #include "trackbed/navigation/scan_clustering.h"
 #include "trackbed/robot/range_sensor.h"
+#include "trackbed/runner/commander.h"
 #include "trackbed/scenario/scenario.h"
 
 namespace trackbed::runner {
 
-class ClosedLoopNavigation {
+/// The navigator as the run's commander, at `navigation.control_period_s`.
+class ClosedLoopNavigation : public Commander {
  public:
-  explicit ClosedLoopNavigation(const scenario::Scenario& scenario);
-  ClosedLoopNavigation(const ClosedLoopNavigation&) = delete;
-  ClosedLoopNavigation& operator=(const ClosedLoopNavigation&) = delete;
+  /// `objects` are the world's (for the chassis clearance logged with ground truth);
+  /// `on_step` (may be empty) sees every control step's log entry.
+  using StepObserver = std::function<void(const navigation::NavigationLogEntry&)>;
+  ClosedLoopNavigation(const scenario::Scenario& scenario, std::vector<sim::StaticObject> objects,
+                       StepObserver on_step);
 
-  /// Control period [s].
-  double period_s() const { return period_s_; }
+  double period_s() const override { return period_s_; }
+  bool needs_estimates() const override { return true; }
   /// Keeps the latest scan for the next control step.
-  void AddScan(const robot::RangeScanSample& scan) { scan_ = scan; }
+  void AddScan(const robot::RangeScanSample& scan) override { scan_ = scan; }
+  /// One control step from the pose `navigation.pose_source` names; ends the run with
+  /// "navigation <status>" once the navigator stops.
+  ControlOutput Update(const ControlInput& input) override;
+  /// metrics.json `navigation` and the sub-goals for the map plot.
+  void AddMetrics(bool time_ran_out, RunMetrics* metrics) const override;
+
   /// One control step at `t_s`: `pose` is what the robot believes, `T_world_body` the
   /// truth (logged, never shown to the navigator). Returns the track speeds to command.
-  estimation::TrackSpeeds Update(double t_s, const estimation::Pose2& pose,
-                                 const Eigen::Isometry3d& T_world_body,
-                                 const std::vector<sim::StaticObject>& objects);
+  estimation::TrackSpeeds Command(double t_s, const estimation::Pose2& pose,
+                                  const Eigen::Isometry3d& T_world_body);
   /// The navigator has ended the run (reached, goal in obstacle, stalled).
   bool finished() const { return status_ != navigation::NavigationStatus::kDriving; }
   const navigation::NavigationLogEntry& last_entry() const { return log_.back(); }
@@ -45,6 +55,10 @@ class ClosedLoopNavigation {
   const std::vector<navigation::Circle>& last_obstacles() const { return obstacles_; }
 
  private:
+  std::string method_;
+  std::string pose_source_;
+  std::vector<sim::StaticObject> objects_;
+  StepObserver on_step_;
   std::unique_ptr<navigation::Navigator> navigator_;
   navigation::Pose2 goal_;
   double period_s_;

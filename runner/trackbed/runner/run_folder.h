@@ -1,28 +1,41 @@
 // A run folder (docs/run_folder.md): the resolved scenario, ground truth, sensor
-// logs and metrics.json, streamed while the run goes so that a run that stops
-// early leaves readable files. metrics.json is written last, atomically, and
-// says whether the run completed and why it stopped.
+// logs, estimates, plots and metrics.json, streamed while the run goes so that a
+// run that stops early leaves readable files. metrics.json is written last,
+// atomically, and says whether the run completed and why it stopped.
 #pragma once
 
 #include <filesystem>
+#include <memory>
+#include <string>
 
-#include "trackbed/runner/closed_loop_runner.h"
 #include "trackbed/runner/run_metrics.h"
+#include "trackbed/runner/run_observers.h"
 #include "trackbed/scenario/scenario.h"
 
 namespace trackbed::runner {
 
-/// Runs `scenario` in closed loop, writing the run folder `dir` (created if
-/// needed; files of an earlier run there are replaced). Throws
-/// std::runtime_error when a file cannot be written (metrics.json then still
-/// records the failure when it can).
-RunMetrics RunToFolder(const scenario::Scenario& scenario, const std::filesystem::path& dir);
+/// Writes one closed-loop run's folder. Not copyable.
+class RunFolderWriter {
+ public:
+  /// Creates `dir` (files of an earlier run there are replaced), removes a stale
+  /// metrics.json, writes scenario.yaml (every key, built-in materials resolved) and
+  /// stereo_calibration.json, and opens the logs. Throws std::runtime_error when a file
+  /// cannot be written.
+  RunFolderWriter(const scenario::Scenario& scenario, const std::filesystem::path& dir);
+  RunFolderWriter(const RunFolderWriter&) = delete;
+  RunFolderWriter& operator=(const RunFolderWriter&) = delete;
+  ~RunFolderWriter();
 
-/// RunToFolder's closed loop with `extra` observers called after the folder's own, and
-/// an optional teach & repeat `repeater` driving (see RunClosedLoop). Used by the teach
-/// & repeat run, which writes one such folder per pass.
-RunMetrics RunToFolderWith(const scenario::Scenario& scenario, const std::filesystem::path& dir,
-                           const RunObservers& extra, navigation::Repeater* repeater);
+  /// The observers that write the logs; they refer to this writer.
+  RunObservers observers();
+  /// Closes the logs, draws the plots and writes metrics.json.
+  void Close(const scenario::Scenario& scenario, const RunMetrics& metrics);
+
+ private:
+  struct Files;
+  std::filesystem::path dir_;
+  std::unique_ptr<Files> files_;
+};
 
 /// The metrics.json document of a run, as text.
 std::string MetricsJson(const RunMetrics& metrics);

@@ -13,21 +13,9 @@
 #include "trackbed/navigation/subgoal_planner.h"
 #include "trackbed/robot/tracked_vehicle.h"
 #include "trackbed/runner/estimator_scoring.h"
+#include "trackbed/runner/run_sample.h"
 
 namespace trackbed::runner {
-
-struct EstimateSample;
-
-/// What the runner records at the encoder rate.
-struct RunSample {
-  double t_s = 0.0;
-  robot::ChassisState chassis;            ///< Ground truth.
-  robot::TrackState tracks[2];            ///< Ground truth per track (left, right).
-  long long ticks[2] = {0, 0};            ///< Encoder counts (left, right).
-  const std::string* material = nullptr;  ///< Material under the centre of mass.
-  /// The localization stack's estimates at this sample (null when estimation is off).
-  const EstimateSample* estimate = nullptr;
-};
 
 /// Slip statistics of the samples where a track moved (|track speed| > 0.05 m/s).
 struct SlipStats {

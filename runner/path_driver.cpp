@@ -1,0 +1,39 @@
+// The scenario's drive as a commander (see path_driver.h).
+#include "trackbed/runner/path_driver.h"
+
+#include <cmath>
+
+namespace trackbed::runner {
+
+PathDriver::PathDriver(const scenario::DriveSpec& spec, double nominal_gauge_m)
+    : spec_(spec), gauge_(nominal_gauge_m) {
+  if (spec_.mode == scenario::DriveSpec::Mode::kPath) {
+    navigation::PurePursuitOptions o;
+    o.speed_mps = spec_.speed_mps;
+    o.lookahead_m = spec_.lookahead_m;
+    o.goal_tolerance_m = spec_.goal_tolerance_m;
+    follower_.emplace(o, spec_.waypoints, spec_.closed, spec_.laps);
+  }
+}
+
+ControlOutput PathDriver::Update(const ControlInput& input) {
+  ControlOutput out;
+  if (follower_) {
+    const Eigen::Isometry3d& T = input.T_world_body;
+    const double yaw = std::atan2(T.linear()(1, 0), T.linear()(0, 0));
+    const navigation::PurePursuitCommand c =
+        follower_->Update({T.translation().x(), T.translation().y(), yaw});
+    if (c.finished) out.stop_reason = "path finished";
+    out.tracks = estimation::TrackSpeedsFromTwist(c.twist, gauge_);
+    return out;
+  }
+  while (next_ < spec_.script.size() && spec_.script[next_].t_s <= input.t_s + 1e-9) ++next_;
+  if (next_ == 0) return out;
+  const scenario::DriveCommand& c = spec_.script[next_ - 1];
+  out.tracks = c.track_speeds
+                   ? estimation::TrackSpeeds{c.left_mps, c.right_mps}
+                   : estimation::TrackSpeedsFromTwist({c.v_mps, c.yaw_rate_radps}, gauge_);
+  return out;
+}
+
+}  // namespace trackbed::runner

@@ -1,0 +1,36 @@
+// Teach & repeat's repeat pass as a commander (see repeat_commander.h).
+#include "trackbed/runner/repeat_commander.h"
+
+#include <stdexcept>
+#include <string>
+
+#include "trackbed/runner/run_metrics.h"
+
+namespace trackbed::runner {
+
+RepeatCommander::RepeatCommander(navigation::Repeater* repeater, double effective_gauge_m,
+                                 StepObserver on_step)
+    : repeater_(repeater), gauge_eff_m_(effective_gauge_m), on_step_(std::move(on_step)) {
+  if (!repeater_) throw std::invalid_argument("RepeatCommander: no repeater");
+}
+
+ControlOutput RepeatCommander::Update(const ControlInput& input) {
+  if (!input.left_image) throw std::invalid_argument("RepeatCommander: no image");
+  const navigation::RepeatCommand c = repeater_->Update(*input.left_image, input.t_s);
+  if (on_step_) on_step_({input.t_s, c});
+  features_lost_ = c.features_lost;
+  features_recovered_ = c.features_recovered;
+  ControlOutput out;
+  out.tracks = estimation::TrackSpeedsFromTwist(c.twist, gauge_eff_m_);
+  if (c.status != navigation::RepeatStatus::kDriving) {
+    out.stop_reason = std::string("repeat ") + navigation::ToString(c.status);
+  }
+  return out;
+}
+
+void RepeatCommander::AddMetrics(bool /*time_ran_out*/, RunMetrics* metrics) const {
+  metrics->repeat_features_lost = features_lost_;
+  metrics->repeat_features_recovered = features_recovered_;
+}
+
+}  // namespace trackbed::runner

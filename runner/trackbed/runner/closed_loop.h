@@ -1,0 +1,95 @@
+// The closed loop: the simulated world and robot on one clock, sensors sampled at
+// their rates, the localization stack on the robot's own sensors, a Commander driving
+// the tracks, ground truth scored as the run goes and the run folder written while it
+// goes. A ClosedLoop owns one run and can be driven from outside, one control period
+// at a time: `trackbed run` is a loop over Step().
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "trackbed/robot/imu.h"
+#include "trackbed/robot/range_sensor.h"
+#include "trackbed/runner/commander.h"
+#include "trackbed/runner/run_metrics.h"
+#include "trackbed/runner/run_observers.h"
+#include "trackbed/scenario/scenario.h"
+
+namespace trackbed::runner {
+
+/// How a ClosedLoop is set up beyond its scenario.
+struct ClosedLoopOptions {
+  /// The run folder (created if needed; an earlier run's files there are replaced).
+  /// Empty: no files are written, Finish() only returns the metrics.
+  std::filesystem::path dir;
+  /// What drives the run; null: the scenario's own — closed-loop navigation when
+  /// `navigation.enabled`, else the `drive` section.
+  std::unique_ptr<Commander> commander;
+  /// Called after the run folder's own observers.
+  RunObservers observers;
+  /// Step() returns copies of the stereo pairs taken in its period.
+  bool step_images = false;
+};
+
+/// One encoder reading: counts since the start, left and right.
+struct EncoderReading {
+  double t_s = 0.0;
+  std::int64_t ticks[2] = {0, 0};
+};
+
+/// A stereo pair a Step took, as the robot's cameras gave it.
+struct StereoImages {
+  double t_s = 0.0;
+  sim::GrayImage left, right;
+};
+
+/// What the sensors produced in one Step, and the truth at its end.
+struct StepResult {
+  double t_s = 0.0;  ///< simulation time at the end of the step [s]
+  std::vector<EncoderReading> encoders;
+  std::vector<robot::ImuSample> imu;
+  std::vector<robot::RangeScanSample> scans;
+  std::int64_t stereo_frames = 0;    ///< pairs taken in this step
+  std::vector<StereoImages> stereo;  ///< the pairs, with ClosedLoopOptions::step_images
+  Eigen::Isometry3d T_world_body = Eigen::Isometry3d::Identity();  ///< ground truth at the end
+};
+
+/// One closed-loop run. Not copyable. Start() once, Step() until done(), Finish() once.
+/// A simulation that diverges (NaN, chassis through the ground) ends the run early with
+/// completed = false and the reason, keeping what was measured until then. Any
+/// exception leaves a metrics.json that says why the run stopped (when a folder is
+/// written) and is rethrown.
+class ClosedLoop {
+ public:
+  /// Throws std::invalid_argument for an invalid scenario.
+  explicit ClosedLoop(const scenario::Scenario& scenario, ClosedLoopOptions options = {});
+  ClosedLoop(const ClosedLoop&) = delete;
+  ClosedLoop& operator=(const ClosedLoop&) = delete;
+  ~ClosedLoop();
+
+  /// Writes the resolved scenario into the run folder and builds the world, the robot,
+  /// its sensors and its software.
+  void Start();
+  /// One control period: simulates up to and including the commander's next call and
+  /// the physics step after it. Returns what the sensors produced meanwhile.
+  StepResult Step();
+  /// The run has ended (duration reached, the commander stopped it, a stall, a failure).
+  bool done() const;
+  /// Writes the rest of the run folder (plots, metrics.json) and returns the metrics.
+  RunMetrics Finish();
+  /// Start(), Step() until done(), Finish().
+  RunMetrics Run();
+
+ private:
+  class Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Runs `scenario` in closed loop without a run folder, with `observers`.
+RunMetrics RunClosedLoop(const scenario::Scenario& scenario, const RunObservers& observers = {});
+
+}  // namespace trackbed::runner

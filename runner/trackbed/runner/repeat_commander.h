@@ -1,0 +1,36 @@
+// The repeat pass of visual teach & repeat (Choi & Ha 2011) as a commander: on every
+// stereo frame the repeater steers from the left image alone; its twist becomes
+// track speeds through the effective gauge χ·B, held until the next frame.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <utility>
+
+#include "trackbed/navigation/teach_repeat.h"
+#include "trackbed/runner/commander.h"
+
+namespace trackbed::runner {
+
+class RepeatCommander : public Commander {
+ public:
+  /// `repeater` must outlive this. `on_step` (may be empty) sees every frame's time and
+  /// command.
+  using StepObserver = std::function<void(const std::pair<double, navigation::RepeatCommand>&)>;
+  RepeatCommander(navigation::Repeater* repeater, double effective_gauge_m, StepObserver on_step);
+
+  Trigger trigger() const override { return Trigger::kStereoFrame; }
+  double period_s() const override { return 0.0; }
+  /// Ends the run with "repeat <status>" once the repeater stops driving.
+  ControlOutput Update(const ControlInput& input) override;
+  /// The features the repeater lost and recovered, in all.
+  void AddMetrics(bool time_ran_out, RunMetrics* metrics) const override;
+
+ private:
+  navigation::Repeater* repeater_;
+  double gauge_eff_m_;
+  StepObserver on_step_;
+  std::int64_t features_lost_ = 0, features_recovered_ = 0;
+};
+
+}  // namespace trackbed::runner
