@@ -26,9 +26,10 @@
 //      remaining correspondences, if that one keeps within them;
 //   5. keep the inliers as features and replenish the grid cells that have too few with
 //      new Harris corners (stereo-matched for the next frame).
-// Fewer than min_inliers inliers is a failure (design.md §3): no motion (identity),
-// inliers = 0, a status that says why, and all features are detected afresh so that
-// the next frame can recover.
+// Fewer than min_inliers inliers is a failure: no motion (identity), inliers = 0, a
+// status and a reason that say why (a run folder logs each frame's status,
+// docs/run_folder.md), and all features are detected afresh so that the next frame can
+// recover.
 #pragma once
 
 #include <cstdint>
@@ -49,7 +50,7 @@
 
 namespace trackbed::estimation {
 
-/// HarrisOptions{} with min_response = 1e-5: the VO's default detector.
+/// HarrisOptions{} with min_response = 2e-6: the VO's default detector.
 inline perception::HarrisOptions DefaultVoHarrisOptions() {
   perception::HarrisOptions h;
   h.min_response = 2e-6;
@@ -59,7 +60,9 @@ inline perception::HarrisOptions DefaultVoHarrisOptions() {
 /// Options of StereoVisualOdometry. Nested structs carry their own documentation.
 struct StereoVisualOdometryOptions {
   /// Harris detector for new features (absolute threshold: see harris_corners.h for
-  /// the scale of min_response; the VO default 1e-5 keeps corners of contrast ≳ 0.2).
+  /// the scale of min_response; the VO default 2e-6 keeps sharp corners of contrast
+  /// ≳ 0.13; 1e-5, ≳ 0.2, left 8–17 inliers a frame on the simulated outdoor route's
+  /// sandy stretch, docs/localization.md).
   perception::HarrisOptions harris = DefaultVoHarrisOptions();
   /// Bucketing grid for new features: cols × rows cells over the image, >= 1 each.
   int grid_cols = 12;
@@ -85,7 +88,7 @@ struct StereoVisualOdometryOptions {
   /// Seed of the RANSAC generator (std::mt19937_64); the same seed and images give the
   /// same result.
   std::uint64_t seed = 1;
-  /// Fewer inliers than this is a failure (design.md §3), >= 3.
+  /// Fewer inliers than this is a failure (see the file comment), >= 3.
   int min_inliers = 6;
   /// Per-frame motion bounds of the platform: a frame whose estimated motion moves the
   /// camera farther [m] or turns it more [deg] is a failure (kImplausibleMotion), not a
