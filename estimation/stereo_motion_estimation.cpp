@@ -148,6 +148,60 @@ void MotionRansacOptions::Validate() const {
   option_check::Positive("threshold_px", threshold_px);
 }
 
+namespace {
+
+/// Three distinct indices drawn uniformly (a repeat is drawn again).
+void DrawSample(std::uniform_int_distribution<std::size_t>& pick, std::mt19937_64& rng,
+                std::size_t s[3]) {
+  s[0] = pick(rng);
+  do s[1] = pick(rng);
+  while (s[1] == s[0]);
+  do s[2] = pick(rng);
+  while (s[2] == s[0] || s[2] == s[1]);
+}
+
+/// Adaptive stop (Fischler & Bolles 1981; Hartley & Zisserman §4.7.1): how many
+/// hypotheses to draw in all, at most `needed`, once the best one after hypothesis
+/// `it` (from 0) has `count` of n inliers. log_failure = log(1 − confidence).
+int HypothesesNeeded(int count, std::size_t n, double log_failure, int it, int needed) {
+  const double ratio = static_cast<double>(count) / static_cast<double>(n);
+  const double p_good = ratio * ratio * ratio;
+  if (p_good >= 1.0) return it + 1;
+  if (p_good > 0.0) {
+    const double k = log_failure / std::log(1.0 - p_good);
+    if (k < static_cast<double>(needed)) return static_cast<int>(std::ceil(k));
+  }
+  return needed;
+}
+
+/// Refits result's motion on its inliers (>= 3) and keeps the refit unless it has fewer
+/// inliers. Stereo depth noise dominates the 3-D error and grows as Z²
+/// (σ_Z = Z²σ_d/(fx·b)), so each pair is weighted by the inverse variance of the
+/// difference of its two depths, 1/(Z_prev⁴ + Z_curr⁴) (up to a constant).
+void RefitOnInliers(const std::vector<MotionCorrespondence>& correspondences,
+                    const StereoCamera& camera, double threshold_px, MotionRansacResult* result) {
+  std::vector<Eigen::Vector3d> src, dst;
+  std::vector<double> weights;
+  for (std::size_t i = 0; i < correspondences.size(); ++i) {
+    if (!result->inlier_mask[i]) continue;
+    src.push_back(correspondences[i].p_prev);
+    dst.push_back(correspondences[i].p_curr);
+    const double z0 = correspondences[i].p_prev.z(), z1 = correspondences[i].p_curr.z();
+    weights.push_back(1.0 / (z0 * z0 * z0 * z0 + z1 * z1 * z1 * z1));
+  }
+  if (const auto refit = HornAbsoluteOrientation(src, dst, false, weights)) {
+    const Eigen::Isometry3d T = refit->Rigid();
+    const int count = CountInliers(correspondences, camera, T, threshold_px, nullptr);
+    if (count >= result->inliers) {
+      result->T_curr_prev = T;
+      result->inliers =
+          CountInliers(correspondences, camera, T, threshold_px, &result->inlier_mask);
+    }
+  }
+}
+
+}  // namespace
+
 void EstimateMotionRansac(const std::vector<MotionCorrespondence>& correspondences,
                           const StereoCamera& camera, const MotionRansacOptions& options,
                           std::mt19937_64& rng, MotionRansacResult* result) {
@@ -169,11 +223,7 @@ void EstimateMotionRansac(const std::vector<MotionCorrespondence>& correspondenc
   for (int it = 0; it < needed; ++it) {
     ++result->iterations;
     std::size_t s[3];
-    s[0] = pick(rng);
-    do s[1] = pick(rng);
-    while (s[1] == s[0]);
-    do s[2] = pick(rng);
-    while (s[2] == s[0] || s[2] == s[1]);
+    DrawSample(pick, rng, s);
     for (int k = 0; k < 3; ++k) {
       src[static_cast<std::size_t>(k)] = correspondences[s[k]].p_prev;
       dst[static_cast<std::size_t>(k)] = correspondences[s[k]].p_curr;
@@ -185,15 +235,7 @@ void EstimateMotionRansac(const std::vector<MotionCorrespondence>& correspondenc
     if (count > best) {
       best = count;
       best_T = T;
-      // Adaptive stop (Fischler & Bolles 1981; Hartley & Zisserman §4.7.1).
-      const double ratio = static_cast<double>(count) / static_cast<double>(n);
-      const double p_good = ratio * ratio * ratio;
-      if (p_good >= 1.0) {
-        needed = it + 1;
-      } else if (p_good > 0.0) {
-        const double k = log_failure / std::log(1.0 - p_good);
-        if (k < static_cast<double>(needed)) needed = static_cast<int>(std::ceil(k));
-      }
+      needed = HypothesesNeeded(count, n, log_failure, it, needed);
     }
   }
   if (best < 0) return;
@@ -201,31 +243,7 @@ void EstimateMotionRansac(const std::vector<MotionCorrespondence>& correspondenc
   result->T_curr_prev = best_T;
   result->inliers =
       CountInliers(correspondences, camera, best_T, options.threshold_px, &result->inlier_mask);
-
-  // Refit on the inliers. Stereo depth noise dominates the 3-D error and grows as Z²
-  // (σ_Z = Z²σ_d/(fx·b)), so each pair is weighted by the inverse variance of the
-  // difference of its two depths, 1/(Z_prev⁴ + Z_curr⁴) (up to a constant).
-  if (result->inliers >= 3) {
-    src.clear();
-    dst.clear();
-    std::vector<double> weights;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (!result->inlier_mask[i]) continue;
-      src.push_back(correspondences[i].p_prev);
-      dst.push_back(correspondences[i].p_curr);
-      const double z0 = correspondences[i].p_prev.z(), z1 = correspondences[i].p_curr.z();
-      weights.push_back(1.0 / (z0 * z0 * z0 * z0 + z1 * z1 * z1 * z1));
-    }
-    if (const auto refit = HornAbsoluteOrientation(src, dst, false, weights)) {
-      const Eigen::Isometry3d T = refit->Rigid();
-      const int count = CountInliers(correspondences, camera, T, options.threshold_px, nullptr);
-      if (count >= result->inliers) {
-        result->T_curr_prev = T;
-        result->inliers =
-            CountInliers(correspondences, camera, T, options.threshold_px, &result->inlier_mask);
-      }
-    }
-  }
+  if (result->inliers >= 3) RefitOnInliers(correspondences, camera, options.threshold_px, result);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -239,6 +257,62 @@ void MotionRefinementOptions::Validate() const {
   option_check::Positive("huber_px", huber_px);
   option_check::Positive("min_step", min_step);
 }
+
+namespace {
+
+/// Normal equations H δ = −g of the IRLS-weighted (Huber) Gauss–Newton step at T over
+/// the active correspondences: weight 1 for a residual norm e <= k [px], k/e beyond;
+/// points behind the camera are skipped.
+void HuberNormalEquations(const std::vector<MotionCorrespondence>& correspondences,
+                          const std::vector<int>& active, const StereoCamera& camera,
+                          const Eigen::Isometry3d& T, double k, Eigen::Matrix<double, 6, 6>* H,
+                          MotionIncrement* g) {
+  H->setZero();
+  g->setZero();
+  Eigen::Matrix<double, 3, 6> J;
+  for (int i : active) {
+    const MotionCorrespondence& c = correspondences[static_cast<std::size_t>(i)];
+    if (!((T * c.p_prev).z() > 1e-6)) continue;
+    const Eigen::Vector3d r = StereoReprojectionResidual(camera, T, c, &J);
+    const double e = r.norm();
+    const double w = e <= k ? 1.0 : k / e;
+    H->noalias() += w * J.transpose() * J;
+    g->noalias() += w * J.transpose() * r;
+  }
+}
+
+/// One Levenberg–Marquardt step: damps H (adds λ times its diagonal), λ growing tenfold,
+/// until the step lowers the robust cost, then takes it (*T, *cost, *sum_sq) and relaxes
+/// λ. False when no damping up to λ = 1e8 lowers the cost. *delta is the last step tried.
+bool DampedStep(const Eigen::Matrix<double, 6, 6>& H, const MotionIncrement& g,
+                const std::vector<MotionCorrespondence>& correspondences,
+                const std::vector<int>& active, const StereoCamera& camera, double k,
+                double* lambda, MotionIncrement* delta, Eigen::Isometry3d* T, double* cost,
+                double* sum_sq) {
+  while (*lambda < 1e8) {
+    Eigen::Matrix<double, 6, 6> A = H;
+    A.diagonal() += *lambda * H.diagonal().cwiseMax(1e-12);
+    *delta = A.ldlt().solve(-g);
+    if (!delta->allFinite()) {
+      *lambda *= 10.0;
+      continue;
+    }
+    const Eigen::Isometry3d T_new = ApplyIncrement(*delta, *T);
+    double sq_new = 0.0;
+    const double cost_new = RobustCost(correspondences, active, camera, T_new, k, &sq_new);
+    if (cost_new <= *cost) {
+      *T = T_new;
+      *cost = cost_new;
+      *sum_sq = sq_new;
+      *lambda = std::max(*lambda * 0.1, 1e-9);
+      return true;
+    }
+    *lambda *= 10.0;
+  }
+  return false;
+}
+
+}  // namespace
 
 MotionRefinementResult RefineMotionReprojection(
     const std::vector<MotionCorrespondence>& correspondences,
@@ -269,45 +343,14 @@ MotionRefinementResult RefineMotionReprojection(
   out.final_rms_px = out.initial_rms_px;
 
   double lambda = 1e-6;
-  Eigen::Matrix<double, 3, 6> J;
+  Eigen::Matrix<double, 6, 6> H;
+  MotionIncrement g;
   for (int iteration = 0; iteration < options.max_iterations; ++iteration) {
-    // Normal equations of the IRLS-weighted (Huber) Gauss–Newton step.
-    Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
-    MotionIncrement g = MotionIncrement::Zero();
-    for (int i : active) {
-      const MotionCorrespondence& c = correspondences[static_cast<std::size_t>(i)];
-      if (!((out.T_curr_prev * c.p_prev).z() > 1e-6)) continue;
-      const Eigen::Vector3d r = StereoReprojectionResidual(camera, out.T_curr_prev, c, &J);
-      const double e = r.norm();
-      const double w = e <= k ? 1.0 : k / e;
-      H.noalias() += w * J.transpose() * J;
-      g.noalias() += w * J.transpose() * r;
-    }
+    HuberNormalEquations(correspondences, active, camera, out.T_curr_prev, k, &H, &g);
     ++out.iterations;
-    // Levenberg–Marquardt: damp until the cost goes down.
-    bool accepted = false;
     MotionIncrement delta = MotionIncrement::Zero();
-    while (lambda < 1e8) {
-      Eigen::Matrix<double, 6, 6> A = H;
-      A.diagonal() += lambda * H.diagonal().cwiseMax(1e-12);
-      delta = A.ldlt().solve(-g);
-      if (!delta.allFinite()) {
-        lambda *= 10.0;
-        continue;
-      }
-      const Eigen::Isometry3d T_new = ApplyIncrement(delta, out.T_curr_prev);
-      double sq_new = 0.0;
-      const double cost_new = RobustCost(correspondences, active, camera, T_new, k, &sq_new);
-      if (cost_new <= cost) {
-        out.T_curr_prev = T_new;
-        cost = cost_new;
-        sum_sq = sq_new;
-        lambda = std::max(lambda * 0.1, 1e-9);
-        accepted = true;
-        break;
-      }
-      lambda *= 10.0;
-    }
+    const bool accepted = DampedStep(H, g, correspondences, active, camera, k, &lambda, &delta,
+                                     &out.T_curr_prev, &cost, &sum_sq);
     if (!accepted || delta.norm() < options.min_step) {
       out.converged = true;  // no step lowers the cost, or the step is negligible
       break;
