@@ -1,8 +1,8 @@
-// Stereo visual odometry: the camera model and the reprojection Jacobian (against
-// numeric differences), RANSAC with Horn on correspondences with 50 % outliers, the
-// reprojection refinement from a perturbed start, the whole pipeline on a synthetic
-// rendered scene (accuracy, a blank frame and recovery, determinism), and on the real
-// KITTI 06 frames (end-point error, ATE, speed).
+// Stereo visual odometry, the whole pipeline: on a synthetic rendered scene (accuracy,
+// the motion bounds, a moving object, a rotation prior, a blank frame and recovery,
+// determinism, bad input and options), and on the real KITTI 06 frames (end-point
+// error, ATE, speed). Its motion-estimation unit has its own tests
+// (stereo_motion_estimation_test.cpp).
 #include "trackbed/estimation/stereo_visual_odometry.h"
 
 #include <algorithm>
@@ -10,13 +10,13 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <random>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
+#include "stereo_test_rig.h"
 #include "trackbed/common/option_error.h"
 #include "trackbed/estimation/absolute_orientation.h"
 #include "trackbed/estimation/localization.h"
@@ -26,256 +26,11 @@ namespace trackbed::estimation {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDegPerRad = 180.0 / kPi;
-
-StereoCamera TestCamera() {
-  StereoCamera c;
-  c.fx = 500.0;
-  c.fy = 505.0;
-  c.cx = 319.5;
-  c.cy = 239.5;
-  c.baseline_m = 0.12;
-  return c;
-}
-
-Eigen::Isometry3d Pose(const Eigen::Vector3d& axis_angle, const Eigen::Vector3d& t) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  const double angle = axis_angle.norm();
-  if (angle > 0.0) T.linear() = Eigen::AngleAxisd(angle, axis_angle / angle).toRotationMatrix();
-  T.translation() = t;
-  return T;
-}
-
-double RotationErrorDeg(const Eigen::Isometry3d& A, const Eigen::Isometry3d& B) {
-  return Eigen::AngleAxisd(A.linear().transpose() * B.linear()).angle() * kDegPerRad;
-}
-
-double TranslationError(const Eigen::Isometry3d& A, const Eigen::Isometry3d& B) {
-  return (A.translation() - B.translation()).norm();
-}
-
-/// Points in front of the camera, visible in both images, 2–40 m away.
-std::vector<Eigen::Vector3d> RandomPoints(int n, std::mt19937_64& rng) {
-  std::uniform_real_distribution<double> u(40.0, 600.0), v(20.0, 460.0), z(2.0, 40.0);
-  const StereoCamera c = TestCamera();
-  std::vector<Eigen::Vector3d> points;
-  for (int i = 0; i < n; ++i) {
-    const double Z = z(rng);
-    points.emplace_back((u(rng) - c.cx) * Z / c.fx, (v(rng) - c.cy) * Z / c.fy, Z);
-  }
-  return points;
-}
-
-// ---------------------------------------------------------------------------------------
-// Camera model and Jacobian.
-
-TEST(StereoCameraTest, TriangulateInvertsProject) {
-  const StereoCamera c = TestCamera();
-  std::mt19937_64 rng(1);
-  for (const Eigen::Vector3d& p : RandomPoints(50, rng)) {
-    const Eigen::Vector3d z = c.Project(p);
-    EXPECT_NEAR(z.x() - z.z(), c.fx * c.baseline_m / p.z(), 1e-9);  // disparity = fx·b/Z
-    const Eigen::Vector3d back = c.Triangulate(z.x(), z.y(), z.x() - z.z());
-    EXPECT_LT((back - p).norm(), 1e-9 * p.norm());
-  }
-}
-
-TEST(StereoCameraTest, FromCalibrationReadsKittiMatrices) {
-  const perception::StereoCalibration k =
-      perception::StereoCalibration::FromIntrinsics(707.0912, 707.0912, 601.8873, 183.1104, 0.537);
-  const StereoCamera c = StereoCamera::FromCalibration(k);
-  EXPECT_DOUBLE_EQ(c.fx, 707.0912);
-  EXPECT_DOUBLE_EQ(c.cx, 601.8873);
-  EXPECT_DOUBLE_EQ(c.cy, 183.1104);
-  EXPECT_NEAR(c.baseline_m, 0.537, 1e-12);
-  EXPECT_THROW(StereoCamera::FromCalibration(perception::StereoCalibration{}),
-               std::invalid_argument);
-}
-
-TEST(StereoReprojectionTest, AnalyticJacobianMatchesCentralDifferences) {
-  const StereoCamera c = TestCamera();
-  std::mt19937_64 rng(2);
-  std::normal_distribution<double> n(0.0, 1.0);
-  for (int trial = 0; trial < 20; ++trial) {
-    const Eigen::Isometry3d T = Pose(0.05 * Eigen::Vector3d(n(rng), n(rng), n(rng)),
-                                     Eigen::Vector3d(n(rng), n(rng), n(rng)) * 0.3);
-    MotionCorrespondence m;
-    m.p_prev = RandomPoints(1, rng)[0];
-    m.z_curr = c.Project(T * m.p_prev) + Eigen::Vector3d(n(rng), n(rng), n(rng));
-    Eigen::Matrix<double, 3, 6> J;
-    StereoReprojectionResidual(c, T, m, &J);
-    Eigen::Matrix<double, 3, 6> numeric;
-    const double h = 1e-6;
-    for (int k = 0; k < 6; ++k) {
-      MotionIncrement d = MotionIncrement::Zero();
-      d(k) = h;
-      const Eigen::Vector3d plus = StereoReprojectionResidual(c, ApplyIncrement(d, T), m);
-      d(k) = -h;
-      const Eigen::Vector3d minus = StereoReprojectionResidual(c, ApplyIncrement(d, T), m);
-      numeric.col(k) = (plus - minus) / (2.0 * h);
-    }
-    EXPECT_LT((J - numeric).norm(), 1e-5 * (1.0 + J.norm())) << "trial " << trial << "\n"
-                                                             << J << "\n"
-                                                             << numeric;
-  }
-}
-
-TEST(StereoReprojectionTest, IncrementRoundTrips) {
-  const Eigen::Isometry3d T = Pose({0.1, -0.2, 0.3}, {1.0, 2.0, 3.0});
-  const Eigen::Isometry3d same = ApplyIncrement(MotionIncrement::Zero(), T);
-  EXPECT_TRUE(same.matrix().isApprox(T.matrix(), 1e-15));
-  MotionIncrement d;
-  d << 0.01, -0.02, 0.03, 0.004, -0.005, 0.006;
-  const Eigen::Isometry3d forth = ApplyIncrement(d, T);
-  // Undoing: Exp(−φ) applied to (R', t' − ρ).
-  Eigen::Isometry3d shifted = forth;
-  shifted.translation() -= d.head<3>();
-  MotionIncrement rotate_back = MotionIncrement::Zero();
-  rotate_back.tail<3>() = -d.tail<3>();
-  EXPECT_TRUE(ApplyIncrement(rotate_back, shifted).matrix().isApprox(T.matrix(), 1e-12));
-  EXPECT_NEAR(RotationErrorDeg(forth, T), d.tail<3>().norm() * kDegPerRad, 1e-9);
-}
-
-// ---------------------------------------------------------------------------------------
-// RANSAC and refinement on exact correspondences.
-
-struct Synthetic {
-  std::vector<MotionCorrespondence> correspondences;
-  std::vector<bool> inlier;
-};
-
-/// `n` correspondences under T_curr_prev; a fraction `outliers` of them paired with an
-/// unrelated point (both its 3-D point and its observation).
-Synthetic MakeCorrespondences(const Eigen::Isometry3d& T_curr_prev, int n, double outliers,
-                              std::mt19937_64& rng) {
-  const StereoCamera c = TestCamera();
-  Synthetic s;
-  const std::vector<Eigen::Vector3d> prev = RandomPoints(n, rng);
-  std::uniform_real_distribution<double> coin(0.0, 1.0);
-  for (int i = 0; i < n; ++i) {
-    MotionCorrespondence m;
-    m.p_prev = prev[static_cast<std::size_t>(i)];
-    const bool inlier = coin(rng) >= outliers;
-    m.p_curr = inlier ? T_curr_prev * m.p_prev : RandomPoints(1, rng)[0];
-    m.z_curr = c.Project(m.p_curr);
-    s.correspondences.push_back(m);
-    s.inlier.push_back(inlier);
-  }
-  return s;
-}
-
-TEST(MotionRansacTest, RecoversSixDofMotionWithHalfOutliers) {
-  std::mt19937_64 data_rng(3);
-  const Eigen::Isometry3d truth = Pose({0.02, -0.08, 0.01}, {0.15, -0.04, 0.9});
-  const Synthetic s = MakeCorrespondences(truth, 200, 0.5, data_rng);
-  int true_inliers = 0;
-  for (bool b : s.inlier) true_inliers += b ? 1 : 0;
-  ASSERT_GT(true_inliers, 80);
-  ASSERT_LT(true_inliers, 120);
-
-  std::mt19937_64 rng(42);
-  MotionRansacResult result;
-  EstimateMotionRansac(s.correspondences, TestCamera(), MotionRansacOptions{}, rng, &result);
-  ASSERT_TRUE(result.success);
-  EXPECT_LT(RotationErrorDeg(result.T_curr_prev, truth), 0.1);
-  EXPECT_LT(TranslationError(result.T_curr_prev, truth), 1e-3);
-  EXPECT_EQ(result.inliers, true_inliers);
-  for (std::size_t i = 0; i < s.inlier.size(); ++i) {
-    EXPECT_EQ(result.inlier_mask[i] != 0, s.inlier[i]) << "correspondence " << i;
-  }
-  EXPECT_LT(result.iterations, MotionRansacOptions{}.max_iterations);  // stopped early
-
-  // The same seed gives the same answer.
-  std::mt19937_64 again(42);
-  MotionRansacResult second;
-  EstimateMotionRansac(s.correspondences, TestCamera(), MotionRansacOptions{}, again, &second);
-  EXPECT_EQ(second.iterations, result.iterations);
-  EXPECT_TRUE(second.T_curr_prev.matrix() == result.T_curr_prev.matrix());
-}
-
-TEST(MotionRansacTest, TooFewOrDegenerateCorrespondencesFail) {
-  std::mt19937_64 rng(5);
-  MotionRansacResult result;
-  std::vector<MotionCorrespondence> two(2);
-  EstimateMotionRansac(two, TestCamera(), MotionRansacOptions{}, rng, &result);
-  EXPECT_FALSE(result.success);
-  EXPECT_EQ(result.inliers, 0);
-  // All points on one line: every sample is degenerate for Horn.
-  std::vector<MotionCorrespondence> collinear;
-  for (int i = 0; i < 10; ++i) {
-    MotionCorrespondence m;
-    m.p_prev = Eigen::Vector3d(0.1 * i, 0.0, 5.0 + i);
-    m.p_curr = m.p_prev;
-    m.z_curr = TestCamera().Project(m.p_curr);
-    collinear.push_back(m);
-  }
-  EstimateMotionRansac(collinear, TestCamera(), MotionRansacOptions{}, rng, &result);
-  EXPECT_FALSE(result.success);
-  EXPECT_TRUE(result.T_curr_prev.matrix().isIdentity());
-}
-
-TEST(MotionRefinementTest, ConvergesToTheTrueMotionFromAPerturbedStart) {
-  std::mt19937_64 rng(6);
-  const Eigen::Isometry3d truth = Pose({-0.03, 0.05, 0.02}, {0.2, 0.05, 1.1});
-  const Synthetic s = MakeCorrespondences(truth, 80, 0.0, rng);
-  // 2° and 15 cm off.
-  const Eigen::Isometry3d start = Pose({0.0, 2.0 / kDegPerRad, 0.0}, {0.1, -0.05, 0.0}) * truth;
-  ASSERT_GT(RotationErrorDeg(start, truth), 1.9);
-  const MotionRefinementResult r = RefineMotionReprojection(s.correspondences, {}, TestCamera(),
-                                                            start, MotionRefinementOptions{});
-  EXPECT_TRUE(r.converged);
-  EXPECT_LT(RotationErrorDeg(r.T_curr_prev, truth), 1e-6);
-  EXPECT_LT(TranslationError(r.T_curr_prev, truth), 1e-7);
-  EXPECT_GT(r.initial_rms_px, 1.0);
-  EXPECT_LT(r.final_rms_px, 1e-6);
-  EXPECT_LE(r.iterations, MotionRefinementOptions{}.max_iterations);
-}
-
-TEST(MotionRefinementTest, ReducesTheErrorOfHornOnNoisyStereo) {
-  // With pixel noise, Horn on triangulated points suffers from the far points' depth
-  // noise (σ_Z ∝ Z², even with inverse-variance weights as in RANSAC's refit); the
-  // reprojection error is what the measurements constrain.
-  const StereoCamera c = TestCamera();
-  std::mt19937_64 rng(7);
-  std::normal_distribution<double> noise(0.0, 0.3);
-  const Eigen::Isometry3d truth = Pose({0.01, 0.03, 0.0}, {0.05, 0.0, 0.5});
-  double horn_error = 0.0, refined_error = 0.0;
-  for (int trial = 0; trial < 10; ++trial) {
-    std::vector<MotionCorrespondence> cs;
-    std::vector<Eigen::Vector3d> src, dst;
-    std::vector<double> weights;
-    for (const Eigen::Vector3d& p : RandomPoints(150, rng)) {
-      const Eigen::Vector3d z0 = c.Project(p) + Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
-      const Eigen::Vector3d z1 =
-          c.Project(truth * p) + Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
-      if (z0.x() - z0.z() < 1.0 || z1.x() - z1.z() < 1.0) continue;
-      MotionCorrespondence m;
-      m.p_prev = c.Triangulate(z0.x(), z0.y(), z0.x() - z0.z());
-      m.p_curr = c.Triangulate(z1.x(), z1.y(), z1.x() - z1.z());
-      m.z_curr = z1;
-      cs.push_back(m);
-      src.push_back(m.p_prev);
-      dst.push_back(m.p_curr);
-      weights.push_back(1.0 / (std::pow(m.p_prev.z(), 4) + std::pow(m.p_curr.z(), 4)));
-    }
-    const Eigen::Isometry3d horn = HornAbsoluteOrientation(src, dst, false, weights)->Rigid();
-    const MotionRefinementResult r =
-        RefineMotionReprojection(cs, {}, c, horn, MotionRefinementOptions{});
-    horn_error += TranslationError(horn, truth);
-    refined_error += TranslationError(r.T_curr_prev, truth);
-  }
-  EXPECT_LT(refined_error, 0.5 * horn_error);
-  std::printf("mean translation error: Horn %.1f mm, refined %.1f mm\n", 100.0 * horn_error,
-              100.0 * refined_error);
-}
-
-TEST(MotionRefinementTest, MaskOfTheWrongSizeThrows) {
-  std::vector<MotionCorrespondence> cs(4);
-  EXPECT_THROW(RefineMotionReprojection(cs, std::vector<unsigned char>(3, 1), TestCamera(),
-                                        Eigen::Isometry3d::Identity(), MotionRefinementOptions{}),
-               std::invalid_argument);
-}
+using stereo_test::kDegPerRad;
+using stereo_test::Pose;
+using stereo_test::RotationErrorDeg;
+using stereo_test::TestCamera;
+using stereo_test::TranslationError;
 
 // ---------------------------------------------------------------------------------------
 // The pipeline on a synthetic rendered scene: a textured floor and back wall seen by a

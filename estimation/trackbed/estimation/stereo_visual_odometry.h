@@ -1,15 +1,9 @@
 // Stereo visual odometry, frame to frame (Nistér et al. 2006; Ham et al. 2012 §3.2):
 // Harris corners, pyramidal Lucas–Kanade tracking from the previous to the current left
-// image, depth from stereo disparity, RANSAC over minimal 3-point samples solved by
-// Horn's closed-form absolute orientation (1987), a refit on the inliers, and a few
-// Gauss–Newton/Levenberg–Marquardt iterations that minimise the inliers' reprojection
-// error in the current left and right images.
-//
-// Why the reprojection refinement: with a short baseline, depth Z = fx·b/d is noisy and
-// the noise grows as Z² (σ_Z ≈ Z²σ_d/(fx·b)), so a fit that minimises 3-D distances is
-// dominated by far points; the image-space error is what the measurements actually
-// constrain, with the same noise for near and far points (as in libviso2, Geiger et al.
-// 2011).
+// image, depth from stereo disparity, and the motion from the resulting 3-D–3-D
+// correspondences by RANSAC with Horn's absolute orientation (1987) and a refinement of
+// the inliers' reprojection error in the current left and right images — the last two
+// in stereo_motion_estimation.h, which also says why the image-space error.
 //
 // Frames: cameras follow OpenCV (x right, y down, z forward). T_a_b maps b coordinates
 // to a (p_a = T_a_b · p_b). "prev"/"curr" are the left cameras of the previous and the
@@ -25,19 +19,21 @@
 //      by reprojection error of T_curr_prev·p_prev in the current left and right images;
 //   4. Horn refit on the inliers (weights 1/(Z_prev⁴ + Z_curr⁴), the inverse variance
 //      of stereo depth), then reprojection refinement, a re-selection of the inliers
-//      with the refined motion and a second refinement;
+//      with the refined motion and a second refinement (steps 3–4: EstimateStereoMotion);
 //   4b. vet the motion: within the platform's per-frame bounds, and within its dynamics
 //      bounds around the constant-velocity prediction (or a gyro's rotation, if given);
 //      a consensus that breaks the dynamics bounds gives way to the consensus of the
 //      remaining correspondences, if that one keeps within them;
 //   5. keep the inliers as features and replenish the grid cells that have too few with
 //      new Harris corners (stereo-matched for the next frame).
-// Fewer than min_inliers inliers is a failure (docs/localization.md): no motion (identity),
-// inliers = 0, a status that says why, and all features are detected afresh so that
-// the next frame can recover.
+// Fewer than min_inliers inliers is a failure: no motion (identity), inliers = 0, a
+// status and a reason that say why (a run folder logs each frame's status,
+// docs/run_folder.md), and all features are detected afresh so that the next frame can
+// recover.
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -46,129 +42,13 @@
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
+#include "trackbed/estimation/stereo_motion_estimation.h"
 #include "trackbed/perception/feature_tracker.h"
 #include "trackbed/perception/harris_corners.h"
 #include "trackbed/perception/kitti_sequence.h"
 #include "trackbed/perception/stereo_matcher.h"
 
 namespace trackbed::estimation {
-
-/// Rectified pinhole stereo pair: both cameras share fx, fy, cx, cy; the right camera
-/// sits baseline_m along the left camera's +x axis.
-struct StereoCamera {
-  double fx = 0.0;          ///< focal length along x [px], > 0
-  double fy = 0.0;          ///< focal length along y [px], > 0
-  double cx = 0.0;          ///< principal point x [px]
-  double cy = 0.0;          ///< principal point y [px]
-  double baseline_m = 0.0;  ///< [m], > 0
-
-  /// From a KITTI-form calibration (P0, P1). Throws std::invalid_argument unless fx, fy,
-  /// baseline > 0 and cx, cy finite.
-  static StereoCamera FromCalibration(const perception::StereoCalibration& calibration);
-
-  /// Point in the left camera frame [m] from a left pixel (u, v) [px] and disparity
-  /// d = u_left − u_right [px] > 0: Z = fx·b/d, X = (u − cx)·Z/fx, Y = (v − cy)·Z/fy.
-  Eigen::Vector3d Triangulate(double u, double v, double disparity_px) const;
-
-  /// Projection of a point p (left camera frame, Z > 0) into the pair: (u_left, v,
-  /// u_right) [px], u_right = fx·(X − b)/Z + cx.
-  Eigen::Vector3d Project(const Eigen::Vector3d& p) const;
-};
-
-/// One 3-D–3-D correspondence between consecutive frames.
-struct MotionCorrespondence {
-  Eigen::Vector3d p_prev = Eigen::Vector3d::Zero();  ///< point in the previous left camera [m]
-  Eigen::Vector3d p_curr = Eigen::Vector3d::Zero();  ///< same point from the current pair [m]
-  /// Its observation in the current pair: (u_left, v, u_right) [px].
-  Eigen::Vector3d z_curr = Eigen::Vector3d::Zero();
-};
-
-/// A 6-DoF increment δ = (ρ, φ) [m, rad] applied on the left:
-/// T ← (Exp(φ), ρ) ∘ T, i.e. R ← Exp(φ)·R, t ← Exp(φ)·t + ρ.
-using MotionIncrement = Eigen::Matrix<double, 6, 1>;
-Eigen::Isometry3d ApplyIncrement(const MotionIncrement& delta, const Eigen::Isometry3d& T);
-
-/// Stereo reprojection residual r = Project(T_curr_prev · p_prev) − z_curr [px] (u_left,
-/// v, u_right), and, if J is not null, its Jacobian ∂r/∂δ (3×6) at δ = 0 for the
-/// increment of ApplyIncrement. The point must be in front of the camera (Z > 0).
-Eigen::Vector3d StereoReprojectionResidual(const StereoCamera& camera,
-                                           const Eigen::Isometry3d& T_curr_prev,
-                                           const MotionCorrespondence& c,
-                                           Eigen::Matrix<double, 3, 6>* J = nullptr);
-
-/// True when p_prev, moved by T_curr_prev, lies in front of the current camera and
-/// reprojects within threshold_px of z_curr in both the left (u, v) and the right (u, v)
-/// image.
-bool IsReprojectionInlier(const StereoCamera& camera, const Eigen::Isometry3d& T_curr_prev,
-                          const MotionCorrespondence& c, double threshold_px);
-
-/// RANSAC over minimal samples of 3 correspondences.
-struct MotionRansacOptions {
-  /// Upper bound on hypotheses, >= 1.
-  int max_iterations = 300;
-  /// Stop early once a hypothesis with inlier ratio ε has been found and
-  /// 1 − (1 − ε³)^k >= confidence after k hypotheses; in (0, 1).
-  double confidence = 0.999;
-  /// Inlier threshold [px] on the reprojection error in the current left and in the
-  /// right image (each), > 0. Reprojection error is depth-aware by construction: the
-  /// same pixel tolerance allows metres of depth error far away and millimetres near.
-  double threshold_px = 2.0;
-
-  /// Throws OptionError naming the first invalid field.
-  void Validate() const;
-};
-
-struct MotionRansacResult {
-  bool success = false;  ///< a non-degenerate hypothesis was found
-  /// Best hypothesis refitted on its inliers by Horn (weights 1/(Z_prev⁴ + Z_curr⁴)),
-  /// unless the refit has fewer inliers than the hypothesis. Identity when !success.
-  Eigen::Isometry3d T_curr_prev = Eigen::Isometry3d::Identity();
-  int inliers = 0;                         ///< inliers of T_curr_prev
-  int iterations = 0;                      ///< hypotheses drawn
-  std::vector<unsigned char> inlier_mask;  ///< one per correspondence, 1 = inlier
-};
-
-/// RANSAC with Horn's absolute orientation (p_prev → p_curr) on 3-point samples, inliers
-/// by IsReprojectionInlier. `rng` is the only source of randomness. Writes into `result`
-/// (its mask buffer is reused). Needs >= 3 correspondences for success. Options are
-/// validated (OptionError).
-void EstimateMotionRansac(const std::vector<MotionCorrespondence>& correspondences,
-                          const StereoCamera& camera, const MotionRansacOptions& options,
-                          std::mt19937_64& rng, MotionRansacResult* result);
-
-/// Levenberg–Marquardt on the stereo reprojection error.
-struct MotionRefinementOptions {
-  /// Maximum LM iterations, >= 0 (0 = no refinement).
-  int max_iterations = 10;
-  /// Huber threshold [px] on a correspondence's residual norm, > 0: errors beyond it
-  /// count linearly (robust to inliers that are slightly off).
-  double huber_px = 1.0;
-  /// Stop when the increment's norm (metres and radians together) is below this, > 0.
-  double min_step = 1e-9;
-
-  /// Throws OptionError naming the first invalid field.
-  void Validate() const;
-};
-
-struct MotionRefinementResult {
-  Eigen::Isometry3d T_curr_prev = Eigen::Isometry3d::Identity();
-  int iterations = 0;
-  double initial_rms_px = 0.0;  ///< RMS residual (per image coordinate) before
-  double final_rms_px = 0.0;    ///< and after
-  /// Stopped because the step became negligible (min_step) or no step lowers the cost,
-  /// rather than on max_iterations.
-  bool converged = false;
-};
-
-/// Minimises Σ Huber(|StereoReprojectionResidual|) over the correspondences whose mask
-/// entry is non-zero (all if the mask is empty) by Levenberg–Marquardt on the 6-DoF
-/// increment, starting from T_init. Steps that raise the cost are rejected (damping
-/// grows); points that fall behind the camera are skipped. Throws
-/// std::invalid_argument for a mask of the wrong size; OptionError for bad options.
-MotionRefinementResult RefineMotionReprojection(
-    const std::vector<MotionCorrespondence>& correspondences,
-    const std::vector<unsigned char>& mask, const StereoCamera& camera,
-    const Eigen::Isometry3d& T_init, const MotionRefinementOptions& options);
 
 /// HarrisOptions{} with min_response = 2e-6: the VO's default detector.
 inline perception::HarrisOptions DefaultVoHarrisOptions() {
@@ -180,7 +60,9 @@ inline perception::HarrisOptions DefaultVoHarrisOptions() {
 /// Options of StereoVisualOdometry. Nested structs carry their own documentation.
 struct StereoVisualOdometryOptions {
   /// Harris detector for new features (absolute threshold: see harris_corners.h for
-  /// the scale of min_response; the VO default 2e-6 keeps corners of contrast ≳ 0.13).
+  /// the scale of min_response; the VO default 2e-6 keeps sharp corners of contrast
+  /// ≳ 0.13; 1e-5, ≳ 0.2, left 8–17 inliers a frame on the simulated outdoor route's
+  /// sandy stretch, docs/localization.md).
   perception::HarrisOptions harris = DefaultVoHarrisOptions();
   /// Bucketing grid for new features: cols × rows cells over the image, >= 1 each.
   int grid_cols = 12;
@@ -200,12 +82,13 @@ struct StereoVisualOdometryOptions {
   perception::StereoMatcherOptions matcher;
   /// Points farther than this [m] are not used, > 0.
   double max_depth_m = 200.0;
-  /// RANSAC options (threshold in px of reprojection error).
+  /// RANSAC options (threshold in px of reprojection error; it also re-selects the
+  /// inliers after the refinement).
   MotionRansacOptions ransac;
   /// Seed of the RANSAC generator (std::mt19937_64); the same seed and images give the
   /// same result.
   std::uint64_t seed = 1;
-  /// Fewer inliers than this is a failure (docs/localization.md), >= 3.
+  /// Fewer inliers than this is a failure (see the file comment), >= 3.
   int min_inliers = 6;
   /// Per-frame motion bounds of the platform: a frame whose estimated motion moves the
   /// camera farther [m] or turns it more [deg] is a failure (kImplausibleMotion), not a
@@ -320,6 +203,50 @@ class StereoVisualOdometry {
     }
     std::size_t size() const { return points.size(); }
   };
+  /// One frame's input, as Process received it.
+  struct Frame {
+    const cv::Mat& left;
+    const cv::Mat& right;
+    double t_s;
+    const Eigen::Matrix3d* R_prev_curr_prior;  // may be null
+  };
+  /// Why a frame has no motion.
+  struct Failure {
+    VoStatus status;
+    std::string reason;
+  };
+
+  // Process's steps, in order. Each works on the per-frame scratch below.
+  /// Throws std::invalid_argument for the input Process rejects.
+  void CheckInput(const cv::Mat& left, const cv::Mat& right, double t_s) const;
+  /// 1. LK-tracks prev_ into tracked_points_/track_status_ (from the constant-velocity
+  ///    prediction when use_motion_prior); returns the number tracked.
+  int TrackFeatures(const cv::Size& image_size);
+  /// 2. Stereo-matches the tracked points into correspondences_ (and new_points_, their
+  ///    left image positions); returns their number.
+  int MatchTrackedFeatures(const cv::Mat& left, const cv::Mat& right);
+  /// 3–4. EstimateStereoMotion on correspondences_ into motion_; why not, if it failed.
+  std::optional<Failure> EstimateMotion(int matched);
+  /// 4b. Holds motion_ to the per-frame and dynamics bounds; replaces a consensus that
+  ///     breaks the dynamics bounds by the other correspondences' one where that keeps
+  ///     within them (result->dynamics_constrained). Why not, if it fails.
+  std::optional<Failure> VetMotion(const Frame& frame, VoFrameResult* result);
+  /// Why T moves more in one frame than max_*_per_frame allow, if it does.
+  std::optional<std::string> ExceedsFrameBounds(const Eigen::Isometry3d& T) const;
+  /// Why T departs from the rotation prior or, after a frame with a motion, from the
+  /// constant-velocity prediction `predicted` beyond the dynamics bounds, if it does.
+  std::optional<std::string> BreaksDynamics(const Eigen::Isometry3d& T, const Frame& frame,
+                                            const Eigen::Isometry3d& predicted) const;
+  /// Takes motion_ as this frame's motion: result, pose, constant-velocity state.
+  void AcceptMotion(const Frame& frame, VoFrameResult* result);
+  /// 5. Moves motion_'s inliers into curr_, the next frame's features.
+  void CarryInliers();
+  /// A first frame: features detected everywhere, pose identity.
+  VoFrameResult StartAfresh(const Frame& frame, VoFrameResult* result);
+  /// A failed frame: no motion, features detected everywhere.
+  VoFrameResult Fail(const Frame& frame, Failure failure, VoFrameResult* result);
+  /// Hands curr_ and the pyramid on to the next frame; completes and returns *result.
+  VoFrameResult Finish(const Frame& frame, VoFrameResult* result);
 
   /// Adds Harris corners in under-filled cells of `left` (stereo-matched in the pair)
   /// to `features`.
@@ -328,6 +255,7 @@ class StereoVisualOdometry {
 
   StereoCamera camera_;
   StereoVisualOdometryOptions options_;
+  StereoMotionOptions motion_options_;  // options_'s ransac, refinement, min_inliers
   perception::FeatureTracker tracker_;
   perception::StereoMatcher matcher_;
   std::mt19937_64 rng_;
@@ -348,12 +276,9 @@ class StereoVisualOdometry {
   std::vector<perception::TrackStatus> track_status_;
   std::vector<perception::StereoMatch> matches_;
   std::vector<MotionCorrespondence> correspondences_;
-  std::vector<int> correspondence_feature_;  // correspondence → index into prev_
-  MotionRansacResult ransac_;
-  std::vector<unsigned char> inlier_mask_;
-  std::vector<MotionCorrespondence> rest_;  // outside an inconsistent consensus
-  std::vector<int> rest_index_;             // rest_ → index into correspondences_
-  std::vector<unsigned char> rest_mask_;    // a consensus of rest_, over correspondences_
+  std::vector<int> correspondence_feature_;    // correspondence → index into prev_
+  StereoMotionResult motion_;                  // of correspondences_
+  std::vector<unsigned char> candidate_mask_;  // outside an inconsistent consensus
   std::vector<int> cell_count_;
   std::vector<std::int64_t> cell_retry_frame_;  // frame index from which a cell is searched
   std::int64_t frame_index_ = 0;                // frames processed since construction
