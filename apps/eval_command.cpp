@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "trackbed/estimation/trajectory_io.h"
 #include "trackbed/estimation/trajectory_metrics.h"
 
@@ -18,15 +20,18 @@ namespace {
 
 using namespace trackbed::estimation;
 
+using Json = nlohmann::ordered_json;
+
 std::string Format(const char* fmt, double v) {
   char buf[64];
   std::snprintf(buf, sizeof(buf), fmt, v);
   return buf;
 }
 
-// A JSON number (finite by construction; null otherwise).
-std::string Num(double v) { return std::isfinite(v) ? Format("%.10g", v) : "null"; }
-
+// A JSON string. Kept by hand rather than nlohmann's dump() so that `--json` output stays
+// byte-identical: dump() writes backspace, form feed and carriage return as two-character
+// escapes where this writes six-character \u ones, and throws on a path that is not UTF-8
+// where this copies its bytes through.
 std::string Str(const std::string& s) {
   std::string out = "\"";
   for (char c : s) {
@@ -56,12 +61,46 @@ std::string Str(const std::string& s) {
   return out + "\"";
 }
 
-std::string StatsJson(const ErrorStats& s) {
-  std::ostringstream o;
-  o << "{\"count\": " << s.count << ", \"rmse\": " << Num(s.rmse) << ", \"mean\": " << Num(s.mean)
-    << ", \"median\": " << Num(s.median) << ", \"std\": " << Num(s.std)
-    << ", \"min\": " << Num(s.min) << ", \"max\": " << Num(s.max) << "}";
-  return o.str();
+// One value laid out as `--json` has always printed it, which nlohmann's dump() cannot:
+// containers on one line with ", " and ": " separators, and floating-point numbers with
+// 10 significant digits (%.10g: "1" rather than dump()'s "1.0", "0.1234567891" rather
+// than 17 digits), null when not finite.
+void WriteInline(std::ostream& out, const Json& v) {
+  if (v.is_object() || v.is_array()) {
+    out << (v.is_object() ? '{' : '[');
+    const char* separator = "";
+    for (auto it = v.begin(); it != v.end(); ++it) {
+      out << separator;
+      if (v.is_object()) out << Str(it.key()) << ": ";
+      WriteInline(out, it.value());
+      separator = ", ";
+    }
+    out << (v.is_object() ? '}' : ']');
+  } else if (v.is_number_float()) {
+    const double x = v.get<double>();
+    out << (std::isfinite(x) ? Format("%.10g", x) : "null");
+  } else if (v.is_string()) {
+    out << Str(v.get<std::string>());
+  } else {
+    out << v.dump();  // integers, booleans, null
+  }
+}
+
+// The document: one top-level member per line, each written by WriteInline.
+void WriteDocument(std::ostream& out, const Json& doc) {
+  out << "{\n";
+  const char* separator = "";
+  for (auto it = doc.begin(); it != doc.end(); ++it) {
+    out << separator << "  " << Str(it.key()) << ": ";
+    WriteInline(out, it.value());
+    separator = ",\n";
+  }
+  out << "\n}\n";
+}
+
+Json StatsJson(const ErrorStats& s) {
+  return {{"count", s.count}, {"rmse", s.rmse}, {"mean", s.mean}, {"median", s.median},
+          {"std", s.std},     {"min", s.min},   {"max", s.max}};
 }
 
 struct Input {
@@ -103,15 +142,22 @@ void Row(std::ostream& out, const std::string& name, const std::string& value,
   out << buf;
 }
 
-}  // namespace
+// What `eval` prints, computed once for either layout.
+struct Evaluation {
+  EvaluationOptions options;
+  Input gt, est;
+  Association association;
+  TrajectoryEvaluation metrics;
+};
 
-void RunEval(const EvalArgs& args, std::ostream& out) {
-  const AlignmentMode align = ParseAlignmentMode(args.align);
+// The metric options from --align and --delta/--delta-unit (and the --max-dt check),
+// each failure naming its option.
+EvaluationOptions ParseOptions(const EvalArgs& args) {
+  EvaluationOptions options;
+  options.align = ParseAlignmentMode(args.align);
   if (!(std::isfinite(args.max_dt_s) && args.max_dt_s >= 0.0)) {
     throw std::invalid_argument("--max-dt must be >= 0 s");
   }
-  EvaluationOptions options;
-  options.align = align;
   options.rpe.delta = args.delta;
   if (args.delta_unit == "frames" || args.delta_unit == "f") {
     options.rpe.unit = DeltaUnit::kFrames;
@@ -126,21 +172,25 @@ void RunEval(const EvalArgs& args, std::ostream& out) {
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(std::string("--delta: ") + e.what());
   }
+  return options;
+}
 
+Evaluation Evaluate(const EvalArgs& args) {
+  Evaluation r;
+  r.options = ParseOptions(args);
   // Per-file --gt-times/--est-times must fit their file; the shared --times goes to
   // whichever file is KITTI.
-  const Input gt =
-      Load("ground-truth", args.gt_path, args.gt_format.empty() ? args.format : args.gt_format,
-           args.gt_times.empty() ? args.times : args.gt_times, args.gt_times.empty());
-  const Input est =
-      Load("estimate", args.est_path, args.est_format.empty() ? args.format : args.est_format,
-           args.est_times.empty() ? args.times : args.est_times, args.est_times.empty());
-  if (!args.times.empty() && gt.times.empty() && est.times.empty()) {
+  r.gt = Load("ground-truth", args.gt_path, args.gt_format.empty() ? args.format : args.gt_format,
+              args.gt_times.empty() ? args.times : args.gt_times, args.gt_times.empty());
+  r.est = Load("estimate", args.est_path, args.est_format.empty() ? args.format : args.est_format,
+               args.est_times.empty() ? args.times : args.est_times, args.est_times.empty());
+  if (!args.times.empty() && r.gt.times.empty() && r.est.times.empty()) {
     throw std::invalid_argument("--times " + args.times + " applies to KITTI files, but " +
                                 "neither " + args.gt_path + " nor " + args.est_path + " is KITTI");
   }
 
-  const Association a = Associate(gt.trajectory, est.trajectory, args.max_dt_s, args.offset_s);
+  r.association = Associate(r.gt.trajectory, r.est.trajectory, args.max_dt_s, args.offset_s);
+  const Association& a = r.association;
   if (a.gt.size() < 2) {
     std::ostringstream why;
     why << "only " << a.gt.size() << " associated pose pair(s) between " << args.gt_path << " and "
@@ -152,7 +202,64 @@ void RunEval(const EvalArgs& args, std::ostream& out) {
     }
     throw std::runtime_error(why.str());
   }
-  const TrajectoryEvaluation e = EvaluateTrajectory(a.gt, a.est, options);
+  r.metrics = EvaluateTrajectory(a.gt, a.est, r.options);
+  return r;
+}
+
+Json FileJson(const Input& in) {
+  return {{"path", in.path},
+          {"format", FormatName(in.trajectory.format)},
+          {"poses", in.trajectory.poses.size()},
+          {"indexed", in.trajectory.indexed}};
+}
+
+// The `--json` document; members in the order scripts have always read them.
+Json EvalJson(const EvalArgs& args, const Evaluation& r) {
+  const TrajectoryEvaluation& e = r.metrics;
+  const SimilarityTransform& T = e.ate.alignment.T_gt_est;
+  Json R = Json::array();
+  for (int row = 0; row < 3; ++row) {
+    R.push_back(Json::array({T.R(row, 0), T.R(row, 1), T.R(row, 2)}));
+  }
+  Json doc;
+  doc["gt"] = FileJson(r.gt);
+  doc["est"] = FileJson(r.est);
+  doc["association"] = {{"pairs", e.pairs},
+                        {"by_index", r.association.by_index},
+                        {"max_dt_s", args.max_dt_s},
+                        {"offset_s", args.offset_s}};
+  doc["alignment"] = {{"mode", AlignmentModeName(r.options.align)},
+                      {"scale", T.scale},
+                      {"unique", e.ate.alignment.unique},
+                      {"R", R},
+                      {"t", Json::array({T.t.x(), T.t.y(), T.t.z()})}};
+  doc["gt_path_length_m"] = e.gt_path_length_m;
+  doc["est_path_length_m"] = e.est_path_length_m;
+  doc["ate_aligned_m"] = StatsJson(e.ate.error_m);
+  doc["ate_rmse_m"] = e.ate_rmse_m;
+  doc["rpe"] = {{"delta", r.options.rpe.delta},
+                {"delta_unit", r.options.rpe.unit == DeltaUnit::kFrames ? "frames" : "m"},
+                {"trans_m", StatsJson(e.rpe.trans_m)},
+                {"rot_deg", StatsJson(e.rpe.rot_deg)}};
+  // KITTI's segments start at 100 m: null on shorter ground truth.
+  doc["kitti"] = e.kitti.segments == 0 ? Json(nullptr)
+                                       : Json{{"segments", e.kitti.segments},
+                                              {"t_rel_pct", e.kitti.t_rel_pct},
+                                              {"r_rel_deg_per_100m", e.kitti.r_rel_deg_per_100m}};
+  doc["rpe_trans_pct"] = e.rpe_trans_pct ? Json(*e.rpe_trans_pct) : Json(nullptr);
+  doc["final_error_m"] = e.final_error.horizontal_m;
+  doc["final_error_pct"] = e.final_error.pct;
+  doc["final_error_3d_m"] = e.final_error.error_3d_m;
+  doc["final_error_aligned_m"] = e.final_error_aligned_m;
+  return doc;
+}
+
+void WriteTable(const EvalArgs& args, const Evaluation& r, std::ostream& out) {
+  const Input &gt = r.gt, &est = r.est;
+  const Association& a = r.association;
+  const TrajectoryEvaluation& e = r.metrics;
+  const EvaluationOptions& options = r.options;
+  const AlignmentMode align = options.align;
   const SimilarityTransform& T = e.ate.alignment.T_gt_est;
   const std::string align_name = AlignmentModeName(align);
   const std::string delta_text =
@@ -160,51 +267,6 @@ void RunEval(const EvalArgs& args, std::ostream& out) {
                                              ? (options.rpe.delta == 1 ? " frame" : " frames")
                                              : " m");
   const bool has_kitti = e.kitti.segments > 0;
-
-  if (args.json) {
-    out << "{\n";
-    out << "  \"gt\": {\"path\": " << Str(gt.path)
-        << ", \"format\": " << Str(FormatName(gt.trajectory.format))
-        << ", \"poses\": " << gt.trajectory.poses.size()
-        << ", \"indexed\": " << (gt.trajectory.indexed ? "true" : "false") << "},\n";
-    out << "  \"est\": {\"path\": " << Str(est.path)
-        << ", \"format\": " << Str(FormatName(est.trajectory.format))
-        << ", \"poses\": " << est.trajectory.poses.size()
-        << ", \"indexed\": " << (est.trajectory.indexed ? "true" : "false") << "},\n";
-    out << "  \"association\": {\"pairs\": " << e.pairs
-        << ", \"by_index\": " << (a.by_index ? "true" : "false")
-        << ", \"max_dt_s\": " << Num(args.max_dt_s) << ", \"offset_s\": " << Num(args.offset_s)
-        << "},\n";
-    out << "  \"alignment\": {\"mode\": " << Str(align_name) << ", \"scale\": " << Num(T.scale)
-        << ", \"unique\": " << (e.ate.alignment.unique ? "true" : "false") << ", \"R\": [";
-    for (int r = 0; r < 3; ++r) {
-      out << (r ? ", " : "") << "[" << Num(T.R(r, 0)) << ", " << Num(T.R(r, 1)) << ", "
-          << Num(T.R(r, 2)) << "]";
-    }
-    out << "], \"t\": [" << Num(T.t.x()) << ", " << Num(T.t.y()) << ", " << Num(T.t.z()) << "]},\n";
-    out << "  \"gt_path_length_m\": " << Num(e.gt_path_length_m) << ",\n";
-    out << "  \"est_path_length_m\": " << Num(e.est_path_length_m) << ",\n";
-    out << "  \"ate_aligned_m\": " << StatsJson(e.ate.error_m) << ",\n";
-    out << "  \"ate_rmse_m\": " << Num(e.ate_rmse_m) << ",\n";
-    out << "  \"rpe\": {\"delta\": " << Num(options.rpe.delta)
-        << ", \"delta_unit\": " << Str(options.rpe.unit == DeltaUnit::kFrames ? "frames" : "m")
-        << ", \"trans_m\": " << StatsJson(e.rpe.trans_m)
-        << ", \"rot_deg\": " << StatsJson(e.rpe.rot_deg) << "},\n";
-    out << "  \"kitti\": ";
-    if (has_kitti) {
-      out << "{\"segments\": " << e.kitti.segments << ", \"t_rel_pct\": " << Num(e.kitti.t_rel_pct)
-          << ", \"r_rel_deg_per_100m\": " << Num(e.kitti.r_rel_deg_per_100m) << "},\n";
-    } else {
-      out << "null,\n";
-    }
-    out << "  \"rpe_trans_pct\": " << (e.rpe_trans_pct ? Num(*e.rpe_trans_pct) : "null") << ",\n";
-    out << "  \"final_error_m\": " << Num(e.final_error.horizontal_m) << ",\n";
-    out << "  \"final_error_pct\": " << Num(e.final_error.pct) << ",\n";
-    out << "  \"final_error_3d_m\": " << Num(e.final_error.error_3d_m) << ",\n";
-    out << "  \"final_error_aligned_m\": " << Num(e.final_error_aligned_m) << "\n";
-    out << "}\n";
-    return;
-  }
 
   out << "ground truth  " << gt.path << " (" << Describe(gt) << ")\n";
   out << "estimate      " << est.path << " (" << Describe(est) << ")\n";
@@ -257,6 +319,17 @@ void RunEval(const EvalArgs& args, std::ostream& out) {
   if (align != AlignmentMode::kNone) {
     Row(out, "final error (3-D, " + align_name + "-aligned)",
         Format("%.4f", e.final_error_aligned_m), "m");
+  }
+}
+
+}  // namespace
+
+void RunEval(const EvalArgs& args, std::ostream& out) {
+  const Evaluation r = Evaluate(args);
+  if (args.json) {
+    WriteDocument(out, EvalJson(args, r));
+  } else {
+    WriteTable(args, r, out);
   }
 }
 

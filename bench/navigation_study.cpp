@@ -13,10 +13,12 @@
 // u_trap, narrow_gap, goal_beside_wall, narrow_corridor, enclosed_goal, random_<seed>).
 #include <cmath>
 #include <cstdio>
-#include <cstring>
+#include <cstdlib>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "bench_args.h"
 #include "trackbed/navigation/kinematic_simulation.h"
 #include "trackbed/navigation/navigator_factory.h"
 #include "trackbed/navigation/obstacle_fields.h"
@@ -303,22 +305,35 @@ void Trace(const std::string& scene_name, const std::string& method) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  CLI::App app{
+      "Navigation study (kinematic mode): Gauss-Newton with sub-goals against the "
+      "potential field and the dynamic window; prints the paper scenes, seeded random "
+      "fields, the potential-field traps and the ablations as Markdown tables"};
   int fields = 100;
-  for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--fields") == 0 && i + 1 < argc) {
-      fields = std::atoi(argv[++i]);
-    } else if (std::strcmp(argv[i], "--tune") == 0) {
-      Tune("potential_field", PotentialFieldGrid(), kEqualSafetyClearanceM, true);
-      Tune("dwa", DynamicWindowGrid(0.65), kEqualSafetyClearanceM, true);
-      return 0;
-    } else if (std::strcmp(argv[i], "--trace") == 0 && i + 2 < argc) {
-      Trace(argv[i + 1], argv[i + 2]);
-      return 0;
-    } else {
-      std::fprintf(stderr,
-                   "usage: navigation_study [--fields N] [--tune] [--trace SCENE METHOD]\n");
-      return 2;
-    }
+  bool tune = false;
+  std::vector<std::string> trace;
+  app.add_option("--fields", fields, "Seeded random obstacle fields (seeds 0..N-1)")
+      ->capture_default_str()
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  CLI::Option* tune_flag = app.add_flag(
+      "--tune", tune,
+      "Sweep the potential field's and the DWA's gains on the paper's two scenes and print the "
+      "choice (the library's defaults are that choice), instead of the tables");
+  app.add_option("--trace", trace,
+                 "--trace SCENE METHOD: print one run's per-step log as CSV instead of the "
+                 "tables; SCENE: paper_left, paper_right, u_trap, narrow_gap, goal_beside_wall, "
+                 "narrow_corridor, enclosed_goal, random_<seed>")
+      ->expected(2)
+      ->excludes(tune_flag);
+  if (const std::optional<int> status = trackbed::bench::Parse(app, argc, argv)) return *status;
+  if (tune) {
+    Tune("potential_field", PotentialFieldGrid(), kEqualSafetyClearanceM, true);
+    Tune("dwa", DynamicWindowGrid(0.65), kEqualSafetyClearanceM, true);
+    return 0;
+  }
+  if (!trace.empty()) {
+    Trace(trace[0], trace[1]);
+    return 0;
   }
   const std::vector<Variant> methods = Methods();
   PaperTable(methods);

@@ -8,6 +8,7 @@
 // simulated to wall-clock time on one core.
 #include <cstdio>
 #include <exception>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,9 +17,17 @@
 #include "trackbed/scenario/scenario_yaml.h"
 
 int main(int argc, char** argv) {
+  CLI::App app{
+      "Physics-only real-time factor of scenarios: the closed loop with the "
+      "ground-truth driver, cameras off, no vision, no file output"};
   double seconds = 0.0;
-  const std::vector<std::string> files =
-      trackbed::bench::ScenarioFiles(argc, argv, "--seconds", &seconds);
+  std::vector<std::string> files;
+  app.add_option("--seconds", seconds, "Simulated time per scene [s] (0: the scene's own duration)")
+      ->capture_default_str()
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  trackbed::bench::AddScenarioFiles(app, &files);
+  if (const std::optional<int> status = trackbed::bench::Parse(app, argc, argv)) return *status;
+  files = trackbed::bench::ScenarioFilesOrDefault(files);
   try {
     for (const std::string& f : files) {
       std::vector<trackbed::scenario::Override> overrides = {{"robot.stereo.enabled", "false"}};

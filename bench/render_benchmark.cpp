@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,11 +22,19 @@
 
 int main(int argc, char** argv) {
   using namespace trackbed;
-  double pairs_arg = 200;
-  std::vector<std::string> sets;
-  const std::vector<std::string> files =
-      bench::ScenarioFiles(argc, argv, "--pairs", &pairs_arg, &sets);
-  const int pairs = static_cast<int>(pairs_arg);
+  CLI::App app{
+      "Rendering and vision speed: stereo pairs per second rendering alone, visual "
+      "odometry frames per second, and the closed loop's real-time factor with rendering "
+      "and the localization stack"};
+  int pairs = 200;
+  std::vector<std::string> sets, files;
+  app.add_option("--pairs", pairs, "Stereo pairs to render and to run visual odometry on")
+      ->capture_default_str()
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  bench::AddSetOption(app, &sets);
+  bench::AddScenarioFiles(app, &files);
+  if (const std::optional<int> status = bench::Parse(app, argc, argv)) return *status;
+  files = bench::ScenarioFilesOrDefault(files);
   try {
     std::vector<scenario::Override> overrides{{"robot.stereo.enabled", "true"}};
     for (const std::string& set : sets) overrides.push_back(scenario::ParseOverride(set));

@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -310,6 +311,58 @@ TEST(CliTest, FusionRulesFileIsFoundBesideTheScenarioOrNamedInTheError) {
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.stderr_text.find("estimation.fusion_rules: no such file"), std::string::npos)
       << r.stderr_text;
+}
+
+// Writes a TUM trajectory: 20 poses 0.1 s apart on a circle of radius 5 m (not collinear,
+// so the SE(3) alignment is unique), each position shifted by (dx, 0, 0).
+void WriteCircleTum(const fs::path& path, double dx) {
+  std::ofstream out(path);
+  for (int k = 0; k < 20; ++k) {
+    const double a = 0.1 * k;
+    char line[160];
+    std::snprintf(line, sizeof(line), "%.3f %.9f %.9f 0 0 0 0 1\n", 0.1 * k, 5.0 * std::cos(a) + dx,
+                  5.0 * std::sin(a));
+    out << line;
+  }
+}
+
+// `trackbed eval --json` on an estimate 0.3 m off the ground truth: unaligned, every
+// position error is 0.3 m; SE(3)-aligned, none is left. The layout and the 10-digit
+// numbers are pinned too, since scripts read the lines as well as the JSON.
+TEST(CliTest, EvalJsonGivesTheAteOfAKnownOffset) {
+  const fs::path dir = TempDir("eval");
+  const fs::path gt = dir / "gt.tum", est = dir / "est.tum";
+  WriteCircleTum(gt, 0.0);
+  WriteCircleTum(est, 0.3);
+  const std::string files = gt.string() + " " + est.string();
+
+  Result r = Trackbed("eval " + files + " --json --align none", "eval_none");
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  nlohmann::json j = nlohmann::json::parse(r.stdout_text);
+  EXPECT_EQ(j["gt"]["path"], gt.string());
+  EXPECT_EQ(j["gt"]["format"], "tum");
+  EXPECT_EQ(j["est"]["poses"], 20);
+  EXPECT_EQ(j["association"]["pairs"], 20);
+  EXPECT_NEAR(j["ate_aligned_m"]["rmse"].get<double>(), 0.3, 1e-6);
+  EXPECT_NEAR(j["ate_aligned_m"]["max"].get<double>(), 0.3, 1e-6);
+  EXPECT_NEAR(j["ate_rmse_m"].get<double>(), 0.3, 1e-6);
+  EXPECT_TRUE(j["kitti"].is_null());  // a 9.5 m path: no 100 m segment
+  EXPECT_NE(r.stdout_text.find("\n  \"association\": {\"pairs\": 20, \"by_index\": false, "
+                               "\"max_dt_s\": 0.02, \"offset_s\": 0},\n"),
+            std::string::npos)
+      << r.stdout_text;
+  EXPECT_NE(r.stdout_text.find("\"scale\": 1, \"unique\": true, "
+                               "\"R\": [[1, 0, 0], [0, 1, 0], [0, 0, 1]], \"t\": [0, 0, 0]},\n"),
+            std::string::npos)
+      << r.stdout_text;
+
+  r = Trackbed("eval " + files + " --json", "eval_se3");
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  j = nlohmann::json::parse(r.stdout_text);
+  EXPECT_EQ(j["alignment"]["mode"], "se3");
+  EXPECT_LT(j["ate_aligned_m"]["rmse"].get<double>(), 1e-6);
+  EXPECT_NEAR(j["alignment"]["t"][0].get<double>(), -0.3, 1e-6);
+  EXPECT_NEAR(j["ate_rmse_m"].get<double>(), 0.3, 1e-6);  // unaligned, whatever --align
 }
 
 TEST(CliTest, HelpAndMissingArgumentsFollowTheExitContract) {
