@@ -524,9 +524,10 @@ std::vector<CellResult> ReadSweepResults(const fs::path& sweep_dir, const SweepP
   return results;
 }
 
-std::string SweepReportMarkdown(const SweepPlan& plan, const SweepSummary& summary,
-                                const std::vector<GroupStats>& groups,
-                                const std::vector<std::string>& plots) {
+namespace {
+
+// The title, the cell counts by status and where the report's data lives.
+std::string ReportIntroduction(const SweepPlan& plan, const SweepSummary& summary) {
   std::map<std::string, std::size_t> by_status;
   const int status = summary.Column("cell_status");
   for (const std::vector<SummaryValue>& row : summary.rows) {
@@ -552,113 +553,142 @@ std::string SweepReportMarkdown(const SweepPlan& plan, const SweepSummary& summa
   md +=
       ": n, mean, std, 95 % confidence interval, median, min, max) in "
       "[aggregates.csv](aggregates.csv); each cell's run folder in `cells/<cell>/run/`.\n";
+  return md;
+}
 
-  // The group columns shared by both tables: group, then each varied value.
-  const std::vector<std::string> keys = plan.GroupKeys();
-  const auto group_head = [&]() {
-    std::string h = "| group | scenario |";
-    for (const std::string& k : keys) h += " " + MarkdownCell(k) + " |";
-    return h;
-  };
-  const auto group_cells = [&](const GroupStats& g) {
-    std::string r = "| " + MarkdownCell(g.group) + " | " + MarkdownCell(g.scenario) + " |";
-    for (const std::string& k : keys) {
-      std::string value;
-      for (const scenario::Override& o : g.varied) {
-        if (o.key == k) value = o.value;
-      }
-      r += " " + MarkdownCell(value) + " |";
+// The group columns both tables start with: group, scenario, then each varied key.
+std::string GroupHeader(const std::vector<std::string>& keys) {
+  std::string h = "| group | scenario |";
+  for (const std::string& k : keys) h += " " + MarkdownCell(k) + " |";
+  return h;
+}
+
+// One group's cells under GroupHeader (empty for a key the group does not vary).
+std::string GroupCells(const std::vector<std::string>& keys, const GroupStats& g) {
+  std::string r = "| " + MarkdownCell(g.group) + " | " + MarkdownCell(g.scenario) + " |";
+  for (const std::string& k : keys) {
+    std::string value;
+    for (const scenario::Override& o : g.varied) {
+      if (o.key == k) value = o.value;
     }
-    return r;
-  };
-  const auto rule = [](std::size_t columns) {
-    std::string r = "|";
-    for (std::size_t k = 0; k < columns; ++k) r += "---|";
-    return r + "\n";
-  };
+    r += " " + MarkdownCell(value) + " |";
+  }
+  return r;
+}
 
+// A table's header rule for `columns` columns.
+std::string TableRule(std::size_t columns) {
+  std::string r = "|";
+  for (std::size_t k = 0; k < columns; ++k) r += "---|";
+  return r + "\n";
+}
+
+// ATE per estimator and group, with the estimators ranked; "" without estimators.
+std::string LocalizationSection(const SweepPlan& plan, const SweepSummary& summary,
+                                const std::vector<GroupStats>& groups) {
   const std::vector<std::string> estimators = EstimatorsOf(summary);
-  if (!estimators.empty()) {
-    md += "\n## Localization: ATE [m] per estimator\n\n";
-    md +=
-        "Horizontal RMS position error against ground truth, without alignment "
-        "(`estimators.<name>.ate_rmse_m`), mean ± sample standard deviation over the group's "
-        "seeds (ok cells only); the last column orders the estimators by mean ATE, best "
-        "first.\n\n";
-    md += group_head() + " ok |";
-    for (const std::string& e : estimators) md += " " + e + " |";
-    md += " best → worst |\n";
-    md += rule(2 + keys.size() + 1 + estimators.size() + 1);
-    for (const GroupStats& g : groups) {
-      md += group_cells(g) + " " + std::to_string(g.ok) + "/" + std::to_string(g.cells) + " |";
-      std::vector<std::pair<double, std::string>> ranking;
-      for (const std::string& e : estimators) {
-        const SampleStats* s = g.Find(AteColumn(summary, e));
-        md += " " + (s ? MeanStd(*s) : std::string("–")) + " |";
-        if (s) ranking.emplace_back(s->mean, e);
-      }
-      std::stable_sort(ranking.begin(), ranking.end(),
-                       [](const auto& a, const auto& b) { return a.first < b.first; });
-      std::string order;
-      for (const auto& [mean, e] : ranking) order += (order.empty() ? "" : " < ") + e;
-      md += " " + order + " |\n";
+  if (estimators.empty()) return "";
+  const std::vector<std::string> keys = plan.GroupKeys();
+  std::string md = "\n## Localization: ATE [m] per estimator\n\n";
+  md +=
+      "Horizontal RMS position error against ground truth, without alignment "
+      "(`estimators.<name>.ate_rmse_m`), mean ± sample standard deviation over the group's "
+      "seeds (ok cells only); the last column orders the estimators by mean ATE, best "
+      "first.\n\n";
+  md += GroupHeader(keys) + " ok |";
+  for (const std::string& e : estimators) md += " " + e + " |";
+  md += " best → worst |\n";
+  md += TableRule(2 + keys.size() + 1 + estimators.size() + 1);
+  for (const GroupStats& g : groups) {
+    md += GroupCells(keys, g) + " " + std::to_string(g.ok) + "/" + std::to_string(g.cells) + " |";
+    std::vector<std::pair<double, std::string>> ranking;
+    for (const std::string& e : estimators) {
+      const SampleStats* s = g.Find(AteColumn(summary, e));
+      md += " " + (s ? MeanStd(*s) : std::string("–")) + " |";
+      if (s) ranking.emplace_back(s->mean, e);
     }
+    std::stable_sort(ranking.begin(), ranking.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::string order;
+    for (const auto& [mean, e] : ranking) order += (order.empty() ? "" : " < ") + e;
+    md += " " + order + " |\n";
   }
+  return md;
+}
 
+// Success rate and navigation means per group; "" when no cell reports navigation.
+std::string NavigationSection(const SweepPlan& plan, const SweepSummary& summary,
+                              const std::vector<GroupStats>& groups) {
   const std::string success = ColumnOfPath(summary, {"navigation", "success"});
-  if (!success.empty()) {
-    md += "\n## Navigation\n\n";
-    md +=
-        "Success rate over the group's ok cells; the other columns are means ± std over "
-        "them (`navigation.*` in metrics.json).\n\n";
-    const std::vector<std::pair<std::string, std::vector<std::string>>> extra = {
-        {"time to goal [s]", {"navigation", "time_to_goal_s"}},
-        {"path length [m]", {"navigation", "path_length_m"}},
-        {"final error [m]", {"navigation", "final_position_error_m"}},
-        {"min clearance [m]", {"navigation", "min_clearance_m"}},
-        {"collisions", {"navigation", "collisions"}}};
-    md += group_head() + " ok | success |";
-    for (const auto& [title, path] : extra) md += " " + title + " |";
-    md += "\n" + rule(2 + keys.size() + 2 + extra.size());
-    for (const GroupStats& g : groups) {
-      md += group_cells(g) + " " + std::to_string(g.ok) + "/" + std::to_string(g.cells) + " |";
-      const SampleStats* s = g.Find(success);
-      if (s) {
-        char buf[64];
-        const long wins = std::lround(s->mean * static_cast<double>(s->n));
-        std::snprintf(buf, sizeof(buf), "%ld/%zu (%.0f %%)", wins, s->n, 100.0 * s->mean);
-        md += std::string(" ") + buf + " |";
-      } else {
-        md += " – |";
-      }
-      for (const auto& [title, path] : extra) {
-        const SampleStats* e = g.Find(ColumnOfPath(summary, path));
-        md += " " + (e ? MeanStd(*e) : std::string("–")) + " |";
-      }
-      md += "\n";
+  if (success.empty()) return "";
+  const std::vector<std::string> keys = plan.GroupKeys();
+  std::string md = "\n## Navigation\n\n";
+  md +=
+      "Success rate over the group's ok cells; the other columns are means ± std over "
+      "them (`navigation.*` in metrics.json).\n\n";
+  const std::vector<std::pair<std::string, std::vector<std::string>>> extra = {
+      {"time to goal [s]", {"navigation", "time_to_goal_s"}},
+      {"path length [m]", {"navigation", "path_length_m"}},
+      {"final error [m]", {"navigation", "final_position_error_m"}},
+      {"min clearance [m]", {"navigation", "min_clearance_m"}},
+      {"collisions", {"navigation", "collisions"}}};
+  md += GroupHeader(keys) + " ok | success |";
+  for (const auto& [title, path] : extra) md += " " + title + " |";
+  md += "\n" + TableRule(2 + keys.size() + 2 + extra.size());
+  for (const GroupStats& g : groups) {
+    md += GroupCells(keys, g) + " " + std::to_string(g.ok) + "/" + std::to_string(g.cells) + " |";
+    const SampleStats* s = g.Find(success);
+    if (s) {
+      char buf[64];
+      const long wins = std::lround(s->mean * static_cast<double>(s->n));
+      std::snprintf(buf, sizeof(buf), "%ld/%zu (%.0f %%)", wins, s->n, 100.0 * s->mean);
+      md += std::string(" ") + buf + " |";
+    } else {
+      md += " – |";
     }
+    for (const auto& [title, path] : extra) {
+      const SampleStats* e = g.Find(ColumnOfPath(summary, path));
+      md += " " + (e ? MeanStd(*e) : std::string("–")) + " |";
+    }
+    md += "\n";
   }
+  return md;
+}
 
+// Every cell whose status is not ok, with its reason; "" when all are ok.
+std::string CellsWithoutResultSection(const SweepSummary& summary) {
+  const int status = summary.Column("cell_status");
   const int reason = summary.Column("cell_reason"), cell = summary.Column("cell");
-  bool any_bad = false;
+  std::string md;
   for (const std::vector<SummaryValue>& row : summary.rows) {
     if (row[static_cast<std::size_t>(status)].text == "ok") continue;
-    if (!any_bad) {
+    if (md.empty())
       md += "\n## Cells without a result\n\n| cell | status | reason |\n|---|---|---|\n";
-      any_bad = true;
-    }
     md += "| " + MarkdownCell(row[static_cast<std::size_t>(cell)].text) + " | " +
           row[static_cast<std::size_t>(status)].text + " | " +
           MarkdownCell(row[static_cast<std::size_t>(reason)].text) + " |\n";
   }
+  return md;
+}
 
-  if (!plots.empty()) {
-    md += "\n## Plots\n\n";
-    for (const std::string& p : plots) {
-      md += "![" + fs::path(p).stem().string() + "](" + p + ")\n\n";
-    }
+// The sweep's plots as images; "" without plots.
+std::string PlotsSection(const std::vector<std::string>& plots) {
+  if (plots.empty()) return "";
+  std::string md = "\n## Plots\n\n";
+  for (const std::string& p : plots) {
+    md += "![" + fs::path(p).stem().string() + "](" + p + ")\n\n";
   }
   return md;
+}
+
+}  // namespace
+
+std::string SweepReportMarkdown(const SweepPlan& plan, const SweepSummary& summary,
+                                const std::vector<GroupStats>& groups,
+                                const std::vector<std::string>& plots) {
+  return ReportIntroduction(plan, summary) + LocalizationSection(plan, summary, groups) +
+         NavigationSection(plan, summary, groups) + CellsWithoutResultSection(summary) +
+         PlotsSection(plots);
 }
 
 SweepCounts WriteSweepReport(const fs::path& sweep_dir) {

@@ -131,29 +131,25 @@ DynamicWindowChoice ChooseDynamicWindowVelocity(const NavigationSetup& setup,
 
 DynamicWindowNavigator::DynamicWindowNavigator(const NavigationSetup& setup,
                                                const DynamicWindowOptions& options,
-                                               const ProgressOptions& progress, const Pose2& goal)
+                                               const ProgressCheckerOptions& progress,
+                                               const Pose2& goal)
     : setup_(ValidatedOptions("setup", setup)),
       options_(ValidatedOptions("dwa", options)),
       goal_(goal),
-      progress_(ValidatedOptions("progress", progress)) {}
+      checks_(setup_, ValidatedOptions("progress", progress), goal) {}
 
 NavigationCommand DynamicWindowNavigator::Update(const Pose2& pose,
                                                  const std::vector<Circle>& obstacles) {
-  NavigationCommand command;
-  const Eigen::Vector2d goal(goal_.x, goal_.y);
-  command.target = goal;
-  if (status_ == NavigationStatus::kDriving && InsideAnyObstacle(goal, obstacles)) {
-    status_ = NavigationStatus::kGoalInObstacle;
-  }
-  if (status_ == NavigationStatus::kDriving && AtGoal(setup_, pose, goal_)) {
-    status_ = NavigationStatus::kReached;
-  }
-  if (status_ != NavigationStatus::kDriving) {
-    current_ = {};
-    command.status = status_;
-    return command;
-  }
+  const NavigationCommand command =
+      checks_.Update(pose, obstacles, [&](NavigationCommand* c) { Drive(pose, obstacles, c); });
+  // An ended run's command is zero: the robot is taken to stand still from then on.
+  if (command.status != NavigationStatus::kDriving) current_ = {};
+  return command;
+}
 
+void DynamicWindowNavigator::Drive(const Pose2& pose, const std::vector<Circle>& obstacles,
+                                   NavigationCommand* command) {
+  const Eigen::Vector2d goal(goal_.x, goal_.y);
   const GoalError error = GoalErrorOf(pose, goal_);
   const double dt = setup_.control_period_s;
   BodyTwist twist;
@@ -171,18 +167,10 @@ NavigationCommand DynamicWindowNavigator::Update(const Pose2& pose,
   } else {
     twist = ChooseDynamicWindowVelocity(setup_, options_, pose, current_, goal, obstacles).twist;
   }
-  command.wheels = SaturateProportionally(WheelSpeedsFromTwist(setup_.drive, twist),
-                                          setup_.drive.max_wheel_speed_radps);
-  command.twist = TwistFromWheelSpeeds(setup_.drive, command.wheels);
-  current_ = command.twist;
-  if (progress_.Update(error.position_m, setup_.goal_position_tolerance_m, dt)) {
-    status_ = NavigationStatus::kStalled;
-    command = NavigationCommand{};
-    command.target = goal;
-    current_ = {};
-  }
-  command.status = status_;
-  return command;
+  command->wheels = SaturateProportionally(WheelSpeedsFromTwist(setup_.drive, twist),
+                                           setup_.drive.max_wheel_speed_radps);
+  command->twist = TwistFromWheelSpeeds(setup_.drive, command->wheels);
+  current_ = command->twist;
 }
 
 }  // namespace trackbed::navigation

@@ -6,47 +6,32 @@ namespace trackbed::navigation {
 GaussNewtonSubgoalNavigator::GaussNewtonSubgoalNavigator(const NavigationSetup& setup,
                                                          const GaussNewtonOptions& controller,
                                                          const SubgoalOptions& subgoal,
-                                                         const ProgressOptions& progress,
+                                                         const ProgressCheckerOptions& progress,
                                                          const Pose2& goal)
     : setup_(ValidatedOptions("setup", setup)),
       controller_(ValidatedOptions("gauss_newton", controller)),
       goal_(goal),
       switcher_(ValidatedOptions("subgoal", subgoal), goal),
-      progress_(ValidatedOptions("progress", progress)) {}
+      checks_(setup_, ValidatedOptions("progress", progress), goal) {}
 
 NavigationCommand GaussNewtonSubgoalNavigator::Update(const Pose2& pose,
                                                       const std::vector<Circle>& obstacles) {
-  NavigationCommand command;
-  command.target = {goal_.x, goal_.y};
-  if (status_ == NavigationStatus::kDriving && InsideAnyObstacle(command.target, obstacles)) {
-    status_ = NavigationStatus::kGoalInObstacle;
-  }
-  if (status_ == NavigationStatus::kDriving && AtGoal(setup_, pose, goal_)) {
-    status_ = NavigationStatus::kReached;
-  }
-  if (status_ != NavigationStatus::kDriving) {
-    command.status = status_;
-    return command;
-  }
+  return checks_.Update(pose, obstacles,
+                        [&](NavigationCommand* command) { Drive(pose, obstacles, command); });
+}
 
+void GaussNewtonSubgoalNavigator::Drive(const Pose2& pose, const std::vector<Circle>& obstacles,
+                                        NavigationCommand* command) {
   const ActiveTarget target = switcher_.Update(pose, obstacles);
-  command.target = {target.pose.x, target.pose.y};
-  command.subgoal_active = target.subgoal_active;
+  command->target = {target.pose.x, target.pose.y};
+  command->subgoal_active = target.subgoal_active;
   if (target.no_way_around) {
     last_step_ = GaussNewtonStep{};  // hold still: every way is blocked
   } else {
     last_step_ = ComputeGaussNewtonStep(setup_, controller_, pose, target.pose);
-    command.wheels = last_step_.wheels;
-    command.twist = last_step_.twist;
+    command->wheels = last_step_.wheels;
+    command->twist = last_step_.twist;
   }
-  const double distance = GoalErrorOf(pose, goal_).position_m;
-  if (progress_.Update(distance, setup_.goal_position_tolerance_m, setup_.control_period_s)) {
-    status_ = NavigationStatus::kStalled;
-    command = NavigationCommand{};
-    command.target = {goal_.x, goal_.y};
-  }
-  command.status = status_;
-  return command;
 }
 
 }  // namespace trackbed::navigation

@@ -1,9 +1,5 @@
-// Navigation status names and the progress monitor (see navigator.h).
+// Navigation status names and the checks that end a run (see navigator.h).
 #include "trackbed/navigation/navigator.h"
-
-#include <algorithm>
-
-#include "trackbed/common/option_error.h"
 
 namespace trackbed::navigation {
 
@@ -21,26 +17,35 @@ const char* NavigationStatusName(NavigationStatus status) {
   return "unknown";
 }
 
-void ProgressOptions::Validate() const {
-  option_check::Positive("stall_time_s", stall_time_s);
-  option_check::Positive("min_progress_m", min_progress_m);
-}
+NavigationChecks::NavigationChecks(const NavigationSetup& setup,
+                                   const ProgressCheckerOptions& progress, const Pose2& goal)
+    : goal_checker_(GoalCheckerOptionsOf(setup), goal),
+      progress_checker_(progress),
+      control_period_s_(setup.control_period_s) {}
 
-ProgressMonitor::ProgressMonitor(const ProgressOptions& options) : options_(options) {
-  options_.Validate();
-}
-
-bool ProgressMonitor::Update(double distance_m, double tolerance_m, double dt_s) {
-  if (stalled_) return true;
-  if (best_m_ < 0.0 || distance_m <= best_m_ - options_.min_progress_m ||
-      distance_m <= tolerance_m) {
-    best_m_ = best_m_ < 0.0 ? distance_m : std::min(best_m_, distance_m);
-    since_s_ = 0.0;
-    return false;
+NavigationCommand NavigationChecks::CheckGoal(const Pose2& pose,
+                                              const std::vector<Circle>& obstacles) {
+  NavigationCommand command;
+  command.target = {goal_checker_.goal().x, goal_checker_.goal().y};
+  if (status_ == NavigationStatus::kDriving && goal_checker_.GoalInObstacle(obstacles)) {
+    status_ = NavigationStatus::kGoalInObstacle;
   }
-  since_s_ += dt_s;
-  stalled_ = since_s_ >= options_.stall_time_s;
-  return stalled_;
+  if (status_ == NavigationStatus::kDriving && goal_checker_.Reached(pose)) {
+    status_ = NavigationStatus::kReached;
+  }
+  command.status = status_;
+  return command;
+}
+
+void NavigationChecks::CheckProgress(const Pose2& pose, NavigationCommand* command) {
+  const double distance = GoalErrorOf(pose, goal_checker_.goal()).position_m;
+  if (progress_checker_.Update(distance, goal_checker_.options().position_tolerance_m,
+                               control_period_s_)) {
+    status_ = NavigationStatus::kStalled;
+    *command = NavigationCommand{};
+    command->target = {goal_checker_.goal().x, goal_checker_.goal().y};
+  }
+  command->status = status_;
 }
 
 }  // namespace trackbed::navigation

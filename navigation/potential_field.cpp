@@ -56,28 +56,22 @@ PotentialFieldForce ComputePotentialFieldForce(const PotentialFieldOptions& opti
 
 PotentialFieldNavigator::PotentialFieldNavigator(const NavigationSetup& setup,
                                                  const PotentialFieldOptions& options,
-                                                 const ProgressOptions& progress, const Pose2& goal)
+                                                 const ProgressCheckerOptions& progress,
+                                                 const Pose2& goal)
     : setup_(ValidatedOptions("setup", setup)),
       options_(ValidatedOptions("potential_field", options)),
       goal_(goal),
-      progress_(ValidatedOptions("progress", progress)) {}
+      checks_(setup_, ValidatedOptions("progress", progress), goal) {}
 
 NavigationCommand PotentialFieldNavigator::Update(const Pose2& pose,
                                                   const std::vector<Circle>& obstacles) {
-  NavigationCommand command;
-  const Eigen::Vector2d p(pose.x, pose.y), goal(goal_.x, goal_.y);
-  command.target = goal;
-  if (status_ == NavigationStatus::kDriving && InsideAnyObstacle(goal, obstacles)) {
-    status_ = NavigationStatus::kGoalInObstacle;
-  }
-  if (status_ == NavigationStatus::kDriving && AtGoal(setup_, pose, goal_)) {
-    status_ = NavigationStatus::kReached;
-  }
-  if (status_ != NavigationStatus::kDriving) {
-    command.status = status_;
-    return command;
-  }
+  return checks_.Update(pose, obstacles,
+                        [&](NavigationCommand* command) { Drive(pose, obstacles, command); });
+}
 
+void PotentialFieldNavigator::Drive(const Pose2& pose, const std::vector<Circle>& obstacles,
+                                    NavigationCommand* command) {
+  const Eigen::Vector2d p(pose.x, pose.y), goal(goal_.x, goal_.y);
   const GoalError error = GoalErrorOf(pose, goal_);
   BodyTwist twist;
   if (error.position_m <= options_.final_distance_m) {
@@ -100,17 +94,9 @@ NavigationCommand PotentialFieldNavigator::Update(const Pose2& pose,
       }
     }
   }
-  command.wheels = SaturateProportionally(WheelSpeedsFromTwist(setup_.drive, twist),
-                                          setup_.drive.max_wheel_speed_radps);
-  command.twist = TwistFromWheelSpeeds(setup_.drive, command.wheels);
-  if (progress_.Update(error.position_m, setup_.goal_position_tolerance_m,
-                       setup_.control_period_s)) {
-    status_ = NavigationStatus::kStalled;
-    command = NavigationCommand{};
-    command.target = goal;
-  }
-  command.status = status_;
-  return command;
+  command->wheels = SaturateProportionally(WheelSpeedsFromTwist(setup_.drive, twist),
+                                           setup_.drive.max_wheel_speed_radps);
+  command->twist = TwistFromWheelSpeeds(setup_.drive, command->wheels);
 }
 
 }  // namespace trackbed::navigation

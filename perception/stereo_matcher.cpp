@@ -110,22 +110,74 @@ StereoMatcher::StereoMatcher(const StereoMatcherOptions& options) : options_(opt
   options_.Validate();
 }
 
-StereoMatcher::Search StereoMatcher::SearchRow(const cv::Mat& ref, const cv::Mat& other, float u,
-                                               float v, int sign, bool refine) {
-  Search result;
+namespace {
+
+/// The candidate with the highest score (the first of equals).
+int BestCandidate(const float* scores, int candidates) {
+  int best = 0;
+  for (int k = 1; k < candidates; ++k) {
+    if (scores[k] > scores[best]) best = k;
+  }
+  return best;
+}
+
+/// The best local maximum other than the peak at `best` and its two neighbours (which
+/// are the peak's own flanks, not a rival match); −1 when there is none.
+float SecondLocalMaximum(const float* scores, int candidates, int best) {
+  float second = -1.0f;
+  for (int k = 0; k < candidates; ++k) {
+    if (k >= best - 1 && k <= best + 1) continue;
+    const bool left_ok = k == 0 || scores[k] >= scores[k - 1];
+    const bool right_ok = k == candidates - 1 || scores[k] >= scores[k + 1];
+    if (left_ok && right_ok) second = std::max(second, scores[k]);
+  }
+  return second;
+}
+
+/// Whether the peak at `best` is a match: kWeak below min_zncc, kAmbiguous when another
+/// local maximum is nearly as good, kAtRangeLimit at either end of the range (the true
+/// peak may lie beyond it), else kMatched.
+StereoMatchStatus PeakStatus(const StereoMatcherOptions& options, const float* scores,
+                             int candidates, int best) {
+  if (!(scores[best] >= options.min_zncc)) return StereoMatchStatus::kWeak;
+  const float second = SecondLocalMaximum(scores, candidates, best);
+  // Costs below the floor are equally perfect: otherwise a repeated pattern whose copies
+  // all match almost exactly (cost 1e-6 vs 3e-6) would pass as unique.
+  const double cost_best = std::max(1.0 - scores[best], kCostFloor);
+  const double cost_second = std::max(1.0 - second, kCostFloor);
+  if (cost_second < (1.0 + options.uniqueness_ratio) * cost_best) {
+    return StereoMatchStatus::kAmbiguous;
+  }
+  if (best == 0 || best == candidates - 1) return StereoMatchStatus::kAtRangeLimit;
+  return StereoMatchStatus::kMatched;
+}
+
+/// Sub-candidate offset of the peak at `best` (not at either end): the vertex of the
+/// parabola through the scores at best−1, best, best+1, within ±0.5.
+float ParabolaOffset(const float* scores, int best) {
+  const float a = scores[best - 1], c = scores[best + 1], peak = scores[best];
+  const float curvature = a - 2.0f * peak + c;
+  return curvature < 0.0f ? std::clamp(0.5f * (a - c) / curvature, -0.5f, 0.5f) : 0.0f;
+}
+
+}  // namespace
+
+bool StereoMatcher::PlanRowWindow(const cv::Mat& ref, const cv::Mat& other, float u, float v,
+                                  int sign, RowWindow* window) const {
   const int w = options_.window_px;
   const int h = w / 2;
-  const int n = w * w;
   const float last_x = static_cast<float>(ref.cols - 1);
   const float last_y = static_cast<float>(ref.rows - 1);
   if (!(u - static_cast<float>(h) >= 0.0f && u + static_cast<float>(h) <= last_x &&
         v - static_cast<float>(h) >= 0.0f && v + static_cast<float>(h) <= last_y)) {
-    return result;  // kOutOfImage
+    return false;
   }
   const float ux = std::floor(u), vy = std::floor(v);
   const int x0 = static_cast<int>(ux) - h;  // first column of the reference window
-  const int y0 = static_cast<int>(vy) - h;
-  const Bilinear b(u - ux, v - vy);
+  window->x0 = x0;
+  window->y0 = static_cast<int>(vy) - h;
+  window->fx = u - ux;
+  window->fy = v - vy;
 
   // Disparities whose window lies inside `other`: columns x0 + sign·d … x0 + sign·d + w−1
   // (+1 for the bilinear neighbour when the fraction is non-zero).
@@ -138,12 +190,18 @@ StereoMatcher::Search StereoMatcher::SearchRow(const cv::Mat& ref, const cv::Mat
     d_hi = std::min(d_hi, other.cols - 1 - (x0 + w - 1 + extra));  // right end inside
     d_lo = std::max(d_lo, -x0);                                    // x0 + d >= 0
   }
-  const int nd = d_hi - d_lo + 1;
-  if (nd < 3) return result;  // kOutOfImage
+  window->d_lo = d_lo;
+  window->d_hi = d_hi;
+  // Fewer than 3 candidates leave no peak with two neighbours to test or refine.
+  return d_hi - d_lo + 1 >= 3;
+}
 
-  // Reference patch, zero mean; its norm and the texture test.
+bool StereoMatcher::SampleReferencePatch(const cv::Mat& ref, const RowWindow& window,
+                                         double* patch_norm) {
+  const int w = options_.window_px;
+  const int n = w * w;
   patch_.resize(static_cast<std::size_t>(n));
-  SamplePatch(ref, x0, y0, w, w, b, patch_.data());
+  SamplePatch(ref, window.x0, window.y0, w, w, Bilinear(window.fx, window.fy), patch_.data());
   double mean = 0.0;
   for (float p : patch_) mean += p;
   mean /= n;
@@ -152,22 +210,31 @@ StereoMatcher::Search StereoMatcher::SearchRow(const cv::Mat& ref, const cv::Mat
     p = static_cast<float>(p - mean);
     ss += static_cast<double>(p) * p;
   }
-  if (!(std::sqrt(ss / n) >= options_.min_texture) || ss <= 0.0) {
-    result.status = StereoMatchStatus::kLowTexture;
-    return result;
-  }
-  const double patch_norm = std::sqrt(ss);
+  if (!(std::sqrt(ss / n) >= options_.min_texture) || ss <= 0.0) return false;
+  *patch_norm = std::sqrt(ss);
+  return true;
+}
 
+void StereoMatcher::ScoreCandidates(const cv::Mat& other, const RowWindow& window, int sign,
+                                    double patch_norm) {
   // Strip of `other`: w rows, nd − 1 + w columns; candidate k's window starts at strip
   // column k. For sign < 0 (left → right) column k is disparity d_hi − k, for sign > 0
   // (right → left) d_lo + k.
+  const int w = options_.window_px;
+  const int nd = window.candidates();
   const int strip_cols = nd - 1 + w;
-  const int strip_x0 = sign < 0 ? x0 - d_hi : x0 + d_lo;
+  const int strip_x0 = sign < 0 ? window.x0 - window.d_hi : window.x0 + window.d_lo;
   strip_.resize(static_cast<std::size_t>(strip_cols) * static_cast<std::size_t>(w));
-  SamplePatch(other, strip_x0, y0, strip_cols, w, b, strip_.data());
+  SamplePatch(other, strip_x0, window.y0, strip_cols, w, Bilinear(window.fx, window.fy),
+              strip_.data());
+  CrossCorrelateStrip(strip_cols, nd);
+  NormaliseToZncc(strip_cols, nd, patch_norm);
+}
 
+void StereoMatcher::CrossCorrelateStrip(int strip_cols, int nd) {
   // Cross-correlation with the zero-mean patch: Σ P̃·S = Σ P̃·(S − mean S).
   // Blocks of kBlock candidates whose sums stay in registers over the whole window.
+  const int w = options_.window_px;
   constexpr int kBlock = 16;
   scores_.assign(static_cast<std::size_t>(nd), 0.0f);
   float* acc = scores_.data();
@@ -189,7 +256,13 @@ StereoMatcher::Search StereoMatcher::SearchRow(const cv::Mat& ref, const cv::Mat
       for (int k = k0; k < nd; ++k) acc[k] += prow[i] * srow[i + k];
     }
   }
+}
+
+void StereoMatcher::NormaliseToZncc(int strip_cols, int nd, double patch_norm) {
   // Window sums of S and S² from column sums, sliding along the strip.
+  const int w = options_.window_px;
+  const int n = w * w;
+  float* acc = scores_.data();
   col_sum_.assign(static_cast<std::size_t>(strip_cols), 0.0f);
   col_sum_sq_.assign(static_cast<std::size_t>(strip_cols), 0.0f);
   for (int j = 0; j < w; ++j) {
@@ -214,44 +287,29 @@ StereoMatcher::Search StereoMatcher::SearchRow(const cv::Mat& ref, const cv::Mat
     const double var = sum_sq - sum * sum / n;  // n × variance of the candidate window
     acc[k] = var > 1e-6 ? static_cast<float>(acc[k] / (patch_norm * std::sqrt(var))) : -1.0f;
   }
+}
 
-  // Best candidate; then the best other local maximum (not the peak's neighbours).
-  int best = 0;
-  for (int k = 1; k < nd; ++k) {
-    if (acc[k] > acc[best]) best = k;
-  }
-  result.zncc = acc[best];
-  if (!(acc[best] >= options_.min_zncc)) {
-    result.status = StereoMatchStatus::kWeak;
+StereoMatcher::Search StereoMatcher::SearchRow(const cv::Mat& ref, const cv::Mat& other, float u,
+                                               float v, int sign, bool refine) {
+  Search result;
+  RowWindow window;
+  if (!PlanRowWindow(ref, other, u, v, sign, &window)) return result;  // kOutOfImage
+  double patch_norm = 0.0;
+  if (!SampleReferencePatch(ref, window, &patch_norm)) {
+    result.status = StereoMatchStatus::kLowTexture;
     return result;
   }
-  float second = -1.0f;
-  for (int k = 0; k < nd; ++k) {
-    if (k >= best - 1 && k <= best + 1) continue;
-    const bool left_ok = k == 0 || acc[k] >= acc[k - 1];
-    const bool right_ok = k == nd - 1 || acc[k] >= acc[k + 1];
-    if (left_ok && right_ok) second = std::max(second, acc[k]);
-  }
-  // Costs below the floor are equally perfect: otherwise a repeated pattern whose copies
-  // all match almost exactly (cost 1e-6 vs 3e-6) would pass as unique.
-  const double cost_best = std::max(1.0 - acc[best], kCostFloor);
-  const double cost_second = std::max(1.0 - second, kCostFloor);
-  if (cost_second < (1.0 + options_.uniqueness_ratio) * cost_best) {
-    result.status = StereoMatchStatus::kAmbiguous;
-    return result;
-  }
-  if (best == 0 || best == nd - 1) {
-    result.status = StereoMatchStatus::kAtRangeLimit;
-    return result;
-  }
-  // Parabola through the scores at best−1, best, best+1.
-  const float a = acc[best - 1], c = acc[best + 1], peak = acc[best];
-  const float curvature = a - 2.0f * peak + c;
-  const float offset =
-      curvature < 0.0f ? std::clamp(0.5f * (a - c) / curvature, -0.5f, 0.5f) : 0.0f;
-  const float k_sub = static_cast<float>(best) + offset;
-  result.disparity = sign < 0 ? static_cast<float>(d_hi) - k_sub : static_cast<float>(d_lo) + k_sub;
-  result.status = StereoMatchStatus::kMatched;
+  ScoreCandidates(other, window, sign, patch_norm);
+
+  const int nd = window.candidates();
+  const float* scores = scores_.data();
+  const int best = BestCandidate(scores, nd);
+  result.zncc = scores[best];
+  result.status = PeakStatus(options_, scores, nd, best);
+  if (result.status != StereoMatchStatus::kMatched) return result;
+  const float k_sub = static_cast<float>(best) + ParabolaOffset(scores, best);
+  result.disparity =
+      sign < 0 ? static_cast<float>(window.d_hi) - k_sub : static_cast<float>(window.d_lo) + k_sub;
   if (refine && options_.refinement_iterations > 0) {
     result.disparity = RefineDisparity(other, u, v, sign, result.disparity);
   }

@@ -89,18 +89,22 @@ class DynamicWindowNavigator final : public Navigator {
  public:
   /// Validates all options (throws OptionError naming the field).
   DynamicWindowNavigator(const NavigationSetup& setup, const DynamicWindowOptions& options,
-                         const ProgressOptions& progress, const Pose2& goal);
+                         const ProgressCheckerOptions& progress, const Pose2& goal);
 
+  /// Its run ends by NavigationChecks (navigator.h); an ended run's velocity is zero.
   NavigationCommand Update(const Pose2& pose, const std::vector<Circle>& obstacles) override;
   const char* method() const override { return "dwa"; }
   const Pose2& goal() const override { return goal_; }
 
  private:
+  /// The method's own part of Update: the window's choice (or the final turn) into
+  /// `command`, which becomes the current velocity.
+  void Drive(const Pose2& pose, const std::vector<Circle>& obstacles, NavigationCommand* command);
+
   NavigationSetup setup_;
   DynamicWindowOptions options_;
   Pose2 goal_;
-  ProgressMonitor progress_;
-  NavigationStatus status_ = NavigationStatus::kDriving;
+  NavigationChecks checks_;
   BodyTwist current_;
 };
 

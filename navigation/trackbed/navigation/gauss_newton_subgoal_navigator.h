@@ -16,13 +16,12 @@ class GaussNewtonSubgoalNavigator final : public Navigator {
  public:
   /// Validates all options (throws OptionError naming the field).
   GaussNewtonSubgoalNavigator(const NavigationSetup& setup, const GaussNewtonOptions& controller,
-                              const SubgoalOptions& subgoal, const ProgressOptions& progress,
+                              const SubgoalOptions& subgoal, const ProgressCheckerOptions& progress,
                               const Pose2& goal);
 
-  /// Order of checks: a goal inside an obstacle ends the run at once; then the goal
-  /// tolerance; then the switcher's target and one Gauss–Newton step; then the progress
-  /// monitor. When the blocking obstacles close around the robot (no way around) the
-  /// robot holds still, so a run toward an enclosed goal ends as kStalled.
+  /// The run-ending checks of NavigationChecks around the switcher's target and one
+  /// Gauss–Newton step. When the blocking obstacles close around the robot (no way
+  /// around) the robot holds still, so a run toward an enclosed goal ends as kStalled.
   NavigationCommand Update(const Pose2& pose, const std::vector<Circle>& obstacles) override;
 
   const char* method() const override { return "gauss_newton_subgoal"; }
@@ -33,12 +32,14 @@ class GaussNewtonSubgoalNavigator final : public Navigator {
   const GaussNewtonStep& last_step() const { return last_step_; }
 
  private:
+  /// The method's own part of Update: target and Gauss–Newton step into `command`.
+  void Drive(const Pose2& pose, const std::vector<Circle>& obstacles, NavigationCommand* command);
+
   NavigationSetup setup_;
   GaussNewtonOptions controller_;
   Pose2 goal_;
   SubgoalSwitcher switcher_;
-  ProgressMonitor progress_;
-  NavigationStatus status_ = NavigationStatus::kDriving;
+  NavigationChecks checks_;
   GaussNewtonStep last_step_;
 };
 

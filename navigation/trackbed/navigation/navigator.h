@@ -4,7 +4,8 @@
 // (exact circles in kinematic mode, clustered range-sensor hits in closed loop), and
 // returns wheel speeds and a status. A run ends with a clear status, never a hang: the
 // goal is reached, the goal lies inside an obstacle, or no progress was made for a
-// configurable time.
+// configurable time — the same checks for every method (NavigationChecks, built from
+// goal_checker.h and progress_checker.h).
 #pragma once
 
 #include <string>
@@ -15,6 +16,9 @@
 #include "trackbed/common/option_error.h"
 #include "trackbed/navigation/circle_obstacle.h"
 #include "trackbed/navigation/diff_drive.h"
+#include "trackbed/navigation/goal_checker.h"
+#include "trackbed/navigation/navigation_setup.h"
+#include "trackbed/navigation/progress_checker.h"
 #include "trackbed/navigation/subgoal_planner.h"
 
 namespace trackbed::navigation {
@@ -39,33 +43,44 @@ struct NavigationCommand {
   NavigationStatus status = NavigationStatus::kDriving;
 };
 
-struct ProgressOptions {
-  /// A run with no progress toward the goal for this long [s] ends as kStalled, > 0.
-  double stall_time_s = 30.0;
-  /// "Progress" = the best distance to the goal so far shrinking by at least this [m], > 0.
-  double min_progress_m = 0.1;
-
-  /// Throws OptionError naming the first invalid field.
-  void Validate() const;
-};
-
-/// Detects lack of progress toward the goal. The clock runs only while the robot is
-/// farther than the goal position tolerance (the final turn is not "no progress").
-class ProgressMonitor {
+/// The checks that end every navigator's run, kept out of the methods (as nav2 keeps its
+/// goal and progress checkers out of its controllers) so that all of them end a run by
+/// one rule, in one order: a goal inside an obstacle ends it at once (kGoalInObstacle);
+/// then the goal tolerances (kReached); then, after the method's command, lack of
+/// progress (kStalled, which replaces that command by zero). Once the run has ended the
+/// status stays and the command is zero, with the goal as its target.
+class NavigationChecks {
  public:
-  explicit ProgressMonitor(const ProgressOptions& options);
-  ProgressMonitor(const ProgressMonitor&) = delete;
-  ProgressMonitor& operator=(const ProgressMonitor&) = delete;
+  /// Takes the goal tolerances and control period from `setup` (validate it first).
+  /// Throws OptionError naming the first invalid field of `progress`, without a prefix:
+  /// navigators validate it as ValidatedOptions("progress", …) before.
+  NavigationChecks(const NavigationSetup& setup, const ProgressCheckerOptions& progress,
+                   const Pose2& goal);
 
-  /// Adds one control period of `dt_s` [s] at distance `distance_m` from the goal;
-  /// returns true once stalled (and from then on).
-  bool Update(double distance_m, double tolerance_m, double dt_s);
+  /// One control period. While the run goes on, `drive(&command)` fills in the method's
+  /// command, which it receives zero with the goal as its target; it is not called once
+  /// the run has ended.
+  template <typename Drive>
+  NavigationCommand Update(const Pose2& pose, const std::vector<Circle>& obstacles, Drive&& drive) {
+    NavigationCommand command = CheckGoal(pose, obstacles);
+    if (command.status != NavigationStatus::kDriving) return command;
+    drive(&command);
+    CheckProgress(pose, &command);
+    return command;
+  }
+
+  NavigationStatus status() const { return status_; }
 
  private:
-  ProgressOptions options_;
-  double best_m_ = -1.0;
-  double since_s_ = 0.0;
-  bool stalled_ = false;
+  /// The goal checks; a zero command toward the goal with the status they leave.
+  NavigationCommand CheckGoal(const Pose2& pose, const std::vector<Circle>& obstacles);
+  /// The progress check on the method's `command`; sets its status.
+  void CheckProgress(const Pose2& pose, NavigationCommand* command);
+
+  GoalChecker goal_checker_;
+  ProgressChecker progress_checker_;
+  double control_period_s_;
+  NavigationStatus status_ = NavigationStatus::kDriving;
 };
 
 /// Validates `options` with its field names under `prefix` (OptionError says

@@ -18,7 +18,7 @@ namespace trackbed::navigation {
 /// Options of every method; each navigator reads the sections it needs.
 struct NavigatorOptions {
   NavigationSetup setup;                  ///< Robot, control period, goal tolerance.
-  ProgressOptions progress;               ///< When a run without progress ends (kStalled).
+  ProgressCheckerOptions progress;        ///< When a run without progress ends (kStalled).
   GaussNewtonOptions gauss_newton;        ///< "gauss_newton_subgoal": the controller …
   SubgoalOptions subgoal;                 ///< … and its sub-goal switcher.
   PotentialFieldOptions potential_field;  ///< "potential_field".

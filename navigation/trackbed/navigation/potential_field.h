@@ -93,23 +93,25 @@ PotentialFieldForce ComputePotentialFieldForce(const PotentialFieldOptions& opti
                                                const Eigen::Vector2d& goal_world,
                                                const std::vector<Circle>& obstacles);
 
-/// The potential field as a Navigator (status rules as in navigator.h).
+/// The potential field as a Navigator (its run ends by NavigationChecks, navigator.h).
 class PotentialFieldNavigator final : public Navigator {
  public:
   /// Validates all options (throws OptionError naming the field).
   PotentialFieldNavigator(const NavigationSetup& setup, const PotentialFieldOptions& options,
-                          const ProgressOptions& progress, const Pose2& goal);
+                          const ProgressCheckerOptions& progress, const Pose2& goal);
 
   NavigationCommand Update(const Pose2& pose, const std::vector<Circle>& obstacles) override;
   const char* method() const override { return "potential_field"; }
   const Pose2& goal() const override { return goal_; }
 
  private:
+  /// The method's own part of Update: the field's command into `command`.
+  void Drive(const Pose2& pose, const std::vector<Circle>& obstacles, NavigationCommand* command);
+
   NavigationSetup setup_;
   PotentialFieldOptions options_;
   Pose2 goal_;
-  ProgressMonitor progress_;
-  NavigationStatus status_ = NavigationStatus::kDriving;
+  NavigationChecks checks_;
 };
 
 }  // namespace trackbed::navigation

@@ -106,6 +106,29 @@ class StereoMatcher {
   /// `refine`, the sub-pixel refinement follows the parabola.
   Search SearchRow(const cv::Mat& ref, const cv::Mat& other, float u, float v, int sign,
                    bool refine);
+  /// Where one row search samples: the reference window and the disparities searched.
+  struct RowWindow {
+    int x0 = 0, y0 = 0;  ///< top-left pixel of the reference window
+    /// u − ⌊u⌋ and v − ⌊v⌋: one set of bilinear weights serves every sample of the
+    /// window and of the strip.
+    float fx = 0.0f, fy = 0.0f;
+    int d_lo = 0, d_hi = 0;  ///< disparities whose window lies inside `other`
+    int candidates() const { return d_hi - d_lo + 1; }
+  };
+  /// SearchRow's geometry; false when the window leaves `ref` or fewer than 3
+  /// disparities fit in `other` (kOutOfImage).
+  bool PlanRowWindow(const cv::Mat& ref, const cv::Mat& other, float u, float v, int sign,
+                     RowWindow* window) const;
+  /// The reference patch into patch_, at zero mean, and its norm; false when it is too
+  /// flat to match (kLowTexture).
+  bool SampleReferencePatch(const cv::Mat& ref, const RowWindow& window, double* patch_norm);
+  /// The ZNCC of every candidate disparity into scores_ (candidate k: disparity d_hi − k
+  /// for sign < 0, d_lo + k for sign > 0).
+  void ScoreCandidates(const cv::Mat& other, const RowWindow& window, int sign, double patch_norm);
+  /// Σ patch_·window into scores_ for each of the `nd` candidate windows of strip_.
+  void CrossCorrelateStrip(int strip_cols, int nd);
+  /// Divides scores_ by the norms of the patch and of each zero-mean candidate window.
+  void NormaliseToZncc(int strip_cols, int nd, double patch_norm);
   StereoMatch MatchOne(const cv::Mat& left, const cv::Mat& right, const cv::Point2f& point);
   /// Sub-pixel refinement of disparity d0 of the patch in patch_ (zero mean).
   float RefineDisparity(const cv::Mat& other, float u, float v, int sign, float d0);
