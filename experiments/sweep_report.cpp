@@ -12,6 +12,7 @@
 #include <map>
 #include <set>
 
+#include <boost/math/distributions/students_t.hpp>
 #include <nlohmann/json.hpp>
 
 #include "trackbed/runner/run_plots.h"
@@ -124,46 +125,6 @@ std::string MeanStd(const SampleStats& s) {
     std::snprintf(buf, sizeof(buf), "%.*f", decimals, s.mean);
   }
   return buf;
-}
-
-// Regularized incomplete beta function I_x(a, b), by its continued fraction evaluated
-// with the modified Lentz method (Abramowitz & Stegun 26.5.8).
-double IncompleteBeta(double a, double b, double x) {
-  if (x <= 0.0) return 0.0;
-  if (x >= 1.0) return 1.0;
-  // The fraction converges fast for x < (a + 1) / (a + b + 2); use symmetry otherwise.
-  if (x > (a + 1.0) / (a + b + 2.0)) return 1.0 - IncompleteBeta(b, a, 1.0 - x);
-  const double front = std::exp(std::lgamma(a + b) - std::lgamma(a) - std::lgamma(b) +
-                                a * std::log(x) + b * std::log1p(-x)) /
-                       a;
-  constexpr double kTiny = 1e-300;
-  double f = 1.0, c = 1.0, d = 0.0;
-  for (int i = 0; i <= 1000; ++i) {
-    const double m = static_cast<double>(i / 2);
-    double numerator;
-    if (i == 0) {
-      numerator = 1.0;
-    } else if (i % 2 == 0) {
-      numerator = (m * (b - m) * x) / ((a + 2.0 * m - 1.0) * (a + 2.0 * m));
-    } else {
-      numerator = -((a + m) * (a + b + m) * x) / ((a + 2.0 * m) * (a + 2.0 * m + 1.0));
-    }
-    d = 1.0 + numerator * d;
-    if (std::abs(d) < kTiny) d = kTiny;
-    d = 1.0 / d;
-    c = 1.0 + numerator / c;
-    if (std::abs(c) < kTiny) c = kTiny;
-    const double cd = c * d;
-    f *= cd;
-    if (std::abs(1.0 - cd) < 1e-15) break;
-  }
-  return front * (f - 1.0);
-}
-
-// CDF of Student's t with `dof` degrees of freedom.
-double StudentTCdf(double t, double dof) {
-  const double tail = 0.5 * IncompleteBeta(dof / 2.0, 0.5, dof / (dof + t * t));
-  return t >= 0 ? 1.0 - tail : tail;
 }
 
 std::vector<std::string> EstimatorsOf(const SweepSummary& summary) {
@@ -408,14 +369,7 @@ double StudentTQuantile(double p, double dof) {
   if (!(p > 0.0 && p < 1.0) || !(dof > 0.0)) {
     throw std::invalid_argument("StudentTQuantile: need 0 < p < 1 and dof > 0");
   }
-  if (p < 0.5) return -StudentTQuantile(1.0 - p, dof);
-  double lo = 0.0, hi = 1.0;
-  while (StudentTCdf(hi, dof) < p) hi *= 2.0;
-  for (int i = 0; i < 200 && hi - lo > 1e-13 * hi; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (StudentTCdf(mid, dof) < p ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
+  return boost::math::quantile(boost::math::students_t_distribution<double>(dof), p);
 }
 
 std::vector<GroupStats> AggregateSweep(const SweepPlan& plan, const SweepSummary& summary) {

@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 packages=(
   g++ cmake ninja-build ccache pkg-config
   libbullet-dev libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
-  libgtest-dev libopencv-dev libosmesa6-dev libfuzzylite-dev
+  libgtest-dev libopencv-dev libosmesa6-dev libfuzzylite-dev libboost-math-dev
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -88,7 +88,7 @@ struct SampleStats {
 SampleStats Describe(std::vector<double> values);
 
 /// Quantile `p` in (0, 1) of Student's t distribution with `dof` > 0 degrees of
-/// freedom (bisection on the CDF, via the regularized incomplete beta function).
+/// freedom, from Boost.Math. Throws std::invalid_argument outside those ranges.
 double StudentTQuantile(double p, double dof);
 
 /// One group's statistics: per numeric summary column (metrics and `wall_cell_s`),
