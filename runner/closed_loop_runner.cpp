@@ -155,7 +155,7 @@ RunObservers TimedObservers(const RunObservers& o, double* io_s) {
 }  // namespace
 
 RunMetrics RunClosedLoop(const scenario::Scenario& scenario, const RunObservers& given_observers,
-                         navigation::Repeater* repeater) {
+                         teach_repeat::Repeater* repeater) {
   scenario.Validate();
   const auto wall_start = std::chrono::steady_clock::now();
   // Wall-clock seconds per stage (metrics.json `timing`), on this thread; the
@@ -369,15 +369,15 @@ RunMetrics RunClosedLoop(const scenario::Scenario& scenario, const RunObservers&
         // Teach & repeat steers from this image alone.
         const cv::Mat left_mat(left.height, left.width, CV_8UC1,
                                const_cast<std::uint8_t*>(left.pixels.data()));
-        const navigation::RepeatCommand c =
+        const teach_repeat::RepeatCommand c =
             Timed(&times.control_s, [&] { return repeater->Update(left_mat, frame.t_s); });
         if (observers.on_repeat_step) observers.on_repeat_step({frame.t_s, c});
         repeat_features_lost = c.features_lost;
         repeat_features_recovered = c.features_recovered;
         const estimation::TrackSpeeds cmd = estimation::TrackSpeedsFromTwist(c.twist, gauge_eff_m);
         vehicle.CommandTrackSpeeds(cmd.left_mps, cmd.right_mps);
-        if (c.status != navigation::RepeatStatus::kDriving) {
-          stop_reason = std::string("repeat ") + navigation::ToString(c.status);
+        if (c.status != teach_repeat::RepeatStatus::kDriving) {
+          stop_reason = std::string("repeat ") + teach_repeat::ToString(c.status);
           break;
         }
       }

@@ -495,7 +495,7 @@ RunMetrics RunToFolder(const scenario::Scenario& scenario, const fs::path& dir) 
 }
 
 RunMetrics RunToFolderWith(const scenario::Scenario& scenario, const fs::path& dir,
-                           const RunObservers& extra, navigation::Repeater* repeater) {
+                           const RunObservers& extra, teach_repeat::Repeater* repeater) {
   scenario.Validate();
   fs::create_directories(dir);
   fs::remove(dir / "metrics.json");  // no stale result may pass for this run's

@@ -9,11 +9,11 @@
 
 #include "trackbed/estimation/localization.h"
 #include "trackbed/navigation/navigation_metrics.h"
-#include "trackbed/navigation/teach_repeat.h"
 #include "trackbed/robot/imu.h"
 #include "trackbed/robot/stereo_rig.h"
 #include "trackbed/runner/run_metrics.h"
 #include "trackbed/scenario/scenario.h"
+#include "trackbed/teach_repeat/teach_repeat.h"
 
 namespace trackbed::runner {
 
@@ -60,7 +60,7 @@ struct RunObservers {
   /// Every control step of closed-loop navigation (ground-truth pose, command, target).
   std::function<void(const navigation::NavigationLogEntry&)> on_navigation_step;
   /// Every camera frame of a teach & repeat repeat pass: its time and the command.
-  std::function<void(const std::pair<double, navigation::RepeatCommand>&)> on_repeat_step;
+  std::function<void(const std::pair<double, teach_repeat::RepeatCommand>&)> on_repeat_step;
 };
 
 /// Builds observers member by member: out.X = f(a.X, b.X) for every observer X. The
@@ -84,6 +84,6 @@ RunObservers CombineObservers(const RunObservers& a, const RunObservers& b, F&& 
 /// ground) ends early with completed = false and the reason, keeping what
 /// was measured until then.
 RunMetrics RunClosedLoop(const scenario::Scenario& scenario, const RunObservers& observers = {},
-                         navigation::Repeater* repeater = nullptr);
+                         teach_repeat::Repeater* repeater = nullptr);
 
 }  // namespace trackbed::runner

@@ -22,7 +22,7 @@ RunMetrics RunToFolder(const scenario::Scenario& scenario, const std::filesystem
 /// an optional teach & repeat `repeater` driving (see RunClosedLoop). Used by the teach
 /// & repeat run, which writes one such folder per pass.
 RunMetrics RunToFolderWith(const scenario::Scenario& scenario, const std::filesystem::path& dir,
-                           const RunObservers& extra, navigation::Repeater* repeater);
+                           const RunObservers& extra, teach_repeat::Repeater* repeater);
 
 /// The metrics.json document of a run, as text.
 std::string MetricsJson(const RunMetrics& metrics);

@@ -1,6 +1,6 @@
 // The teach phase: cutting milestones and tracking their features (see
 // milestone_builder.h).
-#include "trackbed/navigation/milestone_builder.h"
+#include "trackbed/teach_repeat/milestone_builder.h"
 
 #include <cmath>
 #include <stdexcept>
@@ -12,7 +12,7 @@
 #include "trackbed/common/option_error.h"
 #include "trackbed/estimation/stereo_visual_odometry.h"
 
-namespace trackbed::navigation {
+namespace trackbed::teach_repeat {
 namespace {
 
 void AtLeast(const char* field, int value, int minimum) {
@@ -262,4 +262,4 @@ TeachMap MilestoneBuilder::Finish() {
   return done;
 }
 
-}  // namespace trackbed::navigation
+}  // namespace trackbed::teach_repeat

@@ -56,13 +56,13 @@
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
-#include "trackbed/navigation/funnel_lane_controller.h"
-#include "trackbed/navigation/teach_map.h"
-#include "trackbed/navigation/teach_repeat.h"
-#include "trackbed/navigation/teach_repeat_geometry.h"
 #include "trackbed/perception/feature_tracker.h"
+#include "trackbed/teach_repeat/funnel_lane_controller.h"
+#include "trackbed/teach_repeat/teach_map.h"
+#include "trackbed/teach_repeat/teach_repeat.h"
+#include "trackbed/teach_repeat/teach_repeat_geometry.h"
 
-namespace trackbed::navigation {
+namespace trackbed::teach_repeat {
 
 /// The yaw rate of the 3D path-following law (see the file comment) for lateral offset
 /// `lateral_m` and heading error `heading_rad` at forward speed `v_mps`, clamped to
@@ -171,4 +171,4 @@ class MilestoneLocalizer3d : public Repeater {
   std::vector<std::optional<cv::Point2f>> predicted_;
 };
 
-}  // namespace trackbed::navigation
+}  // namespace trackbed::teach_repeat

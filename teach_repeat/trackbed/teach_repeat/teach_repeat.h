@@ -26,9 +26,9 @@
 #include <opencv2/core.hpp>
 
 #include "trackbed/estimation/skid_steer.h"
-#include "trackbed/navigation/teach_map.h"
+#include "trackbed/teach_repeat/teach_map.h"
 
-namespace trackbed::navigation {
+namespace trackbed::teach_repeat {
 
 /// Status of a repeat.
 enum class RepeatStatus {
@@ -112,4 +112,4 @@ std::unique_ptr<Repeater> MakeRepeater(const std::string& method, TeachMap map,
                                        const FunnelLaneOptions& options_2d,
                                        const Localizer3dOptions& options_3d);
 
-}  // namespace trackbed::navigation
+}  // namespace trackbed::teach_repeat

@@ -1,4 +1,4 @@
-// Private to trackbed::navigation: the active milestone's feature tracks during a repeat,
+// Private to trackbed::teach_repeat: the active milestone's feature tracks during a repeat,
 // shared by the 2D and the 3D repeater (see teach_repeat.h).
 #pragma once
 
@@ -10,11 +10,11 @@
 
 #include <opencv2/core.hpp>
 
-#include "trackbed/navigation/funnel_lane_controller.h"
-#include "trackbed/navigation/teach_map.h"
 #include "trackbed/perception/feature_tracker.h"
+#include "trackbed/teach_repeat/funnel_lane_controller.h"
+#include "trackbed/teach_repeat/teach_map.h"
 
-namespace trackbed::navigation::detail {
+namespace trackbed::teach_repeat::detail {
 
 /// Per-feature state of the active milestone.
 ///
@@ -240,4 +240,4 @@ std::vector<cv::Point2f> ShiftedGuesses(const Milestone& previous,
                                         const std::vector<FeatureTrack>& tracks,
                                         const Milestone& next);
 
-}  // namespace trackbed::navigation::detail
+}  // namespace trackbed::teach_repeat::detail

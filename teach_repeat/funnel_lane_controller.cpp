@@ -1,6 +1,6 @@
 // Repeat 2D: funnel-lane rules, the vote and milestone switching (see
 // funnel_lane_controller.h).
-#include "trackbed/navigation/funnel_lane_controller.h"
+#include "trackbed/teach_repeat/funnel_lane_controller.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,9 +10,9 @@
 
 #include "teach_repeat_tracks.h"
 #include "trackbed/common/option_error.h"
-#include "trackbed/navigation/teach_repeat_geometry.h"
+#include "trackbed/teach_repeat/teach_repeat_geometry.h"
 
-namespace trackbed::navigation {
+namespace trackbed::teach_repeat {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -487,4 +487,4 @@ RepeatCommand FunnelLaneRepeater::Update(const cv::Mat& gray, double t_s) {
   return cmd;
 }
 
-}  // namespace trackbed::navigation
+}  // namespace trackbed::teach_repeat

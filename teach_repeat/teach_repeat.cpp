@@ -1,12 +1,12 @@
 // Status names and the repeater factory (see teach_repeat.h).
-#include "trackbed/navigation/teach_repeat.h"
+#include "trackbed/teach_repeat/teach_repeat.h"
 
 #include <stdexcept>
 
-#include "trackbed/navigation/funnel_lane_controller.h"
-#include "trackbed/navigation/milestone_localizer_3d.h"
+#include "trackbed/teach_repeat/funnel_lane_controller.h"
+#include "trackbed/teach_repeat/milestone_localizer_3d.h"
 
-namespace trackbed::navigation {
+namespace trackbed::teach_repeat {
 
 const char* ToString(RepeatStatus status) {
   switch (status) {
@@ -41,4 +41,4 @@ std::unique_ptr<Repeater> MakeRepeater(const std::string& method, TeachMap map,
                               "\")");
 }
 
-}  // namespace trackbed::navigation
+}  // namespace trackbed::teach_repeat

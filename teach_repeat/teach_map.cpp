@@ -1,5 +1,5 @@
 // The teach map and its on-disk format (see teach_map.h, docs/teach_repeat.md).
-#include "trackbed/navigation/teach_map.h"
+#include "trackbed/teach_repeat/teach_map.h"
 
 #include <cmath>
 #include <cstdint>
@@ -16,7 +16,7 @@
 
 #include "trackbed/common/option_error.h"
 
-namespace trackbed::navigation {
+namespace trackbed::teach_repeat {
 namespace {
 
 namespace fs = std::filesystem;
@@ -574,4 +574,4 @@ TeachMap LoadTeachMap(const std::string& dir) {
   return map;
 }
 
-}  // namespace trackbed::navigation
+}  // namespace trackbed::teach_repeat

@@ -45,12 +45,12 @@
 #include <opencv2/core.hpp>
 
 #include "trackbed/estimation/pose2.h"
-#include "trackbed/navigation/teach_map.h"
-#include "trackbed/navigation/teach_repeat_geometry.h"
 #include "trackbed/perception/feature_tracker.h"
 #include "trackbed/perception/harris_corners.h"
+#include "trackbed/teach_repeat/teach_map.h"
+#include "trackbed/teach_repeat/teach_repeat_geometry.h"
 
-namespace trackbed::navigation {
+namespace trackbed::teach_repeat {
 
 /// What a 2D interval counts.
 enum class IntervalUnit {
@@ -164,4 +164,4 @@ class MilestoneBuilder {
   perception::TrackingPyramid prev_pyramid_, curr_pyramid_;
 };
 
-}  // namespace trackbed::navigation
+}  // namespace trackbed::teach_repeat

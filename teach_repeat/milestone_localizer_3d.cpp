@@ -1,6 +1,6 @@
 // Repeat 3D: pose from the essential matrix and the milestone's 3-D points, steering,
 // switching and feature recovery (see milestone_localizer_3d.h).
-#include "trackbed/navigation/milestone_localizer_3d.h"
+#include "trackbed/teach_repeat/milestone_localizer_3d.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,7 +14,7 @@
 #include "teach_repeat_tracks.h"
 #include "trackbed/common/option_error.h"
 
-namespace trackbed::navigation {
+namespace trackbed::teach_repeat {
 namespace {
 
 void AtLeast(const char* field, int value, int minimum) {
@@ -436,4 +436,4 @@ RepeatCommand MilestoneLocalizer3d::Update(const cv::Mat& gray, double t_s) {
   return cmd;
 }
 
-}  // namespace trackbed::navigation
+}  // namespace trackbed::teach_repeat

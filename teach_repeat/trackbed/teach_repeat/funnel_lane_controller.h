@@ -86,11 +86,11 @@
 
 #include <opencv2/core.hpp>
 
-#include "trackbed/navigation/teach_map.h"
-#include "trackbed/navigation/teach_repeat.h"
 #include "trackbed/perception/feature_tracker.h"
+#include "trackbed/teach_repeat/teach_map.h"
+#include "trackbed/teach_repeat/teach_repeat.h"
 
-namespace trackbed::navigation {
+namespace trackbed::teach_repeat {
 
 namespace detail {
 class MilestoneTracks;
@@ -245,4 +245,4 @@ class FunnelLaneRepeater : public Repeater {
   std::int64_t lost_total_ = 0;
 };
 
-}  // namespace trackbed::navigation
+}  // namespace trackbed::teach_repeat
