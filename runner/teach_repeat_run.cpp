@@ -20,6 +20,7 @@
 #include "trackbed/teach_repeat/funnel_lane_controller.h"
 #include "trackbed/teach_repeat/milestone_builder.h"
 #include "trackbed/teach_repeat/milestone_localizer_3d.h"
+#include "trackbed/teach_repeat/repeater_factory.h"
 #include "trackbed/teach_repeat/teach_map.h"
 #include "trackbed/teach_repeat/teach_repeat_metrics.h"
 

@@ -16,8 +16,11 @@
 #include "teach_repeat_test_scene.h"
 #include "trackbed/common/option_error.h"
 #include "trackbed/navigation/diff_drive.h"
+#include "trackbed/teach_repeat/funnel_lane_vote.h"
 #include "trackbed/teach_repeat/milestone_builder.h"
 #include "trackbed/teach_repeat/milestone_localizer_3d.h"
+#include "trackbed/teach_repeat/milestone_switch.h"
+#include "trackbed/teach_repeat/repeater_factory.h"
 
 namespace trackbed::teach_repeat {
 namespace {

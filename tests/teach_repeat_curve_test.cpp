@@ -15,6 +15,7 @@
 #include "trackbed/teach_repeat/funnel_lane_controller.h"
 #include "trackbed/teach_repeat/milestone_builder.h"
 #include "trackbed/teach_repeat/milestone_localizer_3d.h"
+#include "trackbed/teach_repeat/milestone_switch.h"
 
 namespace trackbed::teach_repeat {
 namespace {
