@@ -8,7 +8,7 @@
 
 namespace trackbed::runner {
 
-RepeatCommander::RepeatCommander(navigation::Repeater* repeater, double effective_gauge_m,
+RepeatCommander::RepeatCommander(teach_repeat::Repeater* repeater, double effective_gauge_m,
                                  StepObserver on_step)
     : repeater_(repeater), gauge_eff_m_(effective_gauge_m), on_step_(std::move(on_step)) {
   if (!repeater_) throw std::invalid_argument("RepeatCommander: no repeater");
@@ -16,14 +16,14 @@ RepeatCommander::RepeatCommander(navigation::Repeater* repeater, double effectiv
 
 ControlOutput RepeatCommander::Update(const ControlInput& input) {
   if (!input.left_image) throw std::invalid_argument("RepeatCommander: no image");
-  const navigation::RepeatCommand c = repeater_->Update(*input.left_image, input.t_s);
+  const teach_repeat::RepeatCommand c = repeater_->Update(*input.left_image, input.t_s);
   if (on_step_) on_step_({input.t_s, c});
   features_lost_ = c.features_lost;
   features_recovered_ = c.features_recovered;
   ControlOutput out;
   out.tracks = estimation::TrackSpeedsFromTwist(c.twist, gauge_eff_m_);
-  if (c.status != navigation::RepeatStatus::kDriving) {
-    out.stop_reason = std::string("repeat ") + navigation::ToString(c.status);
+  if (c.status != teach_repeat::RepeatStatus::kDriving) {
+    out.stop_reason = std::string("repeat ") + teach_repeat::ToString(c.status);
   }
   return out;
 }

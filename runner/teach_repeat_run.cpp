@@ -14,11 +14,12 @@
 
 #include "trackbed/estimation/trajectory_io.h"
 #include "trackbed/estimation/wheel_odometry.h"
-#include "trackbed/navigation/funnel_lane_controller.h"
-#include "trackbed/navigation/milestone_builder.h"
-#include "trackbed/navigation/milestone_localizer_3d.h"
-#include "trackbed/navigation/teach_map.h"
-#include "trackbed/navigation/teach_repeat_metrics.h"
+#include "trackbed/teach_repeat/funnel_lane_controller.h"
+#include "trackbed/teach_repeat/milestone_builder.h"
+#include "trackbed/teach_repeat/milestone_localizer_3d.h"
+#include "trackbed/teach_repeat/repeater_factory.h"
+#include "trackbed/teach_repeat/teach_map.h"
+#include "trackbed/teach_repeat/teach_repeat_metrics.h"
 #include "trackbed/perception/kitti_sequence.h"
 #include "trackbed/runner/closed_loop.h"
 #include "trackbed/runner/repeat_commander.h"
@@ -33,20 +34,20 @@ double Radians(double deg) { return deg * M_PI / 180.0; }
 
 // The teach pass: the scenario's own drive, images into the builder with the no-slip
 // wheel odometry at each image (metadata; 3D teaching scales milestones by it).
-navigation::TeachMap Teach(const scenario::Scenario& scenario, const fs::path& dir,
+teach_repeat::TeachMap Teach(const scenario::Scenario& scenario, const fs::path& dir,
                            std::vector<Eigen::Vector2d>* taught_path) {
   scenario::Scenario teach = scenario;
   teach.teach_repeat.enabled = false;
   const scenario::RobotSpec& rs = scenario.robot;
   const robot::StereoRig rig(rs.stereo);
   const sim::PinholeIntrinsics& K = rig.intrinsics();
-  const navigation::CameraIntrinsics camera = navigation::CameraIntrinsics::FromCalibration(
+  const teach_repeat::CameraIntrinsics camera = teach_repeat::CameraIntrinsics::FromCalibration(
       perception::StereoCalibration::FromIntrinsics(K.fx, K.fy, K.cx, K.cy, rs.stereo.baseline_m),
       cv::Size(rs.stereo.width_px, rs.stereo.height_px));
-  navigation::MilestoneBuilderOptions options;
-  options.mode = scenario.teach_repeat.method == "3d" ? navigation::TeachMode::k3d
-                                                      : navigation::TeachMode::k2d;
-  navigation::MilestoneBuilder builder(camera, options);
+  teach_repeat::MilestoneBuilderOptions options;
+  options.mode = scenario.teach_repeat.method == "3d" ? teach_repeat::TeachMode::k3d
+                                                      : teach_repeat::TeachMode::k2d;
+  teach_repeat::MilestoneBuilder builder(camera, options);
   estimation::WheelOdometryOptions wo;
   wo.sprocket_radius_m = rs.vehicle.sprocket_radius_m;
   wo.track_gauge_m = rs.vehicle.track_gauge_m;
@@ -112,24 +113,24 @@ std::pair<double, double> PlaceWindow(const sim::OccluderSpec& o, double recover
 // The repeat as in the paper's experiment 1: the robot stands still while a person
 // crosses (the inner repeater sees every image and keeps tracking, losing and
 // recovering features; only its command is held at zero), then drives on.
-class StopsForCrossings final : public navigation::Repeater {
+class StopsForCrossings final : public teach_repeat::Repeater {
  public:
-  StopsForCrossings(std::unique_ptr<navigation::Repeater> inner,
+  StopsForCrossings(std::unique_ptr<teach_repeat::Repeater> inner,
                     std::vector<std::pair<double, double>> windows)
       : inner_(std::move(inner)), windows_(std::move(windows)) {}
 
-  navigation::RepeatCommand Update(const cv::Mat& gray, double t_s) override {
-    navigation::RepeatCommand c = inner_->Update(gray, t_s);
+  teach_repeat::RepeatCommand Update(const cv::Mat& gray, double t_s) override {
+    teach_repeat::RepeatCommand c = inner_->Update(gray, t_s);
     for (const auto& [start, end] : windows_) {
       if (t_s >= start && t_s < end) c.twist = {};
     }
     return c;
   }
   const char* method() const override { return inner_->method(); }
-  const navigation::TeachMap& map() const override { return inner_->map(); }
+  const teach_repeat::TeachMap& map() const override { return inner_->map(); }
 
  private:
-  std::unique_ptr<navigation::Repeater> inner_;
+  std::unique_ptr<teach_repeat::Repeater> inner_;
   std::vector<std::pair<double, double>> windows_;
 };
 
@@ -140,7 +141,7 @@ class StopsForCrossings final : public navigation::Repeater {
 // are the pooled rate over the whole repeat.
 void ScorePlaces(const scenario::TeachRepeatSpec& tr, const std::vector<CumulativeRecovery>& counts,
                  TeachRepeatMetrics* t) {
-  std::vector<navigation::RecoveryCounts> places;
+  std::vector<teach_repeat::RecoveryCounts> places;
   for (const sim::OccluderSpec& o : tr.occluders) {
     TeachRepeatMetrics::Place p;
     std::tie(p.start_s, p.end_s) = PlaceWindow(o, tr.recovery_window_s);
@@ -161,7 +162,7 @@ void ScorePlaces(const scenario::TeachRepeatSpec& tr, const std::vector<Cumulati
     t->recovery_rate_pooled = t->recovery_rate;
     return;
   }
-  const navigation::RecoveryMetrics r = navigation::EvaluateRecovery(places);
+  const teach_repeat::RecoveryMetrics r = teach_repeat::EvaluateRecovery(places);
   for (std::size_t k = 0; k < t->places.size(); ++k) t->places[k].rate = r.per_place_rate[k];
   t->recovery_rate = r.mean_rate;
   t->recovery_rate_pooled = r.pooled_rate;
@@ -219,27 +220,27 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
   fs::create_directories(dir);
   const scenario::TeachRepeatSpec& tr = scenario.teach_repeat;
   std::vector<Eigen::Vector2d> taught;
-  navigation::TeachMap map;
+  teach_repeat::TeachMap map;
   if (tr.map.empty()) {
     map = Teach(scenario, dir / "teach", &taught);
-    navigation::SaveTeachMap(map, (dir / "teach_map").string());
+    teach_repeat::SaveTeachMap(map, (dir / "teach_map").string());
   } else {
-    map = navigation::LoadTeachMap(tr.map);
+    map = teach_repeat::LoadTeachMap(tr.map);
     taught = TaughtPathBeside(tr.map);
   }
 
   const scenario::Scenario repeat = RepeatScenario(scenario);
 
-  navigation::FunnelLaneOptions o2;
+  teach_repeat::FunnelLaneOptions o2;
   o2.forward_speed_mps = tr.repeat_speed_mps;
   o2.turn_rate_radps = Radians(tr.repeat_turn_rate_deg_s);
-  navigation::Localizer3dOptions o3;
+  teach_repeat::Localizer3dOptions o3;
   o3.forward_speed_mps = tr.repeat_speed_mps;
   o3.max_yaw_rate_radps = Radians(tr.repeat_turn_rate_deg_s);
   const int milestones = static_cast<int>(map.milestones.size());
   const int teach_images = static_cast<int>(map.images.size());
-  std::unique_ptr<navigation::Repeater> repeater =
-      navigation::MakeRepeater(tr.method, std::move(map), o2, o3);
+  std::unique_ptr<teach_repeat::Repeater> repeater =
+      teach_repeat::MakeRepeater(tr.method, std::move(map), o2, o3);
   if (tr.stop_for_crossings && !tr.occluders.empty()) {
     std::vector<std::pair<double, double>> windows;
     for (const sim::OccluderSpec& o : tr.occluders) {
@@ -256,13 +257,13 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
          "heading_error_rad,fallback_2d,progress\n";
   RunObservers extra;
   std::vector<CumulativeRecovery> counts;  // per repeat frame
-  const auto log_step = [&](const std::pair<double, navigation::RepeatCommand>& step) {
-    const navigation::RepeatCommand& c = step.second;
+  const auto log_step = [&](const std::pair<double, teach_repeat::RepeatCommand>& step) {
+    const teach_repeat::RepeatCommand& c = step.second;
     counts.push_back({step.first, c.features_lost, c.features_recovered});
     char line[512];
     std::snprintf(line, sizeof(line),
                   "%.6f,%s,%.6g,%.6g,%d,%d,%d,%d,%d,%d,%d,%.6g,%d,%d,%.6g,%.6g,%d,%.6g\n",
-                  step.first, navigation::ToString(c.status), c.twist.v_mps, c.twist.yaw_rate_radps,
+                  step.first, teach_repeat::ToString(c.status), c.twist.v_mps, c.twist.yaw_rate_radps,
                   c.milestone, c.switched ? 1 : 0, c.features, c.tracked, c.votes_left,
                   c.votes_right, c.votes_straight, c.mean_error_px, c.lost, c.recovered,
                   c.lateral_offset_m, c.heading_error_rad, c.fallback_2d ? 1 : 0, c.progress);
@@ -291,8 +292,8 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
   ScorePlaces(tr, counts, &t);
   if (!t.places.empty()) WriteRecoveryPlot(scenario, t, dir);
   if (!taught.empty() && !repeated.empty()) {
-    const navigation::RepeatPathMetrics p =
-        navigation::EvaluateRepeatPath(taught, repeated, t.status == "finished");
+    const teach_repeat::RepeatPathMetrics p =
+        teach_repeat::EvaluateRepeatPath(taught, repeated, t.status == "finished");
     t.completed = p.completed;
     t.autonomy = p.autonomy;
     t.end_point_error_m = p.end_point_error_m;

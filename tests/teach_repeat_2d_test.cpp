@@ -3,7 +3,7 @@
 // images — a repeat from the taught start keeps to the path, one started 0.2 m and 5° off
 // converges toward it — plus loss of features (blank images, an occluder) and input
 // validation.
-#include "trackbed/navigation/funnel_lane_controller.h"
+#include "trackbed/teach_repeat/funnel_lane_controller.h"
 
 #include <cmath>
 #include <cstdio>
@@ -16,13 +16,17 @@
 #include "teach_repeat_test_scene.h"
 #include "trackbed/common/option_error.h"
 #include "trackbed/navigation/diff_drive.h"
-#include "trackbed/navigation/milestone_builder.h"
-#include "trackbed/navigation/milestone_localizer_3d.h"
+#include "trackbed/teach_repeat/funnel_lane_vote.h"
+#include "trackbed/teach_repeat/milestone_builder.h"
+#include "trackbed/teach_repeat/milestone_localizer_3d.h"
+#include "trackbed/teach_repeat/milestone_switch.h"
+#include "trackbed/teach_repeat/repeater_factory.h"
 
-namespace trackbed::navigation {
+namespace trackbed::teach_repeat {
 namespace {
 
 using estimation::Pose2;
+using navigation::IntegrateTwist;  // the robot of these tests drives the twist exactly
 using testing::CameraPose;
 using testing::CorridorScene;
 using testing::TestCamera;
@@ -287,4 +291,4 @@ TEST(FunnelLaneRepeaterTest, BadInputAndOptionsAreRejected) {
 }
 
 }  // namespace
-}  // namespace trackbed::navigation
+}  // namespace trackbed::teach_repeat

@@ -3,7 +3,7 @@
 // steering law; then the localizer on synthetic images — its pose against ground truth,
 // features occluded by a passing body recovered by patch matching, and a closed kinematic
 // loop started 0.2 m and 5° off the taught path.
-#include "trackbed/navigation/milestone_localizer_3d.h"
+#include "trackbed/teach_repeat/milestone_localizer_3d.h"
 
 #include <cmath>
 #include <cstdio>
@@ -18,14 +18,15 @@
 #include "teach_repeat_test_scene.h"
 #include "trackbed/common/option_error.h"
 #include "trackbed/navigation/diff_drive.h"
-#include "trackbed/navigation/funnel_lane_controller.h"
-#include "trackbed/navigation/milestone_builder.h"
-#include "trackbed/navigation/teach_repeat_geometry.h"
+#include "trackbed/teach_repeat/funnel_lane_controller.h"
+#include "trackbed/teach_repeat/milestone_builder.h"
+#include "trackbed/teach_repeat/teach_repeat_geometry.h"
 
-namespace trackbed::navigation {
+namespace trackbed::teach_repeat {
 namespace {
 
 using estimation::Pose2;
+using navigation::IntegrateTwist;  // the robot of these tests drives the twist exactly
 using testing::CameraPose;
 using testing::CorridorScene;
 using testing::TestCamera;
@@ -482,4 +483,4 @@ TEST(MilestoneLocalizer3dTest, OptionErrorsNameTheField) {
 }
 
 }  // namespace
-}  // namespace trackbed::navigation
+}  // namespace trackbed::teach_repeat

@@ -2,7 +2,7 @@
 // the growth of the local reconstruction's reprojection error (3D), the accuracy of the
 // KLT-tracked last positions and of the 3-D reconstruction against the synthetic scene's
 // ground truth, and input/option validation.
-#include "trackbed/navigation/milestone_builder.h"
+#include "trackbed/teach_repeat/milestone_builder.h"
 
 #include <cmath>
 #include <cstdio>
@@ -14,7 +14,7 @@
 #include "teach_repeat_test_scene.h"
 #include "trackbed/common/option_error.h"
 
-namespace trackbed::navigation {
+namespace trackbed::teach_repeat {
 namespace {
 
 using estimation::Pose2;
@@ -270,4 +270,4 @@ TEST(MilestoneBuilderTest, OptionErrorsNameTheField) {
 }
 
 }  // namespace
-}  // namespace trackbed::navigation
+}  // namespace trackbed::teach_repeat

@@ -11,15 +11,17 @@
 
 #include "teach_repeat_test_scene.h"
 #include "trackbed/navigation/diff_drive.h"
-#include "trackbed/navigation/funnel_lane_controller.h"
-#include "trackbed/navigation/milestone_builder.h"
-#include "trackbed/navigation/milestone_localizer_3d.h"
 #include "trackbed/perception/feature_tracker.h"
+#include "trackbed/teach_repeat/funnel_lane_controller.h"
+#include "trackbed/teach_repeat/milestone_builder.h"
+#include "trackbed/teach_repeat/milestone_localizer_3d.h"
+#include "trackbed/teach_repeat/milestone_switch.h"
 
-namespace trackbed::navigation {
+namespace trackbed::teach_repeat {
 namespace {
 
 using estimation::Pose2;
+using navigation::IntegrateTwist;  // the robot of these tests drives the twist exactly
 using testing::CameraPose;
 using testing::CorridorScene;
 using testing::TestCamera;
@@ -182,4 +184,4 @@ TEST(CurveRepeatTest, ThreeDFollowsALeftCurveWithTheCurvatureFedForward) {
 }
 
 }  // namespace
-}  // namespace trackbed::navigation
+}  // namespace trackbed::teach_repeat

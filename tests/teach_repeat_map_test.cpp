@@ -1,7 +1,7 @@
 // The teach map's on-disk format: an exact, byte-identical round trip, and clear errors
 // (naming the file and what is wrong) for missing, corrupt, truncated, inconsistent and
 // wrong-version maps.
-#include "trackbed/navigation/teach_map.h"
+#include "trackbed/teach_repeat/teach_map.h"
 
 #include <filesystem>
 #include <fstream>
@@ -13,9 +13,9 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "teach_repeat_test_scene.h"
-#include "trackbed/navigation/milestone_builder.h"
+#include "trackbed/teach_repeat/milestone_builder.h"
 
-namespace trackbed::navigation {
+namespace trackbed::teach_repeat {
 namespace {
 
 namespace fs = std::filesystem;
@@ -305,4 +305,4 @@ TEST(TeachMapTest, SavingAnInvalidMapThrows) {
 }
 
 }  // namespace
-}  // namespace trackbed::navigation
+}  // namespace trackbed::teach_repeat

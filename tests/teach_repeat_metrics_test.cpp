@@ -2,7 +2,7 @@
 // error, autonomy, the progressive projection on a route that comes back on itself, and
 // the recovery rates of Choi & Ha's Table 1 (mean of per-place rates 86.18 %, pooled 531 of
 // 605).
-#include "trackbed/navigation/teach_repeat_metrics.h"
+#include "trackbed/teach_repeat/teach_repeat_metrics.h"
 
 #include <cmath>
 #include <vector>
@@ -11,7 +11,7 @@
 
 #include "trackbed/common/option_error.h"
 
-namespace trackbed::navigation {
+namespace trackbed::teach_repeat {
 namespace {
 
 std::vector<Eigen::Vector2d> Line(double x0, double x1, double y, int n) {
@@ -133,4 +133,4 @@ TEST(RecoveryMetricsTest, PlacesWithoutLossesHaveNoRate) {
 }
 
 }  // namespace
-}  // namespace trackbed::navigation
+}  // namespace trackbed::teach_repeat

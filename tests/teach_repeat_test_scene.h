@@ -24,9 +24,9 @@
 #include <opencv2/imgproc.hpp>
 
 #include "trackbed/estimation/pose2.h"
-#include "trackbed/navigation/teach_map.h"
+#include "trackbed/teach_repeat/teach_map.h"
 
-namespace trackbed::navigation::testing {
+namespace trackbed::teach_repeat::testing {
 
 constexpr double kCameraForward = 0.2;  // [m] ahead of the body origin
 constexpr double kCameraHeight = 0.4;   // [m] above the floor
@@ -193,4 +193,4 @@ inline void DrawOccluder(cv::Mat* image, cv::Point2f centre, double radius_px) {
              cv::LINE_AA, 4);
 }
 
-}  // namespace trackbed::navigation::testing
+}  // namespace trackbed::teach_repeat::testing

@@ -7,7 +7,7 @@
 #include <functional>
 #include <utility>
 
-#include "trackbed/navigation/teach_repeat.h"
+#include "trackbed/teach_repeat/teach_repeat.h"
 #include "trackbed/runner/commander.h"
 
 namespace trackbed::runner {
@@ -16,8 +16,8 @@ class RepeatCommander : public Commander {
  public:
   /// `repeater` must outlive this. `on_step` (may be empty) sees every frame's time and
   /// command.
-  using StepObserver = std::function<void(const std::pair<double, navigation::RepeatCommand>&)>;
-  RepeatCommander(navigation::Repeater* repeater, double effective_gauge_m, StepObserver on_step);
+  using StepObserver = std::function<void(const std::pair<double, teach_repeat::RepeatCommand>&)>;
+  RepeatCommander(teach_repeat::Repeater* repeater, double effective_gauge_m, StepObserver on_step);
 
   Trigger trigger() const override { return Trigger::kStereoFrame; }
   double period_s() const override { return 0.0; }
@@ -27,7 +27,7 @@ class RepeatCommander : public Commander {
   void AddMetrics(bool time_ran_out, RunMetrics* metrics) const override;
 
  private:
-  navigation::Repeater* repeater_;
+  teach_repeat::Repeater* repeater_;
   double gauge_eff_m_;
   StepObserver on_step_;
   std::int64_t features_lost_ = 0, features_recovered_ = 0;

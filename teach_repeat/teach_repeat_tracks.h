@@ -1,5 +1,7 @@
-// Private to trackbed::navigation: the active milestone's feature tracks during a repeat,
-// shared by the 2D and the 3D repeater (see teach_repeat.h).
+// Private to trackbed::teach_repeat: the active milestone's feature tracks during a repeat,
+// shared by the 2D and the 3D repeater (milestone_repeater.h), and what the repeaters read
+// from them: the funnel-lane votes and x-errors, the progress through the milestone, and
+// where to start the tracks of a milestone that becomes active.
 #pragma once
 
 #include <algorithm>
@@ -10,11 +12,12 @@
 
 #include <opencv2/core.hpp>
 
-#include "trackbed/navigation/funnel_lane_controller.h"
-#include "trackbed/navigation/teach_map.h"
 #include "trackbed/perception/feature_tracker.h"
+#include "trackbed/teach_repeat/funnel_lane_vote.h"
+#include "trackbed/teach_repeat/milestone_switch.h"
+#include "trackbed/teach_repeat/teach_map.h"
 
-namespace trackbed::navigation::detail {
+namespace trackbed::teach_repeat::detail {
 
 /// Per-feature state of the active milestone.
 ///
@@ -177,57 +180,15 @@ class MilestoneTracks {
   std::vector<perception::TrackStatus> status_;
 };
 
-/// One frame of the funnel-lane rules over a milestone's tracked features.
-struct FunnelFrame {
-  VoteTally tally;
-  /// Per feature: its x-error e_i (f_c − f_d, or the bearing error in pixels at the
-  /// image centre) [px]; NaN where the feature is not tracked.
-  std::vector<double> error_px;
-  /// Per feature: +1 if its destination is right of the centre, −1 if left ("outward").
-  std::vector<double> outward;
-};
-
-/// Votes and x-errors of the tracked features of `m` (defined in
-/// funnel_lane_controller.cpp). `bearing`: errors as bearing differences.
+/// Votes and x-errors of the tracked features of `m`. `bearing`: errors as bearing
+/// differences.
 FunnelFrame EvaluateFunnel(const CameraIntrinsics& camera, const Milestone& m,
                            const std::vector<FeatureTrack>& tracks, bool bearing);
 
-/// EstimateMilestoneProgress over the tracked features of `m` (defined in
-/// funnel_lane_controller.cpp).
+/// EstimateMilestoneProgress over the tracked features of `m`.
 MilestoneProgress ProgressOf(const CameraIntrinsics& camera, const Milestone& m,
                              const std::vector<FeatureTrack>& tracks,
                              const MilestoneProgressOptions& options);
-
-/// The 2D milestone switch (funnel_lane_controller.h): follows the switch error through
-/// frame-to-frame changes over the features tracked in both frames — the common shift
-/// (rotation) included, so that losing or regaining features on one side of the image
-/// moves neither — and detects its minimum. Defined in funnel_lane_controller.cpp.
-class MilestoneSwitch {
- public:
-  MilestoneSwitch(double hysteresis_px, SwitchError mode, bool remove_rotation);
-  /// A new milestone.
-  void Reset();
-  /// Feeds one frame; returns true once the error has passed its minimum.
-  bool Update(const FunnelFrame& frame);
-  /// The current switch error [px].
-  double error_px() const;
-
- private:
-  double Term(double error, double outward, double common) const;
-
-  ErrorMinimumDetector detector_;
-  SwitchError mode_;
-  bool remove_rotation_;
-  bool fresh_ = true;
-  double common_ = 0.0;       // the common shift (rotation) of the errors [px]
-  double accumulated_ = 0.0;  // mean term, followed through its changes
-  std::vector<double> last_error_, last_outward_;
-};
-
-/// Throws std::invalid_argument, naming `who`, unless `gray` is a CV_8UC1 image of the
-/// map's camera size and `t_s` is finite and, once started, not before `last_t_s`.
-void CheckRepeatInput(const char* who, const TeachMap& map, const cv::Mat& gray, double t_s,
-                      bool started, double last_t_s);
 
 /// Guesses for the first milestone of a repeat: the key-image positions moved by the
 /// global shift between the key image and the current one (EstimateImageShift).
@@ -240,4 +201,4 @@ std::vector<cv::Point2f> ShiftedGuesses(const Milestone& previous,
                                         const std::vector<FeatureTrack>& tracks,
                                         const Milestone& next);
 
-}  // namespace trackbed::navigation::detail
+}  // namespace trackbed::teach_repeat::detail

@@ -38,7 +38,7 @@
 #include "trackbed/estimation/pose2.h"
 #include "trackbed/perception/kitti_sequence.h"
 
-namespace trackbed::navigation {
+namespace trackbed::teach_repeat {
 
 /// Pinhole intrinsics of the (left) camera whose images are taught and repeated.
 struct CameraIntrinsics {
@@ -155,4 +155,4 @@ void SaveTeachMap(const TeachMap& map, const std::string& dir);
 /// wrong size.
 TeachMap LoadTeachMap(const std::string& dir);
 
-}  // namespace trackbed::navigation
+}  // namespace trackbed::teach_repeat

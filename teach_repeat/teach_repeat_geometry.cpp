@@ -1,6 +1,6 @@
 // Two-view geometry, scale ratio, patch matching and path offsets (see
 // teach_repeat_geometry.h).
-#include "trackbed/navigation/teach_repeat_geometry.h"
+#include "trackbed/teach_repeat/teach_repeat_geometry.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,7 +14,7 @@
 #include "trackbed/common/option_error.h"
 #include "trackbed/estimation/pose2.h"
 
-namespace trackbed::navigation {
+namespace trackbed::teach_repeat {
 namespace {
 
 double Median(std::vector<double> values) {
@@ -387,4 +387,4 @@ PathOffset ComputePathOffset(const Eigen::Isometry3d& T_first_cam,
   return o;
 }
 
-}  // namespace trackbed::navigation
+}  // namespace trackbed::teach_repeat

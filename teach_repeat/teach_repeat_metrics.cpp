@@ -1,5 +1,5 @@
 // Teach & repeat scores (see teach_repeat_metrics.h).
-#include "trackbed/navigation/teach_repeat_metrics.h"
+#include "trackbed/teach_repeat/teach_repeat_metrics.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 
 #include "trackbed/common/option_error.h"
 
-namespace trackbed::navigation {
+namespace trackbed::teach_repeat {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -135,4 +135,4 @@ RecoveryMetrics EvaluateRecovery(const std::vector<RecoveryCounts>& places) {
   return r;
 }
 
-}  // namespace trackbed::navigation
+}  // namespace trackbed::teach_repeat

@@ -1,20 +1,21 @@
 // Repeat 3D: pose from the essential matrix and the milestone's 3-D points, steering,
 // switching and feature recovery (see milestone_localizer_3d.h).
-#include "trackbed/navigation/milestone_localizer_3d.h"
+#include "trackbed/teach_repeat/milestone_localizer_3d.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <stdexcept>
 #include <string>
+#include <utility>
 
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "teach_repeat_tracks.h"
 #include "trackbed/common/option_error.h"
+#include "trackbed/teach_repeat/funnel_lane_vote.h"
 
-namespace trackbed::navigation {
+namespace trackbed::teach_repeat {
 namespace {
 
 void AtLeast(const char* field, int value, int minimum) {
@@ -78,6 +79,37 @@ bool RefinePnP(const CameraIntrinsics& camera, const Milestone& m,
   return true;
 }
 
+/// The base's settings from validated options (the options are checked before the map).
+MilestoneRepeaterSettings SettingsOf(const Localizer3dOptions& options) {
+  options.Validate();
+  MilestoneRepeaterSettings s;
+  s.name = "MilestoneLocalizer3d";
+  s.start_milestone = options.start_milestone;
+  s.tracker = options.tracker;
+  s.switch_hysteresis_px = options.fallback_switch_hysteresis_px;
+  s.switch_error = SwitchError::kMeanOutward;
+  s.remove_rotation = true;
+  s.min_features = options.min_features;
+  s.lost_patience_frames = options.lost_patience_frames;
+  s.forward_speed_mps = options.forward_speed_mps;
+  return s;
+}
+
+/// Guesses for the features of milestone `next` in the current image: the reprojections
+/// of their 3-D points from the camera pose T_next_cam (their key-image positions where
+/// a point lies behind the camera).
+std::vector<cv::Point2f> ReprojectedGuesses(const CameraIntrinsics& camera, const Milestone& next,
+                                            const Eigen::Isometry3d& T_next_cam) {
+  const Eigen::Isometry3d T_cam_next = T_next_cam.inverse();
+  std::vector<cv::Point2f> guesses;
+  for (const MilestoneFeature& f : next.features) {
+    const std::optional<cv::Point2d> q = ProjectPoint(camera, T_cam_next * f.p_first);
+    guesses.push_back(q ? cv::Point2f(static_cast<float>(q->x), static_cast<float>(q->y))
+                        : f.first_px);
+  }
+  return guesses;
+}
+
 }  // namespace
 
 double PathFollowingYawRate(double lateral_m, double heading_rad, double v_mps,
@@ -122,22 +154,7 @@ void Localizer3dOptions::Validate() const {
 }
 
 MilestoneLocalizer3d::MilestoneLocalizer3d(TeachMap map, const Localizer3dOptions& options)
-    : map_(std::move(map)), options_(options) {
-  options_.Validate();
-  if (map_.milestones.empty()) {
-    throw std::invalid_argument("MilestoneLocalizer3d: the teach map has no milestones");
-  }
-  if (options_.start_milestone >= static_cast<int>(map_.milestones.size())) {
-    throw std::invalid_argument("MilestoneLocalizer3d: start_milestone " +
-                                std::to_string(options_.start_milestone) + " beyond the map's " +
-                                std::to_string(map_.milestones.size()) + " milestones");
-  }
-  tracks_ = std::make_unique<detail::MilestoneTracks>(options_.tracker);
-  switch_2d_ = std::make_unique<detail::MilestoneSwitch>(
-      options_.fallback_switch_hysteresis_px, SwitchError::kMeanOutward, /*remove_rotation=*/true);
-}
-
-MilestoneLocalizer3d::~MilestoneLocalizer3d() = default;
+    : MilestoneRepeater(std::move(map), SettingsOf(options)), options_(options) {}
 
 std::vector<bool> MilestoneLocalizer3d::tracked_mask() const {
   std::vector<bool> mask;
@@ -145,18 +162,13 @@ std::vector<bool> MilestoneLocalizer3d::tracked_mask() const {
   return mask;
 }
 
-void MilestoneLocalizer3d::StartMilestone(int index, const std::vector<cv::Point2f>& guesses) {
-  milestone_ = index;
-  const Milestone& m = map_.milestones[static_cast<std::size_t>(index)];
-  tracks_->Start(m, curr_pyramid_, guesses);
+void MilestoneLocalizer3d::MilestoneStarted(const Milestone& m) {
   const int s = map_.patch_size_px;
   key_patches_.resize(m.features.size());
   for (std::size_t i = 0; i < m.features.size(); ++i) {
     cv::getRectSubPix(m.key_image, cv::Size(s, s), m.features[i].first_px, key_patches_[i], CV_8U);
   }
   predicted_.assign(m.features.size(), std::nullopt);
-  switch_2d_->Reset();
-  frames_in_milestone_ = 0;
 }
 
 bool MilestoneLocalizer3d::EstimatePose(RepeatCommand* cmd) {
@@ -295,145 +307,101 @@ int MilestoneLocalizer3d::Recover(const cv::Mat& gray) {
   return recovered;
 }
 
-RepeatCommand MilestoneLocalizer3d::Update(const cv::Mat& gray, double t_s) {
-  detail::CheckRepeatInput("MilestoneLocalizer3d::Update", map_, gray, t_s, started_, last_t_s_);
-  last_t_s_ = t_s;
-  RepeatCommand cmd;
-  cmd.milestone = milestone_;
-  cmd.features_lost = lost_total_;
-  cmd.features_recovered = recovered_total_;
-  if (status_ != RepeatStatus::kDriving) {
-    cmd.status = status_;
-    return cmd;
-  }
-
-  tracks_->BuildPyramid(gray, &curr_pyramid_);
-  if (!started_) {
-    StartMilestone(options_.start_milestone,
-                   detail::StartGuesses(
-                       map_.milestones[static_cast<std::size_t>(options_.start_milestone)], gray));
-    T_first_cam_ = Eigen::Isometry3d::Identity();
-    started_ = true;
-  } else {
-    tracks_->Advance(prev_pyramid_, curr_pyramid_);
-  }
-  ++frames_in_milestone_;
-
-  const Milestone* m = &map_.milestones[static_cast<std::size_t>(milestone_)];
-  bool pose_ok = m->reconstructed && EstimatePose(&cmd);
-  if (pose_ok) cmd.recovered = Recover(gray);
+void MilestoneLocalizer3d::RepeatFrame(const cv::Mat& gray, RepeatCommand* cmd) {
+  const Milestone& m = map_.milestones[static_cast<std::size_t>(milestone_)];
+  bool pose_ok = m.reconstructed && EstimatePose(cmd);
+  if (pose_ok) cmd->recovered = Recover(gray);
   if (!pose_ok) std::fill(predicted_.begin(), predicted_.end(), std::nullopt);
-  cmd.lost = tracks_->CommitLosses();  // still lost after the recovery attempt
+  cmd->lost = tracks_->CommitLosses();  // still lost after the recovery attempt
 
   // Switching: by the along-track position when there is a pose, else by the 2D error
   // minimum (which is followed every frame, so that it is ready when the pose fails).
   const detail::FunnelFrame frame_2d =
-      detail::EvaluateFunnel(map_.camera, *m, tracks_->tracks(), /*bearing=*/true);
-  const bool passed_2d = switch_2d_->Update(frame_2d) &&
+      detail::EvaluateFunnel(map_.camera, m, tracks_->tracks(), /*bearing=*/true);
+  const bool passed_2d = switch_->Update(frame_2d) &&
                          frames_in_milestone_ > options_.fallback_min_frames_per_milestone;
   bool passed = passed_2d;
   PathOffset offset;
-  if (m->reconstructed && pose_ok) {
-    offset = ComputePathOffset(T_first_cam_, m->T_first_last);
+  if (m.reconstructed && pose_ok) {
+    offset = ComputePathOffset(T_first_cam_, m.T_first_last);
     passed = offset.progress >= options_.switch_progress;
   }
-  lost_total_ += cmd.lost;
-  recovered_total_ += cmd.recovered;
+  lost_total_ += cmd->lost;
+  recovered_total_ += cmd->recovered;
   for (int switches = 0; passed && switches < options_.max_switches_per_frame; ++switches) {
     if (milestone_ + 1 >= static_cast<int>(map_.milestones.size())) {
-      status_ = RepeatStatus::kFinished;
-      cmd.status = status_;
-      cmd.features_lost = lost_total_;
-      cmd.features_recovered = recovered_total_;
-      std::swap(prev_pyramid_, curr_pyramid_);
-      return cmd;
+      Finish(cmd);
+      return;
     }
-    const Milestone& next = map_.milestones[static_cast<std::size_t>(milestone_ + 1)];
-    std::vector<cv::Point2f> guesses;
-    Eigen::Isometry3d T_next_cam = Eigen::Isometry3d::Identity();
-    if (m->reconstructed && pose_ok) {
-      // The next milestone's first camera is this one's last.
-      T_next_cam = m->T_first_last.inverse() * T_first_cam_;
-    }
-    if (next.reconstructed && m->reconstructed && pose_ok) {
-      const Eigen::Isometry3d T_cam_next = T_next_cam.inverse();
-      for (const MilestoneFeature& f : next.features) {
-        const std::optional<cv::Point2d> q = ProjectPoint(map_.camera, T_cam_next * f.p_first);
-        guesses.push_back(q ? cv::Point2f(static_cast<float>(q->x), static_cast<float>(q->y))
-                            : f.first_px);
-      }
-    } else {
-      guesses = detail::ShiftedGuesses(*m, tracks_->tracks(), next);
-    }
-    StartMilestone(milestone_ + 1, guesses);
-    T_first_cam_ = T_next_cam;
-    cmd.switched = true;
-    m = &next;
-    ++frames_in_milestone_;
-    switch_2d_->Update(
-        detail::EvaluateFunnel(map_.camera, *m, tracks_->tracks(), /*bearing=*/true));
-    RepeatCommand fresh;  // the new milestone's pose, without loss counting
-    pose_ok = m->reconstructed && EstimatePose(&fresh);
-    cmd.pose_valid = fresh.pose_valid;
-    cmd.essential_used = fresh.essential_used;
-    cmd.essential_inliers = fresh.essential_inliers;
-    cmd.scale_ratio = fresh.scale_ratio;
-    cmd.reprojection_rms_px = fresh.reprojection_rms_px;
-    passed = false;
-    if (pose_ok) {
-      offset = ComputePathOffset(T_first_cam_, m->T_first_last);
-      passed = offset.progress >= options_.switch_progress;
-    }
+    passed = SwitchToNextMilestone(cmd, &pose_ok, &offset);
   }
-
-  cmd.milestone = milestone_;
-  cmd.features = static_cast<int>(tracks_->size());
-  cmd.tracked = tracks_->tracked();
-  cmd.features_lost = lost_total_;
-  cmd.features_recovered = recovered_total_;
-  if (pose_ok) {
-    cmd.T_first_cam = T_first_cam_;
-    cmd.lateral_offset_m = offset.lateral_m;
-    cmd.heading_error_rad = offset.heading_rad;
-    cmd.progress = offset.progress;
-  }
-  const detail::FunnelFrame frame =
-      detail::EvaluateFunnel(map_.camera, *m, tracks_->tracks(), /*bearing=*/true);
-  cmd.votes_left = frame.tally.left;
-  cmd.votes_right = frame.tally.right;
-  cmd.votes_straight = frame.tally.straight;
-  cmd.mean_error_px = switch_2d_->error_px();
-
-  if (cmd.tracked < options_.min_features) {
-    cmd.too_few_features = true;
-    if (++too_few_frames_ > options_.lost_patience_frames) {
-      status_ = RepeatStatus::kLost;
-      cmd.status = status_;
-      cmd.twist = {};
-      std::swap(prev_pyramid_, curr_pyramid_);
-      return cmd;
-    }
-    cmd.twist.v_mps = options_.forward_speed_mps;
-  } else {
-    too_few_frames_ = 0;
-    cmd.twist.v_mps = options_.forward_speed_mps;
-    if (pose_ok) {
-      const double curvature =
-          options_.curvature_feed_forward && offset.segment_length_m >= 1e-3
-              ? CameraHeading(m->T_first_last.linear()) / offset.segment_length_m
-              : 0.0;
-      cmd.twist.yaw_rate_radps = PathFollowingYawRate(
-          offset.lateral_m, offset.heading_rad, options_.forward_speed_mps,
-          options_.convergence_distance_m, options_.max_yaw_rate_radps, curvature);
-    } else {
-      cmd.fallback_2d = true;
-      cmd.decision = DecideTurn(frame.tally, options_.fallback_min_net_vote);
-      cmd.twist.yaw_rate_radps =
-          static_cast<double>(static_cast<int>(cmd.decision)) * options_.max_yaw_rate_radps;
-    }
-  }
-  std::swap(prev_pyramid_, curr_pyramid_);
-  return cmd;
+  Steer(pose_ok, offset, cmd);
 }
 
-}  // namespace trackbed::navigation
+bool MilestoneLocalizer3d::SwitchToNextMilestone(RepeatCommand* cmd, bool* pose_ok,
+                                                 PathOffset* offset) {
+  const Milestone& m = map_.milestones[static_cast<std::size_t>(milestone_)];
+  const Milestone& next = map_.milestones[static_cast<std::size_t>(milestone_ + 1)];
+  Eigen::Isometry3d T_next_cam = Eigen::Isometry3d::Identity();
+  if (m.reconstructed && *pose_ok) {
+    // The next milestone's first camera is this one's last.
+    T_next_cam = m.T_first_last.inverse() * T_first_cam_;
+  }
+  const std::vector<cv::Point2f> guesses = next.reconstructed && m.reconstructed && *pose_ok
+                                               ? ReprojectedGuesses(map_.camera, next, T_next_cam)
+                                               : detail::ShiftedGuesses(m, tracks_->tracks(), next);
+  StartMilestone(milestone_ + 1, guesses);
+  T_first_cam_ = T_next_cam;
+  cmd->switched = true;
+  ++frames_in_milestone_;
+  switch_->Update(detail::EvaluateFunnel(map_.camera, next, tracks_->tracks(), /*bearing=*/true));
+  RepeatCommand fresh;  // the new milestone's pose, without loss counting
+  *pose_ok = next.reconstructed && EstimatePose(&fresh);
+  cmd->pose_valid = fresh.pose_valid;
+  cmd->essential_used = fresh.essential_used;
+  cmd->essential_inliers = fresh.essential_inliers;
+  cmd->scale_ratio = fresh.scale_ratio;
+  cmd->reprojection_rms_px = fresh.reprojection_rms_px;
+  if (!*pose_ok) return false;
+  *offset = ComputePathOffset(T_first_cam_, next.T_first_last);
+  return offset->progress >= options_.switch_progress;
+}
+
+void MilestoneLocalizer3d::Steer(bool pose_ok, const PathOffset& offset, RepeatCommand* cmd) {
+  const Milestone& m = map_.milestones[static_cast<std::size_t>(milestone_)];
+  cmd->milestone = milestone_;
+  cmd->features = static_cast<int>(tracks_->size());
+  cmd->tracked = tracks_->tracked();
+  cmd->features_lost = lost_total_;
+  cmd->features_recovered = recovered_total_;
+  if (pose_ok) {
+    cmd->T_first_cam = T_first_cam_;
+    cmd->lateral_offset_m = offset.lateral_m;
+    cmd->heading_error_rad = offset.heading_rad;
+    cmd->progress = offset.progress;
+  }
+  const detail::FunnelFrame frame =
+      detail::EvaluateFunnel(map_.camera, m, tracks_->tracks(), /*bearing=*/true);
+  cmd->votes_left = frame.tally.left;
+  cmd->votes_right = frame.tally.right;
+  cmd->votes_straight = frame.tally.straight;
+  cmd->mean_error_px = switch_->error_px();
+
+  if (GoStraightIfTooFewFeatures(cmd)) return;
+  cmd->twist.v_mps = options_.forward_speed_mps;
+  if (pose_ok) {
+    const double curvature = options_.curvature_feed_forward && offset.segment_length_m >= 1e-3
+                                 ? CameraHeading(m.T_first_last.linear()) / offset.segment_length_m
+                                 : 0.0;
+    cmd->twist.yaw_rate_radps = PathFollowingYawRate(
+        offset.lateral_m, offset.heading_rad, options_.forward_speed_mps,
+        options_.convergence_distance_m, options_.max_yaw_rate_radps, curvature);
+  } else {
+    cmd->fallback_2d = true;
+    cmd->decision = DecideTurn(frame.tally, options_.fallback_min_net_vote);
+    cmd->twist.yaw_rate_radps =
+        static_cast<double>(static_cast<int>(cmd->decision)) * options_.max_yaw_rate_radps;
+  }
+}
+
+}  // namespace trackbed::teach_repeat

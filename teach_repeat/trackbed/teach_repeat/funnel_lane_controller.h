@@ -1,5 +1,8 @@
 // Repeat 2D: qualitative, funnel-lane path following (Chen & Birchfield 2006, as Choi &
-// Ha 2011 §II state it; docs/teach_repeat.md).
+// Ha 2011 §II state it; docs/teach_repeat.md). This file has the repeater and this
+// comment the method; the rules and the vote are in funnel_lane_vote.h, the milestone
+// switch and the progress fit in milestone_switch.h (the 3D repeater falls back on
+// both), the tracking every frame starts with in milestone_repeater.h.
 //
 // For feature i, f_c is its x in the current image and f_d its x in the milestone's
 // destination (last) image, both relative to the principal point (> 0 right of it). The
@@ -80,98 +83,17 @@
 //   misses get a second pass from guesses corrected by the median of those found.
 #pragma once
 
-#include <cstdint>
-#include <memory>
-#include <vector>
+#include <cmath>
 
 #include <opencv2/core.hpp>
 
-#include "trackbed/navigation/teach_map.h"
-#include "trackbed/navigation/teach_repeat.h"
 #include "trackbed/perception/feature_tracker.h"
+#include "trackbed/teach_repeat/milestone_repeater.h"
+#include "trackbed/teach_repeat/milestone_switch.h"
+#include "trackbed/teach_repeat/teach_map.h"
+#include "trackbed/teach_repeat/teach_repeat.h"
 
-namespace trackbed::navigation {
-
-namespace detail {
-class MilestoneTracks;
-class MilestoneSwitch;
-}  // namespace detail
-
-/// The funnel-lane rule for one feature (see the file comment): f_c, f_d [px] relative to
-/// the principal point.
-TurnVote FunnelLaneVote(double f_current_px, double f_destination_px);
-
-/// Votes of all features.
-struct VoteTally {
-  int left = 0, right = 0, straight = 0;
-  int total() const { return left + right + straight; }
-};
-
-/// Bang-bang decision from a tally (see the file comment); straight when there are no
-/// votes. min_net_vote in [0, 1).
-TurnVote DecideTurn(const VoteTally& tally, double min_net_vote);
-
-/// Detects that an error passed its minimum: fed the error every frame, reports once it
-/// exceeds its running minimum by the hysteresis.
-class ErrorMinimumDetector {
- public:
-  /// hysteresis >= 0 [units of the error]; throws std::invalid_argument otherwise.
-  explicit ErrorMinimumDetector(double hysteresis);
-  /// Starts over (a new milestone).
-  void Reset();
-  /// Adds one frame's error; returns true once it has risen above minimum + hysteresis
-  /// (and from then on, until Reset). Non-finite errors are ignored.
-  bool Update(double error);
-  double minimum() const { return minimum_; }
-
- private:
-  double hysteresis_;
-  double minimum_;
-  bool passed_ = false;
-};
-
-/// Options of EstimateMilestoneProgress.
-struct MilestoneProgressOptions {
-  /// Smallest spread (RMS about its mean) of the taught flow F_i over the features for
-  /// the progress to be measurable [px], > 0.
-  double min_flow_spread_px = 2.0;
-  /// Residual beyond which a feature is left out of the second fit [px], > 0 (the
-  /// bound is the larger of this and 3 median residuals).
-  double outlier_px = 3.0;
-  /// Fewest features for a fit, >= 3.
-  int min_features = 8;
-
-  /// Throws OptionError naming the first invalid field.
-  void Validate() const;
-};
-
-/// Where the current image lies within a milestone (see the file comment, "Progress").
-struct MilestoneProgress {
-  bool valid = false;       ///< enough features and flow for a fit
-  double progress = 0.0;    ///< p: 0 at the key image, 1 at the destination (not clamped)
-  double heading_px = 0.0;  ///< c: common x offset [bearing px]; > 0: features lie right
-  double pitch_px = 0.0;    ///< b: common y offset [px]
-  int features = 0;         ///< used in the final fit
-  double rms_px = 0.0;      ///< residual RMS of the final fit [px]
-};
-
-/// Fits D_i = p·F_i + (c, b) (file comment) over the features of `m` whose position in
-/// the current image `current_px` is valid (`tracked`; both one per feature).
-MilestoneProgress EstimateMilestoneProgress(const CameraIntrinsics& camera, const Milestone& m,
-                                            const std::vector<cv::Point2f>& current_px,
-                                            const std::vector<bool>& tracked,
-                                            const MilestoneProgressOptions& options = {});
-
-/// What the 2D milestone switch follows (see the file comment).
-enum class SwitchError {
-  kMeanAbsolute,  ///< mean_i |e_i| (Choi & Ha's words, literally)
-  kMeanOutward,   ///< |mean_i sign(f_d)·e_i| (robust to a lateral offset)
-};
-
-/// Repeat tracking options for milestone features: OpenCV's 21 px window and 4 pyramid
-/// levels, so that the start of a milestone (KLT from its key image) catches features
-/// displaced by up to ~80 px (a repeat that starts 0.2 m and 5° off).
-perception::FeatureTrackerOptions DefaultRepeatTrackerOptions();
+namespace trackbed::teach_repeat {
 
 /// Options of FunnelLaneRepeater.
 struct FunnelLaneOptions {
@@ -215,34 +137,21 @@ struct FunnelLaneOptions {
 };
 
 /// The 2D repeat (see the file comment). Stateful; not copyable.
-class FunnelLaneRepeater : public Repeater {
+class FunnelLaneRepeater : public MilestoneRepeater {
  public:
   /// Throws OptionError for invalid options, std::invalid_argument for a map without
   /// milestones or a start milestone beyond it.
   FunnelLaneRepeater(TeachMap map, const FunnelLaneOptions& options = {});
-  ~FunnelLaneRepeater() override;
 
-  RepeatCommand Update(const cv::Mat& gray, double t_s) override;
   const char* method() const override { return "2d"; }
-  const TeachMap& map() const override { return map_; }
   const FunnelLaneOptions& options() const { return options_; }
 
  private:
-  void StartMilestone(int index, const std::vector<cv::Point2f>& guesses);
+  void RepeatFrame(const cv::Mat& gray, RepeatCommand* cmd) override;
+  void MilestoneStarted(const Milestone& m) override;
 
-  TeachMap map_;
   FunnelLaneOptions options_;
-  std::unique_ptr<detail::MilestoneTracks> tracks_;
-  std::unique_ptr<detail::MilestoneSwitch> switch_;
-  perception::TrackingPyramid prev_pyramid_, curr_pyramid_;
-  bool started_ = false;
-  double last_t_s_ = 0.0;
-  int milestone_ = 0;
-  int frames_in_milestone_ = 0;
-  bool taught_flow_measurable_ = true;
-  int too_few_frames_ = 0;
-  RepeatStatus status_ = RepeatStatus::kDriving;
-  std::int64_t lost_total_ = 0;
+  bool taught_flow_measurable_ = true;  // the active milestone's own flow gives a progress
 };
 
-}  // namespace trackbed::navigation
+}  // namespace trackbed::teach_repeat

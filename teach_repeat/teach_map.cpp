@@ -1,6 +1,7 @@
 // The teach map and its on-disk format (see teach_map.h, docs/teach_repeat.md).
-#include "trackbed/navigation/teach_map.h"
+#include "trackbed/teach_repeat/teach_map.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -9,6 +10,7 @@
 #include <iterator>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -16,7 +18,7 @@
 
 #include "trackbed/common/option_error.h"
 
-namespace trackbed::navigation {
+namespace trackbed::teach_repeat {
 namespace {
 
 namespace fs = std::filesystem;
@@ -365,23 +367,24 @@ void SaveTeachMap(const TeachMap& map, const std::string& dir) {
 
 // --- Load. --------------------------------------------------------------------------------
 
-TeachMap LoadTeachMap(const std::string& dir) {
-  const fs::path root(dir);
-  if (!fs::is_directory(root)) {
-    throw std::runtime_error("LoadTeachMap: " + dir + ": no such directory");
-  }
-  const fs::path map_path = root / kMapFile;
+namespace {
+
+/// map.json, parsed; throws when it is missing, unreadable or not JSON.
+Json ReadMapJson(const fs::path& map_path, const Reader& rd) {
   const std::optional<std::string> text = ReadFile(map_path);
   if (!text)
     throw std::runtime_error("LoadTeachMap: " + map_path.string() + ": missing or unreadable");
-  const Reader rd(map_path.string());
   Json j;
   try {
     j = Json::parse(*text);
   } catch (const Json::exception& e) {
     rd.Fail("", std::string("not valid JSON (truncated?): ") + e.what());
   }
+  return j;
+}
 
+/// Throws unless map.json names this format and the version this build reads.
+void CheckFormat(const Reader& rd, const Json& j) {
   const std::string format = rd.String(rd.Key(j, "format", ""), "format");
   if (format != kFormatName) {
     rd.Fail("format", "expected \"" + std::string(kFormatName) + "\", found \"" + format + "\"");
@@ -392,23 +395,25 @@ TeachMap LoadTeachMap(const std::string& dir) {
                            " (this build reads version " + std::to_string(kTeachMapFormatVersion) +
                            ")");
   }
+}
 
-  TeachMap map;
+/// The map's teach mode, camera and patch size.
+void ReadModeCameraAndPatchSize(const Reader& rd, const Json& j, TeachMap* map) {
   try {
-    map.mode = ParseTeachMode(rd.String(rd.Key(j, "mode", ""), "mode"));
+    map->mode = ParseTeachMode(rd.String(rd.Key(j, "mode", ""), "mode"));
   } catch (const std::invalid_argument& e) {
     rd.Fail("mode", e.what());
   }
   const Json& cam = rd.Key(j, "camera", "");
-  map.camera.fx = rd.Number(rd.Key(cam, "fx", "camera"), "camera.fx");
-  map.camera.fy = rd.Number(rd.Key(cam, "fy", "camera"), "camera.fy");
-  map.camera.cx = rd.Number(rd.Key(cam, "cx", "camera"), "camera.cx");
-  map.camera.cy = rd.Number(rd.Key(cam, "cy", "camera"), "camera.cy");
-  map.camera.width = static_cast<int>(rd.Integer(rd.Key(cam, "width", "camera"), "camera.width"));
-  map.camera.height =
+  map->camera.fx = rd.Number(rd.Key(cam, "fx", "camera"), "camera.fx");
+  map->camera.fy = rd.Number(rd.Key(cam, "fy", "camera"), "camera.fy");
+  map->camera.cx = rd.Number(rd.Key(cam, "cx", "camera"), "camera.cx");
+  map->camera.cy = rd.Number(rd.Key(cam, "cy", "camera"), "camera.cy");
+  map->camera.width = static_cast<int>(rd.Integer(rd.Key(cam, "width", "camera"), "camera.width"));
+  map->camera.height =
       static_cast<int>(rd.Integer(rd.Key(cam, "height", "camera"), "camera.height"));
   try {
-    map.camera.Validate();
+    map->camera.Validate();
   } catch (const OptionError& e) {
     rd.Fail("camera." + e.field(), e.reason());
   }
@@ -417,9 +422,11 @@ TeachMap LoadTeachMap(const std::string& dir) {
     rd.Fail("patch_size_px",
             "must be odd and in [3, 255] (got " + std::to_string(patch_size) + ")");
   }
-  map.patch_size_px = static_cast<int>(patch_size);
+  map->patch_size_px = static_cast<int>(patch_size);
+}
 
-  // Teach images.
+/// The teach images' times and odometry.
+void ReadImages(const Reader& rd, const Json& j, TeachMap* map) {
   const Json& images = rd.Key(j, "images", "");
   const std::int64_t image_count = rd.Integer(rd.Key(images, "count", "images"), "images.count");
   if (image_count < 0) rd.Fail("images.count", "must be >= 0");
@@ -427,101 +434,128 @@ TeachMap LoadTeachMap(const std::string& dir) {
                                static_cast<std::size_t>(image_count));
   const Json& odometry = rd.Array(rd.Key(images, "odometry", "images"), "images.odometry",
                                   static_cast<std::size_t>(image_count));
-  map.images.resize(static_cast<std::size_t>(image_count));
-  for (std::size_t i = 0; i < map.images.size(); ++i) {
-    map.images[i].t_s = rd.Number(times[i], Reader::Index("images.t_s", i));
-    map.images[i].odometry = rd.Odometry(odometry[i], Reader::Index("images.odometry", i));
+  map->images.resize(static_cast<std::size_t>(image_count));
+  for (std::size_t i = 0; i < map->images.size(); ++i) {
+    map->images[i].t_s = rd.Number(times[i], Reader::Index("images.t_s", i));
+    map->images[i].odometry = rd.Odometry(odometry[i], Reader::Index("images.odometry", i));
   }
+}
 
-  // Milestones.
+/// Milestone `mj`'s (at `path`) images, times, cut and reconstruction; `previous` is the
+/// milestone before it (nullptr for the first), `image_count` the map's teach images.
+void ReadMilestoneFields(const Reader& rd, const Json& mj, const std::string& path,
+                         const Milestone* previous, std::int64_t image_count, Milestone* m) {
+  m->first_image =
+      static_cast<int>(rd.Integer(rd.Key(mj, "first_image", path), path + ".first_image"));
+  m->last_image =
+      static_cast<int>(rd.Integer(rd.Key(mj, "last_image", path), path + ".last_image"));
+  if (m->first_image < 0 || m->first_image >= m->last_image || m->last_image >= image_count) {
+    rd.Fail(path, "needs 0 <= first_image < last_image < images.count (got " +
+                      std::to_string(m->first_image) + ", " + std::to_string(m->last_image) + ")");
+  }
+  if (previous != nullptr && m->first_image < previous->last_image) {
+    rd.Fail(path + ".first_image", "starts before the previous milestone ends");
+  }
+  m->first_t_s = rd.Number(rd.Key(mj, "first_t_s", path), path + ".first_t_s");
+  m->last_t_s = rd.Number(rd.Key(mj, "last_t_s", path), path + ".last_t_s");
+  try {
+    m->cut = ParseMilestoneCut(rd.String(rd.Key(mj, "cut", path), path + ".cut"));
+  } catch (const std::invalid_argument& e) {
+    rd.Fail(path + ".cut", e.what());
+  }
+  m->reconstructed = rd.Boolean(rd.Key(mj, "reconstructed", path), path + ".reconstructed");
+  const Json& T = rd.Array(rd.Key(mj, "T_first_last", path), path + ".T_first_last", 12);
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 4; ++c) {
+      m->T_first_last.matrix()(r, c) =
+          rd.Number(T[static_cast<std::size_t>(4 * r + c)],
+                    Reader::Index(path + ".T_first_last", static_cast<std::size_t>(4 * r + c)));
+    }
+  }
+  m->reprojection_error_px =
+      rd.Number(rd.Key(mj, "reprojection_error_px", path), path + ".reprojection_error_px");
+  m->baseline_m = rd.Number(rd.Key(mj, "baseline_m", path), path + ".baseline_m");
+}
+
+/// Milestone `mj`'s (at `path`) features: positions and 3-D points (patches come from
+/// the patch file).
+void ReadMilestoneFeatures(const Reader& rd, const Json& mj, const std::string& path,
+                           Milestone* m) {
+  const std::int64_t count = rd.Integer(rd.Key(mj, "feature_count", path), path + ".feature_count");
+  const Json& features = rd.Array(rd.Key(mj, "features", path), path + ".features");
+  if (count < 0 || static_cast<std::size_t>(count) != features.size()) {
+    rd.Fail(path, "inconsistent counts: feature_count is " + std::to_string(count) + " but " +
+                      std::to_string(features.size()) + " features are listed");
+  }
+  m->features.resize(features.size());
+  for (std::size_t i = 0; i < features.size(); ++i) {
+    const std::string fpath = Reader::Index(path + ".features", i);
+    const Json& f = rd.Array(features[i], fpath, 7);
+    double v[7];
+    for (std::size_t c = 0; c < 7; ++c) v[c] = rd.Number(f[c], Reader::Index(fpath, c));
+    m->features[i].first_px = {static_cast<float>(v[0]), static_cast<float>(v[1])};
+    m->features[i].last_px = {static_cast<float>(v[2]), static_cast<float>(v[3])};
+    m->features[i].p_first = {v[4], v[5], v[6]};
+  }
+}
+
+/// Milestone `mj`'s (at `path`) key image, from the file map.json names below `root`: an
+/// 8-bit grey PNG of the camera's size.
+cv::Mat ReadKeyImage(const Reader& rd, const Json& mj, const std::string& path,
+                     const fs::path& root, const CameraIntrinsics& camera) {
+  const std::string key_name = rd.String(rd.Key(mj, "key_image", path), path + ".key_image");
+  const fs::path key_path = root / key_name;
+  const std::optional<std::string> png = ReadFile(key_path);
+  if (!png) {
+    throw std::runtime_error("LoadTeachMap: " + key_path.string() + ": key image of " + path +
+                             " missing or unreadable");
+  }
+  // A PNG starts with its 8-byte signature and ends with the IEND chunk; checking both
+  // reports a truncated file as such (and keeps libpng from complaining on stderr).
+  static const std::string kPngSignature("\x89PNG\r\n\x1a\n", 8);
+  static const std::string kPngEnd("IEND\xae\x42\x60\x82", 8);
+  if (png->size() < 20 || png->compare(0, 8, kPngSignature) != 0 ||
+      png->compare(png->size() - 8, 8, kPngEnd) != 0) {
+    throw std::runtime_error("LoadTeachMap: " + key_path.string() +
+                             ": not a decodable image (not a complete PNG file: truncated?)");
+  }
+  const std::vector<unsigned char> bytes(png->begin(), png->end());
+  cv::Mat image = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
+  if (image.empty()) {
+    throw std::runtime_error("LoadTeachMap: " + key_path.string() +
+                             ": not a decodable image (truncated?)");
+  }
+  if (image.type() != CV_8UC1 || image.size() != camera.size()) {
+    throw std::runtime_error("LoadTeachMap: " + key_path.string() +
+                             ": expected an 8-bit grey image of " + std::to_string(camera.width) +
+                             "x" + std::to_string(camera.height) + " px (the camera's size)");
+  }
+  return image;
+}
+
+/// Every milestone, its features and key image (images below `root`). Returns the number
+/// of features over all milestones.
+std::size_t ReadMilestones(const Reader& rd, const Json& j, const fs::path& root, TeachMap* map) {
   const Json& milestones = rd.Array(rd.Key(j, "milestones", ""), "milestones");
-  map.milestones.resize(milestones.size());
+  map->milestones.resize(milestones.size());
+  const std::int64_t image_count = static_cast<std::int64_t>(map->images.size());
   std::size_t total_features = 0;
   for (std::size_t k = 0; k < milestones.size(); ++k) {
     const Json& mj = milestones[k];
     const std::string path = Reader::Index("milestones", k);
-    Milestone& m = map.milestones[k];
-    m.first_image =
-        static_cast<int>(rd.Integer(rd.Key(mj, "first_image", path), path + ".first_image"));
-    m.last_image =
-        static_cast<int>(rd.Integer(rd.Key(mj, "last_image", path), path + ".last_image"));
-    if (m.first_image < 0 || m.first_image >= m.last_image || m.last_image >= image_count) {
-      rd.Fail(path, "needs 0 <= first_image < last_image < images.count (got " +
-                        std::to_string(m.first_image) + ", " + std::to_string(m.last_image) + ")");
-    }
-    if (k > 0 && m.first_image < map.milestones[k - 1].last_image) {
-      rd.Fail(path + ".first_image", "starts before the previous milestone ends");
-    }
-    m.first_t_s = rd.Number(rd.Key(mj, "first_t_s", path), path + ".first_t_s");
-    m.last_t_s = rd.Number(rd.Key(mj, "last_t_s", path), path + ".last_t_s");
-    try {
-      m.cut = ParseMilestoneCut(rd.String(rd.Key(mj, "cut", path), path + ".cut"));
-    } catch (const std::invalid_argument& e) {
-      rd.Fail(path + ".cut", e.what());
-    }
-    m.reconstructed = rd.Boolean(rd.Key(mj, "reconstructed", path), path + ".reconstructed");
-    const Json& T = rd.Array(rd.Key(mj, "T_first_last", path), path + ".T_first_last", 12);
-    for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 4; ++c) {
-        m.T_first_last.matrix()(r, c) =
-            rd.Number(T[static_cast<std::size_t>(4 * r + c)],
-                      Reader::Index(path + ".T_first_last", static_cast<std::size_t>(4 * r + c)));
-      }
-    }
-    m.reprojection_error_px =
-        rd.Number(rd.Key(mj, "reprojection_error_px", path), path + ".reprojection_error_px");
-    m.baseline_m = rd.Number(rd.Key(mj, "baseline_m", path), path + ".baseline_m");
-    const std::int64_t count =
-        rd.Integer(rd.Key(mj, "feature_count", path), path + ".feature_count");
-    const Json& features = rd.Array(rd.Key(mj, "features", path), path + ".features");
-    if (count < 0 || static_cast<std::size_t>(count) != features.size()) {
-      rd.Fail(path, "inconsistent counts: feature_count is " + std::to_string(count) + " but " +
-                        std::to_string(features.size()) + " features are listed");
-    }
-    m.features.resize(features.size());
-    for (std::size_t i = 0; i < features.size(); ++i) {
-      const std::string fpath = Reader::Index(path + ".features", i);
-      const Json& f = rd.Array(features[i], fpath, 7);
-      double v[7];
-      for (std::size_t c = 0; c < 7; ++c) v[c] = rd.Number(f[c], Reader::Index(fpath, c));
-      m.features[i].first_px = {static_cast<float>(v[0]), static_cast<float>(v[1])};
-      m.features[i].last_px = {static_cast<float>(v[2]), static_cast<float>(v[3])};
-      m.features[i].p_first = {v[4], v[5], v[6]};
-    }
-    total_features += features.size();
-
-    // Key image.
-    const std::string key_name = rd.String(rd.Key(mj, "key_image", path), path + ".key_image");
-    const fs::path key_path = root / key_name;
-    const std::optional<std::string> png = ReadFile(key_path);
-    if (!png) {
-      throw std::runtime_error("LoadTeachMap: " + key_path.string() + ": key image of " + path +
-                               " missing or unreadable");
-    }
-    // A PNG starts with its 8-byte signature and ends with the IEND chunk; checking both
-    // reports a truncated file as such (and keeps libpng from complaining on stderr).
-    static const std::string kPngSignature("\x89PNG\r\n\x1a\n", 8);
-    static const std::string kPngEnd("IEND\xae\x42\x60\x82", 8);
-    if (png->size() < 20 || png->compare(0, 8, kPngSignature) != 0 ||
-        png->compare(png->size() - 8, 8, kPngEnd) != 0) {
-      throw std::runtime_error("LoadTeachMap: " + key_path.string() +
-                               ": not a decodable image (not a complete PNG file: truncated?)");
-    }
-    const std::vector<unsigned char> bytes(png->begin(), png->end());
-    m.key_image = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
-    if (m.key_image.empty()) {
-      throw std::runtime_error("LoadTeachMap: " + key_path.string() +
-                               ": not a decodable image (truncated?)");
-    }
-    if (m.key_image.type() != CV_8UC1 || m.key_image.size() != map.camera.size()) {
-      throw std::runtime_error("LoadTeachMap: " + key_path.string() +
-                               ": expected an 8-bit grey image of " +
-                               std::to_string(map.camera.width) + "x" +
-                               std::to_string(map.camera.height) + " px (the camera's size)");
-    }
+    Milestone& m = map->milestones[k];
+    ReadMilestoneFields(rd, mj, path, k > 0 ? &map->milestones[k - 1] : nullptr, image_count, &m);
+    ReadMilestoneFeatures(rd, mj, path, &m);
+    total_features += m.features.size();
+    m.key_image = ReadKeyImage(rd, mj, path, root, map->camera);
   }
+  return total_features;
+}
 
-  // Patches.
+/// The patch file map.json names (below `root`), checked against map.json's patch count
+/// and patch size and against `total_features`. Returns its bytes.
+std::string ReadPatchFile(const Reader& rd, const Json& j, const fs::path& root,
+                          std::size_t total_features, int patch_size_px) {
   const std::string patch_name = rd.String(rd.Key(j, "patches_file", ""), "patches_file");
   const std::int64_t patch_count = rd.Integer(rd.Key(j, "patch_count", ""), "patch_count");
   if (patch_count < 0 || static_cast<std::size_t>(patch_count) != total_features) {
@@ -529,7 +563,7 @@ TeachMap LoadTeachMap(const std::string& dir) {
                                std::to_string(total_features) + " features");
   }
   const fs::path patch_path = root / patch_name;
-  const std::optional<std::string> blob = ReadFile(patch_path);
+  std::optional<std::string> blob = ReadFile(patch_path);
   const std::string pfile = "LoadTeachMap: " + patch_path.string() + ": ";
   if (!blob) throw std::runtime_error(pfile + "missing or unreadable");
   if (blob->size() < kPatchHeaderBytes || blob->compare(0, 8, kPatchMagic, 8) != 0) {
@@ -537,9 +571,9 @@ TeachMap LoadTeachMap(const std::string& dir) {
   }
   const std::uint64_t side = GetUint(*blob, 8, 4);
   const std::uint64_t count = GetUint(*blob, 16, 8);
-  if (side != static_cast<std::uint64_t>(map.patch_size_px)) {
+  if (side != static_cast<std::uint64_t>(patch_size_px)) {
     throw std::runtime_error(pfile + "patch side " + std::to_string(side) +
-                             " px, but map.json says " + std::to_string(map.patch_size_px));
+                             " px, but map.json says " + std::to_string(patch_size_px));
   }
   if (count != total_features) {
     throw std::runtime_error(pfile + "inconsistent counts: holds " + std::to_string(count) +
@@ -552,20 +586,44 @@ TeachMap LoadTeachMap(const std::string& dir) {
                              ": " + std::to_string(blob->size()) + " bytes, expected " +
                              std::to_string(expected));
   }
+  return std::move(*blob);
+}
+
+/// Hands the patches of a checked patch file (ReadPatchFile) to the features, milestone
+/// by milestone, feature by feature.
+void AssignPatches(const std::string& blob, TeachMap* map) {
+  const std::size_t side = static_cast<std::size_t>(map->patch_size_px);
   std::size_t offset = kPatchHeaderBytes;
-  const int s = map.patch_size_px;
-  for (Milestone& m : map.milestones) {
+  const int s = map->patch_size_px;
+  for (Milestone& m : map->milestones) {
     for (MilestoneFeature& f : m.features) {
       f.patch.create(s, s, CV_8UC1);
       for (int r = 0; r < s; ++r) {
-        std::copy(blob->begin() + static_cast<std::ptrdiff_t>(offset),
-                  blob->begin() + static_cast<std::ptrdiff_t>(offset + side),
+        std::copy(blob.begin() + static_cast<std::ptrdiff_t>(offset),
+                  blob.begin() + static_cast<std::ptrdiff_t>(offset + side),
                   reinterpret_cast<char*>(f.patch.ptr<unsigned char>(r)));
         offset += side;
       }
     }
   }
+}
 
+}  // namespace
+
+TeachMap LoadTeachMap(const std::string& dir) {
+  const fs::path root(dir);
+  if (!fs::is_directory(root)) {
+    throw std::runtime_error("LoadTeachMap: " + dir + ": no such directory");
+  }
+  const fs::path map_path = root / kMapFile;
+  const Reader rd(map_path.string());
+  const Json j = ReadMapJson(map_path, rd);
+  CheckFormat(rd, j);
+  TeachMap map;
+  ReadModeCameraAndPatchSize(rd, j, &map);
+  ReadImages(rd, j, &map);
+  const std::size_t total_features = ReadMilestones(rd, j, root, &map);
+  AssignPatches(ReadPatchFile(rd, j, root, total_features, map.patch_size_px), &map);
   try {
     map.Validate();
   } catch (const std::invalid_argument& e) {
@@ -574,4 +632,4 @@ TeachMap LoadTeachMap(const std::string& dir) {
   return map;
 }
 
-}  // namespace trackbed::navigation
+}  // namespace trackbed::teach_repeat

@@ -35,9 +35,9 @@
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
-#include "trackbed/navigation/teach_map.h"
+#include "trackbed/teach_repeat/teach_map.h"
 
-namespace trackbed::navigation {
+namespace trackbed::teach_repeat {
 
 /// Options of ReconstructTwoView.
 struct TwoViewOptions {
@@ -158,4 +158,4 @@ PathOffset ComputePathOffset(const Eigen::Isometry3d& T_first_cam,
 /// optical axis from a's z axis, > 0 toward a's −x (left).
 double CameraHeading(const Eigen::Matrix3d& R_a_cam);
 
-}  // namespace trackbed::navigation
+}  // namespace trackbed::teach_repeat

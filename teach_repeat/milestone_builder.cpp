@@ -1,6 +1,6 @@
 // The teach phase: cutting milestones and tracking their features (see
 // milestone_builder.h).
-#include "trackbed/navigation/milestone_builder.h"
+#include "trackbed/teach_repeat/milestone_builder.h"
 
 #include <cmath>
 #include <stdexcept>
@@ -12,7 +12,7 @@
 #include "trackbed/common/option_error.h"
 #include "trackbed/estimation/stereo_visual_odometry.h"
 
-namespace trackbed::navigation {
+namespace trackbed::teach_repeat {
 namespace {
 
 void AtLeast(const char* field, int value, int minimum) {
@@ -120,8 +120,8 @@ void MilestoneBuilder::CloseMilestone(const Snapshot& end, MilestoneCut cut) {
   open_ = false;
 }
 
-TeachStep MilestoneBuilder::AddImage(const cv::Mat& gray, double t_s,
-                                     const std::optional<estimation::Pose2>& odometry) {
+void MilestoneBuilder::CheckImage(const cv::Mat& gray, double t_s,
+                                  const std::optional<estimation::Pose2>& odometry) const {
   if (gray.empty() || gray.type() != CV_8UC1 || gray.size() != camera_.size()) {
     throw std::invalid_argument("MilestoneBuilder::AddImage: needs a CV_8UC1 image of " +
                                 std::to_string(camera_.width) + "x" +
@@ -142,60 +142,101 @@ TeachStep MilestoneBuilder::AddImage(const cv::Mat& gray, double t_s,
       !(std::isfinite(odometry->x) && std::isfinite(odometry->y) && std::isfinite(odometry->yaw))) {
     throw std::invalid_argument("MilestoneBuilder::AddImage: odometry pose is not finite");
   }
+}
 
-  const int j = static_cast<int>(map_.images.size());
-  map_.images.push_back({t_s, odometry});
-  tracker_.BuildPyramid(gray, &curr_pyramid_);
+bool MilestoneBuilder::InsidePatchBorder(const cv::Point2f& p) const {
   const float half = static_cast<float>(options_.patch_size_px / 2);
   const float max_x = static_cast<float>(camera_.width - 1) - half;
   const float max_y = static_cast<float>(camera_.height - 1) - half;
+  return !(p.x < half || p.y < half || p.x > max_x || p.y > max_y);
+}
 
-  // A new milestone at snapshot `at` (its image's features detected afresh).
-  auto detect = [&](const cv::Mat& image, int index) {
-    Snapshot s;
-    s.image = index;
-    s.image_gray = image;
-    for (const perception::Corner& c :
-         perception::DetectHarrisCornersBucketed(image, options_.harris, options_.grid_cols,
-                                                 options_.grid_rows, options_.features_per_cell)) {
-      if (c.position.x < half || c.position.y < half || c.position.x > max_x ||
-          c.position.y > max_y) {
-        continue;
-      }
-      s.first_px.push_back(c.position);
-      s.current_px.push_back(c.position);
+MilestoneBuilder::Snapshot MilestoneBuilder::Detect(const cv::Mat& image, int index) const {
+  Snapshot s;
+  s.image = index;
+  s.image_gray = image;
+  for (const perception::Corner& c :
+       perception::DetectHarrisCornersBucketed(image, options_.harris, options_.grid_cols,
+                                               options_.grid_rows, options_.features_per_cell)) {
+    if (!InsidePatchBorder(c.position)) continue;
+    s.first_px.push_back(c.position);
+    s.current_px.push_back(c.position);
+  }
+  return s;
+}
+
+MilestoneBuilder::Snapshot MilestoneBuilder::Track(const Snapshot& from, const cv::Mat& gray,
+                                                   int index) {
+  Snapshot s;
+  s.image = index;
+  s.image_gray = gray.clone();
+  std::vector<cv::Point2f> tracked;
+  std::vector<perception::TrackStatus> status;
+  tracker_.Track(prev_pyramid_, curr_pyramid_, from.current_px, &tracked, &status);
+  for (std::size_t i = 0; i < tracked.size(); ++i) {
+    if (status[i] != perception::TrackStatus::kTracked || !InsidePatchBorder(tracked[i])) {
+      continue;
     }
-    return s;
-  };
-  // The features of `from` (at the previous image) tracked into this image.
-  auto track = [&](const Snapshot& from) {
-    Snapshot s;
-    s.image = j;
-    s.image_gray = gray.clone();
-    std::vector<cv::Point2f> tracked;
-    std::vector<perception::TrackStatus> status;
-    tracker_.Track(prev_pyramid_, curr_pyramid_, from.current_px, &tracked, &status);
-    for (std::size_t i = 0; i < tracked.size(); ++i) {
-      const cv::Point2f& p = tracked[i];
-      if (status[i] != perception::TrackStatus::kTracked || p.x < half || p.y < half ||
-          p.x > max_x || p.y > max_y) {
-        continue;
-      }
-      s.first_px.push_back(from.first_px[i]);
-      s.current_px.push_back(p);
-    }
-    s.baseline_m = OdometryDistance(first_image_, j);
-    if (options_.mode == TeachMode::k3d && s.baseline_m >= options_.min_baseline_m &&
-        static_cast<int>(s.current_px.size()) >= options_.two_view.min_inliers) {
-      Evaluate(&s);
-    }
-    return s;
-  };
+    s.first_px.push_back(from.first_px[i]);
+    s.current_px.push_back(tracked[i]);
+  }
+  s.baseline_m = OdometryDistance(first_image_, index);
+  if (options_.mode == TeachMode::k3d && s.baseline_m >= options_.min_baseline_m &&
+      static_cast<int>(s.current_px.size()) >= options_.two_view.min_inliers) {
+    Evaluate(&s);
+  }
+  return s;
+}
+
+std::optional<MilestoneCut> MilestoneBuilder::DueCut(const Snapshot& current) const {
+  const bool too_few = static_cast<int>(current.current_px.size()) < options_.min_features;
+  const bool bad_error =
+      options_.mode == TeachMode::k3d && current.geometry_valid &&
+      current.geometry.reprojection_error_px > options_.max_reprojection_error_px;
+  if (too_few) return MilestoneCut::kTooFewFeatures;
+  if (bad_error) return MilestoneCut::kReprojectionError;
+  const int length = current.image - first_image_;
+  bool interval_reached = false;
+  if (options_.mode == TeachMode::k2d) {
+    interval_reached = options_.interval_unit == IntervalUnit::kImages
+                           ? length >= options_.interval_images
+                           : PathLength(first_image_, current.image) >= options_.interval_m;
+  }
+  if (interval_reached) return MilestoneCut::kInterval;
+  if (length >= options_.max_milestone_images) return MilestoneCut::kMaxImages;
+  return std::nullopt;
+}
+
+void MilestoneBuilder::Cut(MilestoneCut cut, const cv::Mat& gray, Snapshot* current) {
+  const bool lost_track =
+      cut == MilestoneCut::kTooFewFeatures || cut == MilestoneCut::kReprojectionError;
+  if (lost_track && previous_.image > first_image_) {
+    // End at the previous image, the last good one; the next milestone starts there and
+    // its features are tracked into this image at once.
+    CloseMilestone(previous_, cut);
+    const Snapshot restart = Detect(previous_.image_gray, previous_.image);
+    StartMilestone(restart);
+    *current = Track(restart, gray, current->image);
+    return;
+  }
+  // At the current image; after lost tracks a one-step milestone, with nothing better
+  // to end at.
+  CloseMilestone(*current, cut);
+  *current = Detect(current->image_gray, current->image);
+  StartMilestone(*current);
+}
+
+TeachStep MilestoneBuilder::AddImage(const cv::Mat& gray, double t_s,
+                                     const std::optional<estimation::Pose2>& odometry) {
+  CheckImage(gray, t_s, odometry);
+  const int j = static_cast<int>(map_.images.size());
+  map_.images.push_back({t_s, odometry});
+  tracker_.BuildPyramid(gray, &curr_pyramid_);
 
   TeachStep step;
   step.image_index = j;
   if (!open_) {
-    previous_ = detect(gray.clone(), j);
+    previous_ = Detect(gray.clone(), j);
     StartMilestone(previous_);
     std::swap(prev_pyramid_, curr_pyramid_);
     step.milestone = milestones();
@@ -203,42 +244,11 @@ TeachStep MilestoneBuilder::AddImage(const cv::Mat& gray, double t_s,
     return step;
   }
 
-  Snapshot current = track(previous_);
-  const int length = j - first_image_;
-  const bool too_few = static_cast<int>(current.current_px.size()) < options_.min_features;
-  const bool bad_error =
-      options_.mode == TeachMode::k3d && current.geometry_valid &&
-      current.geometry.reprojection_error_px > options_.max_reprojection_error_px;
-  if (too_few || bad_error) {
+  Snapshot current = Track(previous_, gray, j);
+  if (const std::optional<MilestoneCut> cut = DueCut(current)) {
     step.milestone_closed = true;
-    step.cut = too_few ? MilestoneCut::kTooFewFeatures : MilestoneCut::kReprojectionError;
-    if (previous_.image > first_image_) {
-      // End at the previous image, the last good one; the next milestone starts there and
-      // its features are tracked into this image at once.
-      CloseMilestone(previous_, step.cut);
-      const Snapshot restart = detect(previous_.image_gray, previous_.image);
-      StartMilestone(restart);
-      current = track(restart);
-    } else {
-      // A one-step milestone: nothing better to end at.
-      CloseMilestone(current, step.cut);
-      current = detect(current.image_gray, j);
-      StartMilestone(current);
-    }
-  } else {
-    bool interval_reached = false;
-    if (options_.mode == TeachMode::k2d) {
-      interval_reached = options_.interval_unit == IntervalUnit::kImages
-                             ? length >= options_.interval_images
-                             : PathLength(first_image_, j) >= options_.interval_m;
-    }
-    if (interval_reached || length >= options_.max_milestone_images) {
-      step.milestone_closed = true;
-      step.cut = interval_reached ? MilestoneCut::kInterval : MilestoneCut::kMaxImages;
-      CloseMilestone(current, step.cut);
-      current = detect(current.image_gray, j);
-      StartMilestone(current);
-    }
+    step.cut = *cut;
+    Cut(*cut, gray, &current);
   }
   previous_ = std::move(current);
   std::swap(prev_pyramid_, curr_pyramid_);
@@ -262,4 +272,4 @@ TeachMap MilestoneBuilder::Finish() {
   return done;
 }
 
-}  // namespace trackbed::navigation
+}  // namespace trackbed::teach_repeat

@@ -22,7 +22,7 @@
 
 #include <Eigen/Core>
 
-namespace trackbed::navigation {
+namespace trackbed::teach_repeat {
 
 /// Options of the path projection.
 struct PathProjectionOptions {
@@ -97,4 +97,4 @@ struct RecoveryMetrics {
 /// Throws std::invalid_argument for negative counts or more recovered than lost.
 RecoveryMetrics EvaluateRecovery(const std::vector<RecoveryCounts>& places);
 
-}  // namespace trackbed::navigation
+}  // namespace trackbed::teach_repeat

@@ -45,12 +45,12 @@
 #include <opencv2/core.hpp>
 
 #include "trackbed/estimation/pose2.h"
-#include "trackbed/navigation/teach_map.h"
-#include "trackbed/navigation/teach_repeat_geometry.h"
 #include "trackbed/perception/feature_tracker.h"
 #include "trackbed/perception/harris_corners.h"
+#include "trackbed/teach_repeat/teach_map.h"
+#include "trackbed/teach_repeat/teach_repeat_geometry.h"
 
-namespace trackbed::navigation {
+namespace trackbed::teach_repeat {
 
 /// What a 2D interval counts.
 enum class IntervalUnit {
@@ -147,6 +147,22 @@ class MilestoneBuilder {
     cv::Mat image_gray;
   };
 
+  // AddImage's steps. The checks of its arguments (throwing std::invalid_argument).
+  void CheckImage(const cv::Mat& gray, double t_s,
+                  const std::optional<estimation::Pose2>& odometry) const;
+  // Whether a feature lies at least half a patch inside the image.
+  bool InsidePatchBorder(const cv::Point2f& p) const;
+  // A new milestone at image `index` (`image`): its features detected afresh.
+  Snapshot Detect(const cv::Mat& image, int index) const;
+  // The features of `from` (at the previous image) tracked into image `index` (`gray`,
+  // whose pyramid is the current one); 3D: reconstructed once the baseline allows.
+  Snapshot Track(const Snapshot& from, const cv::Mat& gray, int index);
+  // Why the open milestone ends at `current`, if it does.
+  std::optional<MilestoneCut> DueCut(const Snapshot& current) const;
+  // Ends the open milestone for `cut` and starts the next; `current` becomes the new
+  // milestone at this image.
+  void Cut(MilestoneCut cut, const cv::Mat& gray, Snapshot* current);
+
   void StartMilestone(const Snapshot& at);
   void CloseMilestone(const Snapshot& end, MilestoneCut cut);
   bool Evaluate(Snapshot* s) const;  // 3D reconstruction; true when computed
@@ -164,4 +180,4 @@ class MilestoneBuilder {
   perception::TrackingPyramid prev_pyramid_, curr_pyramid_;
 };
 
-}  // namespace trackbed::navigation
+}  // namespace trackbed::teach_repeat

@@ -1,6 +1,9 @@
-// The repeat phase of visual teach & repeat: the interface shared by the 2D funnel-lane
-// follower (Chen & Birchfield 2006, funnel_lane_controller.h) and the 3D milestone
-// localizer (Diosi et al. 2007, milestone_localizer_3d.h), and a factory.
+// The repeat phase of visual teach & repeat: the types every repeater shares — its
+// status, the funnel-lane vote, the per-frame command — and the Repeater interface. The
+// repeaters are the 2D funnel-lane follower (Chen & Birchfield 2006,
+// funnel_lane_controller.h) and the 3D milestone localizer (Diosi et al. 2007,
+// milestone_localizer_3d.h), on a common base (milestone_repeater.h); MakeRepeater
+// (repeater_factory.h) picks one by name.
 //
 // A repeater is fed the current left grey image once per camera frame and returns a body
 // twist (constant forward speed, a yaw rate) and a status. It sees images only: no
@@ -19,16 +22,14 @@
 #pragma once
 
 #include <cstdint>
-#include <memory>
-#include <string>
 
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
 #include "trackbed/estimation/skid_steer.h"
-#include "trackbed/navigation/teach_map.h"
+#include "trackbed/teach_repeat/teach_map.h"
 
-namespace trackbed::navigation {
+namespace trackbed::teach_repeat {
 
 /// Status of a repeat.
 enum class RepeatStatus {
@@ -59,7 +60,7 @@ struct RepeatCommand {
   TurnVote decision = TurnVote::kStraight;
   int votes_left = 0, votes_right = 0, votes_straight = 0;
   /// Mean x-error of the tracked features to the destination image [px], as the 2D
-  /// milestone switch sees it (FunnelLaneOptions::switch_error; funnel_lane_controller.h).
+  /// milestone switch sees it (FunnelLaneOptions::switch_error; milestone_switch.h).
   /// The 3D repeater follows it too, for its fallback.
   double mean_error_px = 0.0;
   int lost = 0;                         ///< tracked features lost in this frame
@@ -102,14 +103,4 @@ class Repeater {
   virtual const TeachMap& map() const = 0;
 };
 
-struct FunnelLaneOptions;
-struct Localizer3dOptions;
-
-/// A repeater for `method` "2d" (FunnelLaneRepeater) or "3d" (MilestoneLocalizer3d) with
-/// the given options. Throws std::invalid_argument for an unknown method, an empty map
-/// or invalid options (OptionError).
-std::unique_ptr<Repeater> MakeRepeater(const std::string& method, TeachMap map,
-                                       const FunnelLaneOptions& options_2d,
-                                       const Localizer3dOptions& options_3d);
-
-}  // namespace trackbed::navigation
+}  // namespace trackbed::teach_repeat

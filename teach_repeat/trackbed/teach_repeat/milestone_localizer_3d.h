@@ -45,24 +45,25 @@
 //      are found by KLT from its key image, starting at the reprojection of its 3-D
 //      points from the pose carried over (T_next_cam = T_first_last⁻¹ · T_first_cam).
 // A milestone without a reconstruction (too little baseline in teaching) is followed by
-// the 2D funnel-lane vote and switched by the 2D error minimum (funnel_lane_controller.h);
+// the 2D funnel-lane vote (funnel_lane_vote.h) and switched by the 2D error minimum
+// (milestone_switch.h);
 // so is a frame whose pose cannot be estimated (RepeatCommand::fallback_2d).
 #pragma once
 
-#include <cstdint>
-#include <memory>
+#include <cmath>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
-#include "trackbed/navigation/funnel_lane_controller.h"
-#include "trackbed/navigation/teach_map.h"
-#include "trackbed/navigation/teach_repeat.h"
-#include "trackbed/navigation/teach_repeat_geometry.h"
 #include "trackbed/perception/feature_tracker.h"
+#include "trackbed/teach_repeat/milestone_repeater.h"
+#include "trackbed/teach_repeat/teach_map.h"
+#include "trackbed/teach_repeat/teach_repeat.h"
+#include "trackbed/teach_repeat/teach_repeat_geometry.h"
 
-namespace trackbed::navigation {
+namespace trackbed::teach_repeat {
 
 /// The yaw rate of the 3D path-following law (see the file comment) for lateral offset
 /// `lateral_m` and heading error `heading_rad` at forward speed `v_mps`, clamped to
@@ -128,16 +129,13 @@ struct Localizer3dOptions {
 };
 
 /// The 3D repeat (see the file comment). Stateful; not copyable.
-class MilestoneLocalizer3d : public Repeater {
+class MilestoneLocalizer3d : public MilestoneRepeater {
  public:
   /// Throws OptionError for invalid options, std::invalid_argument for a map without
   /// milestones or a start milestone beyond it.
   MilestoneLocalizer3d(TeachMap map, const Localizer3dOptions& options = {});
-  ~MilestoneLocalizer3d() override;
 
-  RepeatCommand Update(const cv::Mat& gray, double t_s) override;
   const char* method() const override { return "3d"; }
-  const TeachMap& map() const override { return map_; }
   const Localizer3dOptions& options() const { return options_; }
 
   /// Reprojections of the active milestone's features into the last image (valid where
@@ -148,27 +146,24 @@ class MilestoneLocalizer3d : public Repeater {
   std::vector<bool> tracked_mask() const;
 
  private:
-  void StartMilestone(int index, const std::vector<cv::Point2f>& guesses);
+  void RepeatFrame(const cv::Mat& gray, RepeatCommand* cmd) override;
+  void MilestoneStarted(const Milestone& m) override;
   /// Steps 2–3 of the file comment; fills the pose fields of `cmd`.
   bool EstimatePose(RepeatCommand* cmd);
   /// Step 4; returns the number of counted losses recovered.
   int Recover(const cv::Mat& gray);
+  /// Step 6, once: makes the next milestone active, its tracks started from the pose
+  /// carried over when there is one, and estimates its pose (`pose_ok`, `offset`).
+  /// Returns whether the robot is already past that milestone too.
+  bool SwitchToNextMilestone(RepeatCommand* cmd, bool* pose_ok, PathOffset* offset);
+  /// Step 5 (or the 2D vote without a pose) on the active milestone; fills the rest of
+  /// `cmd`.
+  void Steer(bool pose_ok, const PathOffset& offset, RepeatCommand* cmd);
 
-  TeachMap map_;
   Localizer3dOptions options_;
-  std::unique_ptr<detail::MilestoneTracks> tracks_;
-  std::unique_ptr<detail::MilestoneSwitch> switch_2d_;
-  perception::TrackingPyramid prev_pyramid_, curr_pyramid_;
-  bool started_ = false;
-  double last_t_s_ = 0.0;
-  int milestone_ = 0;
-  int frames_in_milestone_ = 0;
-  int too_few_frames_ = 0;
-  RepeatStatus status_ = RepeatStatus::kDriving;
-  std::int64_t lost_total_ = 0, recovered_total_ = 0;
   Eigen::Isometry3d T_first_cam_ = Eigen::Isometry3d::Identity();  // last pose estimate
   std::vector<cv::Mat> key_patches_;  // patches of the key image around first_px
   std::vector<std::optional<cv::Point2f>> predicted_;
 };
 
-}  // namespace trackbed::navigation
+}  // namespace trackbed::teach_repeat
