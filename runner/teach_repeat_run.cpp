@@ -14,17 +14,17 @@
 
 #include "trackbed/estimation/trajectory_io.h"
 #include "trackbed/estimation/wheel_odometry.h"
+#include "trackbed/perception/kitti_sequence.h"
+#include "trackbed/runner/closed_loop.h"
+#include "trackbed/runner/repeat_commander.h"
+#include "trackbed/runner/run_folder.h"
+#include "trackbed/runner/run_plots.h"
 #include "trackbed/teach_repeat/funnel_lane_controller.h"
 #include "trackbed/teach_repeat/milestone_builder.h"
 #include "trackbed/teach_repeat/milestone_localizer_3d.h"
 #include "trackbed/teach_repeat/repeater_factory.h"
 #include "trackbed/teach_repeat/teach_map.h"
 #include "trackbed/teach_repeat/teach_repeat_metrics.h"
-#include "trackbed/perception/kitti_sequence.h"
-#include "trackbed/runner/closed_loop.h"
-#include "trackbed/runner/repeat_commander.h"
-#include "trackbed/runner/run_folder.h"
-#include "trackbed/runner/run_plots.h"
 
 namespace trackbed::runner {
 namespace fs = std::filesystem;
@@ -35,7 +35,7 @@ double Radians(double deg) { return deg * M_PI / 180.0; }
 // The teach pass: the scenario's own drive, images into the builder with the no-slip
 // wheel odometry at each image (metadata; 3D teaching scales milestones by it).
 teach_repeat::TeachMap Teach(const scenario::Scenario& scenario, const fs::path& dir,
-                           std::vector<Eigen::Vector2d>* taught_path) {
+                             std::vector<Eigen::Vector2d>* taught_path) {
   scenario::Scenario teach = scenario;
   teach.teach_repeat.enabled = false;
   const scenario::RobotSpec& rs = scenario.robot;
@@ -261,12 +261,12 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
     const teach_repeat::RepeatCommand& c = step.second;
     counts.push_back({step.first, c.features_lost, c.features_recovered});
     char line[512];
-    std::snprintf(line, sizeof(line),
-                  "%.6f,%s,%.6g,%.6g,%d,%d,%d,%d,%d,%d,%d,%.6g,%d,%d,%.6g,%.6g,%d,%.6g\n",
-                  step.first, teach_repeat::ToString(c.status), c.twist.v_mps, c.twist.yaw_rate_radps,
-                  c.milestone, c.switched ? 1 : 0, c.features, c.tracked, c.votes_left,
-                  c.votes_right, c.votes_straight, c.mean_error_px, c.lost, c.recovered,
-                  c.lateral_offset_m, c.heading_error_rad, c.fallback_2d ? 1 : 0, c.progress);
+    std::snprintf(
+        line, sizeof(line), "%.6f,%s,%.6g,%.6g,%d,%d,%d,%d,%d,%d,%d,%.6g,%d,%d,%.6g,%.6g,%d,%.6g\n",
+        step.first, teach_repeat::ToString(c.status), c.twist.v_mps, c.twist.yaw_rate_radps,
+        c.milestone, c.switched ? 1 : 0, c.features, c.tracked, c.votes_left, c.votes_right,
+        c.votes_straight, c.mean_error_px, c.lost, c.recovered, c.lateral_offset_m,
+        c.heading_error_rad, c.fallback_2d ? 1 : 0, c.progress);
     csv << line;
   };
   extra.on_sample = [&](const RunSample& s) {

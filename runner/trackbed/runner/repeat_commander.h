@@ -7,8 +7,8 @@
 #include <functional>
 #include <utility>
 
-#include "trackbed/teach_repeat/teach_repeat.h"
 #include "trackbed/runner/commander.h"
+#include "trackbed/teach_repeat/teach_repeat.h"
 
 namespace trackbed::runner {
 
