@@ -331,8 +331,8 @@ Reader::Reader(const Node& node, std::string path, Wording wording)
 const Node* Reader::Take(const char* key, const Field& field) {
   asked_.emplace_back(key);
   const Node* child = node_->Find(key);
-  if (!child && field.required) {
-    Fail(key, field.what ? std::string("missing (") + field.what + ")" : "missing");
+  if (!child && field.required && !missing_) {
+    missing_ = {key, field.what ? std::string("missing (") + field.what + ")" : "missing"};
   }
   return child;
 }
@@ -361,6 +361,8 @@ void Reader::Finish() const {
       Fail(entry.first, "unknown key (" + std::string(lead) + JoinNames(asked_) + ")");
     }
   }
+  // After unknown keys: a misspelt required key is better reported as the typo.
+  if (missing_) Fail(missing_->first, missing_->second);
 }
 
 void Reader::Fail(const std::string& key, const std::string& reason) const {

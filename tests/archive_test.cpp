@@ -199,6 +199,10 @@ TEST(ArchiveTest, UnknownAndMissingKeysAreRejected) {
   EXPECT_EQ(ErrorOf("robot: {name: a, stereo: {fx: 1}}"),
             "robot.stereo.fx: unknown key (allowed: fx_px, distortion, center_px)");
   EXPECT_EQ(ErrorOf("robot: {wheels: 3}"), "robot.name: missing");
+  // A misspelt required key is reported as the typo it is.
+  EXPECT_EQ(ErrorOf("robot: {nmae: a}"),
+            "robot.nmae: unknown key (allowed: name, wheels, serial, mode, stereo, spares, "
+            "max_speed_mps, tags)");
   EXPECT_EQ(ErrorOf("robot: {name: a, name: b}"), "robot.name: duplicate key");
   EXPECT_EQ(ErrorOf("robot: {name: a}\nextra: 1\n"), "extra: unknown key (allowed: robot)");
 }

@@ -197,7 +197,8 @@ std::string DescribeValue(const Node& node, Wording wording);
 
 /// How Visit treats one key.
 struct Field {
-  /// Reading: a missing key is an error (`missing`, or `missing (<what>)`).
+  /// Reading: a missing key is an error (`missing`, or `missing (<what>)`), reported by
+  /// Reader::Finish after unknown keys.
   bool required = false;
   const char* what = nullptr;
   /// Writing: the key is left out when the value is empty (nothing, an empty list or
@@ -329,7 +330,8 @@ class Reader {
   /// Whether the map has `key` (without visiting it).
   bool Has(const char* key) const;
 
-  /// Rejects the keys no Visit asked for, listing those it did.
+  /// Rejects the keys no Visit asked for, listing those it did; then reports the first
+  /// required key that was missing.
   void Finish() const;
 
   /// Throws Error at `path.key` (at this map for an empty key).
@@ -348,6 +350,7 @@ class Reader {
   std::string path_;
   Wording wording_;
   std::vector<std::string> asked_;
+  std::optional<std::pair<std::string, std::string>> missing_;  // first required key absent
 };
 
 /// Builds a map from a struct through its Serialize, in Visit order.
