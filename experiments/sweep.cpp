@@ -1,11 +1,6 @@
-// Sweep files, cell expansion and naming, and the sweep folder's JSON files (see
-// sweep.h and docs/sweeps.md).
-//
-// The sweep reader is strict in the manner of the scenario reader: every key is
-// known, every list is non-empty and free of duplicates, and an error names the
-// file, the dotted key (`vary[1].range.step`) and the reason. Scalars are parsed
-// with std::from_chars, not yaml-cpp's stream conversions, so that `-1` is not a
-// seed and `1.5` is not an integer.
+// Sweep cells: expansion and naming, the sweep folder's layout, and its JSON files
+// (cells.json, cells/NAME/cell.json) through the config archive (see sweep.h and
+// docs/sweeps.md). Sweep files themselves are read and written in sweep_file.cpp.
 #include "trackbed/experiments/sweep.h"
 
 #include <fcntl.h>
@@ -13,24 +8,21 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <map>
-#include <set>
 #include <sstream>
 #include <system_error>
 #include <utility>
 
-#include <yaml-cpp/yaml.h>
-#include <nlohmann/json.hpp>
+#include "trackbed/common/archive.h"
 
 namespace trackbed::experiments {
 
 namespace fs = std::filesystem;
-using Json = nlohmann::ordered_json;
+using archive::Node;
 
 SweepError::SweepError(std::string source, std::string key, std::string reason)
     : std::runtime_error(source + ": " + (key.empty() ? "" : key + ": ") + reason),
@@ -44,160 +36,6 @@ namespace {
 constexpr std::size_t kMaxCellNameLength = 200;
 // Longest value token in a cell name before it is shortened and hashed.
 constexpr std::size_t kMaxValueTokenLength = 32;
-// Most values a range or a seed range may expand to.
-constexpr std::size_t kMaxRangeValues = 10000;
-
-std::string Indexed(const std::string& path, std::size_t k) {
-  return path + "[" + std::to_string(k) + "]";
-}
-
-std::string JoinNames(const std::vector<std::string>& names) {
-  std::string out;
-  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
-  return out;
-}
-
-const char* Kind(const YAML::Node& n) {
-  if (n.IsMap()) return "a map";
-  if (n.IsSequence()) return "a list";
-  if (n.IsNull()) return "null";
-  return "a scalar";
-}
-
-// Reads one YAML node of a sweep file; errors carry the file and the dotted key.
-class Reader {
- public:
-  explicit Reader(std::string source) : source_(std::move(source)) {}
-
-  [[noreturn]] void Fail(const std::string& key, const std::string& reason) const {
-    throw SweepError(source_, key, reason);
-  }
-
-  // Rejects keys of map `node` that are not in `known`.
-  void OnlyKeys(const YAML::Node& node, const std::string& path,
-                const std::vector<std::string>& known) const {
-    for (const auto& entry : node) {
-      const std::string key = entry.first.Scalar();
-      if (std::find(known.begin(), known.end(), key) == known.end()) {
-        Fail(path.empty() ? key : path + "." + key,
-             "unknown key (expected one of: " + JoinNames(known) + ")");
-      }
-    }
-  }
-
-  YAML::Node Map(const YAML::Node& node, const std::string& key) const {
-    if (!node.IsMap()) Fail(key, std::string("expected a map, got ") + Kind(node));
-    return node;
-  }
-
-  YAML::Node List(const YAML::Node& node, const std::string& key) const {
-    if (!node.IsSequence()) Fail(key, std::string("expected a list, got ") + Kind(node));
-    if (node.size() == 0) Fail(key, "must not be empty");
-    return node;
-  }
-
-  std::string String(const YAML::Node& node, const std::string& key) const {
-    if (!node.IsScalar()) Fail(key, std::string("expected a string, got ") + Kind(node));
-    if (node.Scalar().empty()) Fail(key, "must not be empty");
-    return node.Scalar();
-  }
-
-  double Number(const YAML::Node& node, const std::string& key) const {
-    if (!node.IsScalar()) Fail(key, std::string("expected a number, got ") + Kind(node));
-    const std::string& s = node.Scalar();
-    double x = 0.0;
-    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), x);
-    if (ec != std::errc() || end != s.data() + s.size() || !std::isfinite(x)) {
-      Fail(key, "expected a number, got '" + s + "'");
-    }
-    return x;
-  }
-
-  std::uint64_t Unsigned(const YAML::Node& node, const std::string& key) const {
-    if (!node.IsScalar()) {
-      Fail(key, std::string("expected a non-negative integer, got ") + Kind(node));
-    }
-    const std::string& s = node.Scalar();
-    std::uint64_t x = 0;
-    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), x);
-    if (s.empty() || ec != std::errc() || end != s.data() + s.size()) {
-      Fail(key, "expected a non-negative integer, got '" + s + "'");
-    }
-    return x;
-  }
-
- private:
-  std::string source_;
-};
-
-// Flow style all the way down, so that a list value becomes one `--set` token.
-void MakeFlow(YAML::Node node) {
-  if (node.IsSequence() || node.IsMap()) {
-    node.SetStyle(YAML::EmitterStyle::Flow);
-    for (auto entry : node) {
-      if (node.IsMap()) {
-        MakeFlow(entry.second);
-      } else {
-        MakeFlow(entry);
-      }
-    }
-  }
-}
-
-// A value node as the text `--set key=` takes: scalars as written, lists and maps in
-// flow style.
-std::string ValueText(const YAML::Node& node) {
-  if (node.IsScalar()) return node.Scalar();
-  YAML::Node copy = YAML::Clone(node);
-  MakeFlow(copy);
-  YAML::Emitter out;
-  out << copy;
-  return out.c_str();
-}
-
-// `from + k * step` printed with 12 significant digits (so 0.1 + 2 * 0.1 is 0.3),
-// or as an integer when from, to and step are all integers.
-std::vector<std::string> RangeValues(const Reader& reader, const YAML::Node& node,
-                                     const std::string& key) {
-  reader.Map(node, key);
-  reader.OnlyKeys(node, key, {"from", "to", "step"});
-  for (const char* k : {"from", "to"}) {
-    if (!node[k]) reader.Fail(key, std::string("missing `") + k + "`");
-  }
-  const double from = reader.Number(node["from"], key + ".from");
-  const double to = reader.Number(node["to"], key + ".to");
-  const double step = node["step"] ? reader.Number(node["step"], key + ".step") : 1.0;
-  if (!(step > 0)) reader.Fail(key + ".step", "must be > 0");
-  if (to < from) reader.Fail(key + ".to", "must be >= from");
-  const double count = std::floor((to - from) / step * (1.0 + 1e-12) + 1e-9) + 1.0;
-  if (count > static_cast<double>(kMaxRangeValues)) {
-    reader.Fail(key, "more than " + std::to_string(kMaxRangeValues) + " values");
-  }
-  const auto is_integer = [](double x) { return std::floor(x) == x && std::abs(x) < 1e15; };
-  const bool integers = is_integer(from) && is_integer(step);
-  std::vector<std::string> values;
-  for (std::size_t k = 0; k < static_cast<std::size_t>(count); ++k) {
-    const double v = from + static_cast<double>(k) * step;
-    char buf[64];
-    if (integers) {
-      std::snprintf(buf, sizeof(buf), "%lld", static_cast<long long>(v));
-    } else {
-      std::snprintf(buf, sizeof(buf), "%.12g", v);
-    }
-    values.push_back(buf);
-  }
-  return values;
-}
-
-// Checks `key=value` syntax of a key the way `--set` would, without a value.
-void CheckKey(const Reader& reader, const std::string& key, const std::string& where) {
-  try {
-    scenario::ParseOverride(key + "=0");
-  } catch (const std::invalid_argument&) {
-    reader.Fail(where, "'" + key + "' is not a dotted scenario key");
-  }
-  if (key == "seed") reader.Fail(where, "the seed comes from `seeds`, not from an override");
-}
 
 // 32-bit FNV-1a: a short, stable tag for values whose text cannot be a file name.
 std::string Hash8(const std::string& text) {
@@ -269,232 +107,101 @@ std::vector<std::string> AxisLabels(const SweepSpec& spec) {
   return labels;
 }
 
-std::string OverrideText(const scenario::Override& o) { return o.key + "=" + o.value; }
+// ---------------------------------------------------------------------------
+// The sweep folder's JSON files, read in the archive's brief wording like sweep files.
 
-Json ParseJson(const std::string& text, const std::string& source) {
+constexpr archive::Wording kWording = archive::Wording::kBrief;
+
+/// A cell in cells.json: `vary` maps each varied key to its value, `set` lists the
+/// whole `--set` list as `key=value` texts.
+struct CellFields {
+  std::uint64_t index = 0;
+  std::string name, group, scenario, scenario_path;
+  std::uint64_t seed = 0;
+  archive::Entries<std::string> vary;
+  std::vector<std::string> set;
+
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("index", &index, archive::kRequired);
+    a->Visit("name", &name, archive::kRequired);
+    a->Visit("group", &group, archive::kRequired);
+    a->Visit("scenario", &scenario, archive::kRequired);
+    a->Visit("scenario_path", &scenario_path, archive::kRequired);
+    a->Visit("seed", &seed, archive::kRequired);
+    a->Visit("vary", &vary, archive::kRequired);
+    a->Visit("set", &set, archive::kRequired);
+  }
+};
+
+/// cells.json.
+struct PlanFields {
+  std::string sweep;
+  std::optional<double> timeout_s;  // null: no limit
+  std::vector<std::string> vary_keys, replicate_keys;
+  std::vector<CellFields> cells;
+
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("sweep", &sweep, archive::kRequired);
+    a->Visit("timeout_s", &timeout_s);
+    a->Visit("vary_keys", &vary_keys, archive::kRequired);
+    a->Visit("replicate_keys", &replicate_keys, archive::kRequired);
+    a->Visit("cells", &cells, archive::kRequired);
+  }
+};
+
+/// cells/NAME/cell.json: which cell (written for people and tools reading the folder;
+/// the cell list is cells.json's) and its outcome.
+struct OutcomeFields {
+  std::string cell;
+  std::uint64_t index = 0;
+  std::string scenario;
+  std::uint64_t seed = 0;
+  std::vector<std::string> set;
+  CellOutcome outcome;
+
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("cell", &cell);
+    a->Visit("index", &index);
+    a->Visit("scenario", &scenario);
+    a->Visit("seed", &seed);
+    a->Visit("set", &set);
+    a->VisitEnum("status", &outcome.status,
+                 {{ToString(CellStatus::kPending), CellStatus::kPending},
+                  {ToString(CellStatus::kOk), CellStatus::kOk},
+                  {ToString(CellStatus::kFailed), CellStatus::kFailed},
+                  {ToString(CellStatus::kTimedOut), CellStatus::kTimedOut},
+                  {ToString(CellStatus::kInterrupted), CellStatus::kInterrupted}},
+                 archive::kRequired);
+    a->Visit("exit_code", &outcome.exit_code);  // null: the run did not exit
+    a->Visit("reason", &outcome.reason, archive::kRequired);
+    a->Visit("stderr_tail", &outcome.stderr_tail, archive::kRequired);
+    a->Visit("wall_time_s", &outcome.wall_time_s, archive::kRequired);
+    a->Visit("host", &outcome.host, archive::kRequired);
+    a->Visit("started_utc", &outcome.started_utc, archive::kRequired);
+    a->Visit("slurm_job", &outcome.slurm_job, archive::kOmitEmpty);  // only under Slurm
+  }
+};
+
+// Reads a JSON file of the sweep folder into `fields`; errors name `source`.
+template <class Fields>
+void ReadJson(const std::string& json_text, const std::string& source, Fields* fields) {
   try {
-    return Json::parse(text);
-  } catch (const nlohmann::json::exception& e) {
-    throw SweepError(source, "", std::string("not valid JSON: ") + e.what());
+    archive::Read(archive::ParseJson(json_text), "", kWording, fields);
+  } catch (const archive::Error& e) {
+    throw SweepError(source, e.path(), e.reason());
   }
 }
 
-// Typed access to a JSON document's members with SweepError on mismatch.
-template <class T>
-T Get(const Json& j, const char* key, const std::string& source, const std::string& where) {
-  const std::string path = where.empty() ? key : where + "." + key;
-  if (!j.is_object() || !j.contains(key)) throw SweepError(source, path, "missing");
-  try {
-    return j.at(key).get<T>();
-  } catch (const nlohmann::json::exception& e) {
-    throw SweepError(source, path, std::string("wrong type: ") + e.what());
-  }
+std::vector<std::string> OverrideTexts(const std::vector<scenario::Override>& overrides) {
+  std::vector<std::string> texts;
+  for (const scenario::Override& o : overrides) texts.push_back(scenario::OverrideText(o));
+  return texts;
 }
 
 }  // namespace
-
-SweepSpec ParseSweep(const std::string& yaml_text, const std::string& source_name,
-                     const fs::path& file_dir) {
-  const Reader reader(source_name);
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::ParserException& e) {
-    reader.Fail("", "YAML syntax error at line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
-  }
-  if (!root.IsMap()) {
-    reader.Fail("", std::string("expected a map of sweep keys, got ") + Kind(root));
-  }
-  reader.OnlyKeys(root, "", {"name", "base_dir", "scenarios", "seeds", "set", "vary", "timeout_s"});
-
-  SweepSpec spec;
-  spec.source = source_name;
-  spec.name =
-      root["name"] ? reader.String(root["name"], "name") : fs::path(source_name).stem().string();
-  // A bare file name (`trackbed sweep my.yaml`) has an empty directory: the working one.
-  const fs::path dir =
-      (file_dir.empty() ? fs::current_path() : fs::absolute(file_dir)).lexically_normal();
-  spec.base_dir = dir;
-  if (root["base_dir"]) {
-    const fs::path b = reader.String(root["base_dir"], "base_dir");
-    spec.base_dir = (b.is_absolute() ? b : dir / b).lexically_normal();
-    if (!fs::is_directory(spec.base_dir)) {
-      reader.Fail("base_dir", "no such folder: " + spec.base_dir.string());
-    }
-  }
-
-  if (!root["scenarios"]) reader.Fail("scenarios", "missing (a list of scenario files)");
-  const YAML::Node scenarios = reader.List(root["scenarios"], "scenarios");
-  std::vector<fs::path> resolved;
-  for (std::size_t i = 0; i < scenarios.size(); ++i) {
-    const std::string key = Indexed("scenarios", i);
-    const std::string s = reader.String(scenarios[i], key);
-    const fs::path p = fs::path(s).is_absolute() ? fs::path(s) : spec.base_dir / s;
-    const fs::path abs = p.lexically_normal();
-    if (!fs::is_regular_file(abs)) reader.Fail(key, "no such file: " + abs.string());
-    const auto same = std::find(resolved.begin(), resolved.end(), abs);
-    if (same != resolved.end()) {
-      reader.Fail(key,
-                  "listed twice (also scenarios[" + std::to_string(same - resolved.begin()) + "])");
-    }
-    resolved.push_back(abs);
-    spec.scenarios.push_back(s);
-  }
-
-  if (!root["seeds"]) reader.Fail("seeds", "missing (a list of seeds or {from: A, to: B})");
-  const YAML::Node seeds = root["seeds"];
-  if (seeds.IsMap()) {
-    reader.OnlyKeys(seeds, "seeds", {"from", "to"});
-    for (const char* k : {"from", "to"}) {
-      if (!seeds[k]) reader.Fail("seeds", std::string("missing `") + k + "`");
-    }
-    const std::uint64_t from = reader.Unsigned(seeds["from"], "seeds.from");
-    const std::uint64_t to = reader.Unsigned(seeds["to"], "seeds.to");
-    if (to < from) reader.Fail("seeds.to", "must be >= from");
-    if (to - from >= kMaxRangeValues) {
-      reader.Fail("seeds", "more than " + std::to_string(kMaxRangeValues) + " seeds");
-    }
-    for (std::uint64_t s = from; s <= to; ++s) spec.seeds.push_back(s);
-  } else if (seeds.IsSequence()) {
-    reader.List(seeds, "seeds");
-    for (std::size_t i = 0; i < seeds.size(); ++i) {
-      const std::uint64_t s = reader.Unsigned(seeds[i], Indexed("seeds", i));
-      if (std::find(spec.seeds.begin(), spec.seeds.end(), s) != spec.seeds.end()) {
-        reader.Fail(Indexed("seeds", i), "duplicate seed " + std::to_string(s));
-      }
-      spec.seeds.push_back(s);
-    }
-  } else {
-    reader.Fail("seeds",
-                std::string("expected a list of seeds or {from: A, to: B}, got ") + Kind(seeds));
-  }
-
-  if (root["set"]) {
-    const YAML::Node set = reader.List(root["set"], "set");
-    for (std::size_t i = 0; i < set.size(); ++i) {
-      const std::string key = Indexed("set", i);
-      const std::string text = reader.String(set[i], key);
-      scenario::Override o;
-      try {
-        o = scenario::ParseOverride(text);
-      } catch (const std::invalid_argument&) {
-        reader.Fail(key, "expected key=value, got '" + text + "'");
-      }
-      CheckKey(reader, o.key, key);
-      for (const scenario::Override& before : spec.set) {
-        if (before.key == o.key) reader.Fail(key, "'" + o.key + "' is set twice");
-      }
-      spec.set.push_back(o);
-    }
-  }
-
-  if (root["vary"]) {
-    const YAML::Node vary = reader.List(root["vary"], "vary");
-    for (std::size_t i = 0; i < vary.size(); ++i) {
-      const std::string where = Indexed("vary", i);
-      const YAML::Node axis_node = reader.Map(vary[i], where);
-      reader.OnlyKeys(axis_node, where, {"key", "values", "range", "replicate"});
-      if (!axis_node["key"]) reader.Fail(where, "missing `key`");
-      SweepAxis axis;
-      axis.key = reader.String(axis_node["key"], where + ".key");
-      CheckKey(reader, axis.key, where + ".key");
-      for (const scenario::Override& o : spec.set) {
-        if (o.key == axis.key) reader.Fail(where + ".key", "'" + axis.key + "' is also in `set`");
-      }
-      for (const SweepAxis& other : spec.vary) {
-        if (other.key == axis.key) reader.Fail(where + ".key", "'" + axis.key + "' varied twice");
-      }
-      const bool has_values = static_cast<bool>(axis_node["values"]);
-      const bool has_range = static_cast<bool>(axis_node["range"]);
-      if (has_values == has_range) reader.Fail(where, "give either `values` or `range`");
-      if (has_values) {
-        const YAML::Node values = reader.List(axis_node["values"], where + ".values");
-        for (std::size_t k = 0; k < values.size(); ++k) {
-          const std::string key = Indexed(where + ".values", k);
-          if (values[k].IsNull()) reader.Fail(key, "null value");
-          const std::string text = ValueText(values[k]);
-          if (std::find(axis.values.begin(), axis.values.end(), text) != axis.values.end()) {
-            reader.Fail(key, "duplicate value '" + text + "'");
-          }
-          axis.values.push_back(text);
-        }
-      } else {
-        axis.values = RangeValues(reader, axis_node["range"], where + ".range");
-      }
-      if (axis_node["replicate"]) {
-        const std::string r = reader.String(axis_node["replicate"], where + ".replicate");
-        if (r != "true" && r != "false") {
-          reader.Fail(where + ".replicate", "expected true or false, got '" + r + "'");
-        }
-        axis.replicate = r == "true";
-      }
-      spec.vary.push_back(axis);
-    }
-  }
-
-  if (root["timeout_s"]) {
-    const double t = reader.Number(root["timeout_s"], "timeout_s");
-    if (!(t > 0)) reader.Fail("timeout_s", "must be > 0");
-    spec.timeout_s = t;
-  }
-  return spec;
-}
-
-SweepSpec LoadSweep(const fs::path& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw SweepError(path.string(), "", "cannot read file");
-  std::ostringstream text;
-  text << f.rdbuf();
-  return ParseSweep(text.str(), path.string(), path.parent_path());
-}
-
-std::string SweepToYaml(const SweepSpec& spec) {
-  YAML::Emitter out;
-  out << YAML::BeginMap;
-  out << YAML::Key << "name" << YAML::Value << YAML::DoubleQuoted << spec.name;
-  out << YAML::Key << "base_dir" << YAML::Value << YAML::DoubleQuoted << spec.base_dir.string();
-  out << YAML::Key << "scenarios" << YAML::Value << YAML::BeginSeq;
-  for (const std::string& s : spec.scenarios) out << YAML::DoubleQuoted << s;
-  out << YAML::EndSeq;
-  out << YAML::Key << "seeds" << YAML::Value << YAML::Flow << spec.seeds;
-  if (!spec.set.empty()) {
-    out << YAML::Key << "set" << YAML::Value << YAML::BeginSeq;
-    for (const scenario::Override& o : spec.set) out << YAML::DoubleQuoted << OverrideText(o);
-    out << YAML::EndSeq;
-  }
-  if (!spec.vary.empty()) {
-    out << YAML::Key << "vary" << YAML::Value << YAML::BeginSeq;
-    for (const SweepAxis& a : spec.vary) {
-      out << YAML::BeginMap;
-      out << YAML::Key << "key" << YAML::Value << a.key;
-      out << YAML::Key << "values" << YAML::Value << YAML::Flow << YAML::BeginSeq;
-      for (const std::string& v : a.values) {
-        YAML::Node node = YAML::Load(v);
-        if (node.IsScalar() || node.IsNull()) {
-          out << v;  // as written: a string stays a string, `1.0` stays `1.0`
-        } else {
-          MakeFlow(node);
-          out << node;
-        }
-      }
-      out << YAML::EndSeq;
-      if (a.replicate) out << YAML::Key << "replicate" << YAML::Value << true;
-      out << YAML::EndMap;
-    }
-    out << YAML::EndSeq;
-  }
-  if (spec.timeout_s) {
-    char buf[64];
-    char* end = std::to_chars(buf, buf + sizeof(buf), *spec.timeout_s).ptr;
-    out << YAML::Key << "timeout_s" << YAML::Value << std::string(buf, end);
-  }
-  out << YAML::EndMap;
-  return "# Resolved copy of " + spec.source +
-         " written by `trackbed sweep`: seeds and ranges listed,\n"
-         "# scenario paths relative to base_dir. `trackbed sweep` on this file runs the same "
-         "cells.\n" +
-         std::string(out.c_str()) + "\n";
-}
 
 std::vector<SweepCell> ExpandSweep(const SweepSpec& spec) {
   const std::vector<std::string> scenario_labels = ScenarioLabels(spec);
@@ -577,61 +284,46 @@ SweepPlan MakeSweepPlan(const SweepSpec& spec) {
 }
 
 std::string SweepPlanJson(const SweepPlan& plan) {
-  Json j;
-  j["sweep"] = plan.name;
-  j["timeout_s"] = plan.timeout_s ? Json(*plan.timeout_s) : Json();
-  j["vary_keys"] = plan.vary_keys;
-  j["replicate_keys"] = plan.replicate_keys;
-  Json cells = Json::array();
+  PlanFields fields;
+  fields.sweep = plan.name;
+  fields.timeout_s = plan.timeout_s;
+  fields.vary_keys = plan.vary_keys;
+  fields.replicate_keys = plan.replicate_keys;
   for (const SweepCell& c : plan.cells) {
-    Json cell;
-    cell["index"] = c.index;
-    cell["name"] = c.name;
-    cell["group"] = c.group;
-    cell["scenario"] = c.scenario;
-    cell["scenario_path"] = c.scenario_path.string();
-    cell["seed"] = c.seed;
-    Json vary = Json::object();
-    for (const scenario::Override& o : c.varied) vary[o.key] = o.value;
-    cell["vary"] = vary;
-    Json set = Json::array();
-    for (const scenario::Override& o : c.overrides) set.push_back(OverrideText(o));
-    cell["set"] = set;
-    cells.push_back(cell);
+    CellFields& cell = fields.cells.emplace_back();
+    cell.index = c.index;
+    cell.name = c.name;
+    cell.group = c.group;
+    cell.scenario = c.scenario;
+    cell.scenario_path = c.scenario_path.string();
+    cell.seed = c.seed;
+    for (const scenario::Override& o : c.varied) cell.vary.emplace_back(o.key, o.value);
+    cell.set = OverrideTexts(c.overrides);
   }
-  j["cells"] = cells;
-  return j.dump(2) + "\n";
+  return archive::ToJson(archive::Write(fields)) + "\n";
 }
 
 SweepPlan ParseSweepPlan(const std::string& json_text, const std::string& source_name) {
-  const Json j = ParseJson(json_text, source_name);
+  PlanFields fields;
+  ReadJson(json_text, source_name, &fields);
   SweepPlan plan;
-  plan.name = Get<std::string>(j, "sweep", source_name, "");
-  if (j.contains("timeout_s") && !j["timeout_s"].is_null()) {
-    plan.timeout_s = Get<double>(j, "timeout_s", source_name, "");
-  }
-  plan.vary_keys = Get<std::vector<std::string>>(j, "vary_keys", source_name, "");
-  plan.replicate_keys = Get<std::vector<std::string>>(j, "replicate_keys", source_name, "");
-  const Json cells = Get<Json>(j, "cells", source_name, "");
-  if (!cells.is_array()) throw SweepError(source_name, "cells", "expected a list");
-  for (std::size_t i = 0; i < cells.size(); ++i) {
-    const Json& c = cells[i];
-    const std::string where = Indexed("cells", i);
+  plan.name = fields.sweep;
+  plan.timeout_s = fields.timeout_s;
+  plan.vary_keys = fields.vary_keys;
+  plan.replicate_keys = fields.replicate_keys;
+  for (std::size_t i = 0; i < fields.cells.size(); ++i) {
+    const CellFields& c = fields.cells[i];
+    const std::string where = archive::JoinIndex("cells", i);
+    if (c.index != i) throw SweepError(source_name, where + ".index", "out of order");
     SweepCell cell;
-    cell.index = Get<std::size_t>(c, "index", source_name, where);
-    if (cell.index != i) throw SweepError(source_name, where + ".index", "out of order");
-    cell.name = Get<std::string>(c, "name", source_name, where);
-    cell.group = Get<std::string>(c, "group", source_name, where);
-    cell.scenario = Get<std::string>(c, "scenario", source_name, where);
-    cell.scenario_path = Get<std::string>(c, "scenario_path", source_name, where);
-    cell.seed = Get<std::uint64_t>(c, "seed", source_name, where);
-    const Json vary = Get<Json>(c, "vary", source_name, where);
-    if (!vary.is_object()) throw SweepError(source_name, where + ".vary", "expected a map");
-    for (const auto& [key, value] : vary.items()) {
-      if (!value.is_string()) throw SweepError(source_name, where + ".vary." + key, "not text");
-      cell.varied.push_back({key, value.get<std::string>()});
-    }
-    for (const std::string& s : Get<std::vector<std::string>>(c, "set", source_name, where)) {
+    cell.index = i;
+    cell.name = c.name;
+    cell.group = c.group;
+    cell.scenario = c.scenario;
+    cell.scenario_path = c.scenario_path;
+    cell.seed = c.seed;
+    for (const auto& [key, value] : c.vary) cell.varied.push_back({key, value});
+    for (const std::string& s : c.set) {
       try {
         cell.overrides.push_back(scenario::ParseOverride(s));
       } catch (const std::invalid_argument& e) {
@@ -657,7 +349,7 @@ std::string PlanConflict(const SweepPlan& before, const SweepPlan& after) {
   for (const SweepCell& c : before.cells) old[c.name] = &c;
   const auto describe = [](const SweepCell& c) {
     std::string s = c.scenario + " --seed " + std::to_string(c.seed);
-    for (const scenario::Override& o : c.overrides) s += " --set " + OverrideText(o);
+    for (const scenario::Override& o : c.overrides) s += " --set " + scenario::OverrideText(o);
     return s;
   };
   for (const SweepCell& c : after.cells) {
@@ -696,8 +388,7 @@ bool CellFinished(const fs::path& sweep_dir, const SweepCell& cell) {
   // A file cut short (a crash of the machine before the data reached the disk) is
   // not a finished run.
   try {
-    const Json j = Json::parse(ReadTextFile(metrics));
-    return j.is_object() && j.contains("status");
+    return archive::ParseJson(ReadTextFile(metrics)).Find("status") != nullptr;
   } catch (const std::exception&) {
     return false;
   }
@@ -736,48 +427,20 @@ const char* ToString(CellStatus status) {
 }
 
 std::string CellOutcomeJson(const SweepCell& cell, const CellOutcome& outcome) {
-  Json j;
-  j["cell"] = cell.name;
-  j["index"] = cell.index;
-  j["scenario"] = cell.scenario;
-  j["seed"] = cell.seed;
-  Json set = Json::array();
-  for (const scenario::Override& o : cell.overrides) set.push_back(OverrideText(o));
-  j["set"] = set;
-  j["status"] = ToString(outcome.status);
-  j["exit_code"] = outcome.exit_code ? Json(*outcome.exit_code) : Json();
-  j["reason"] = outcome.reason;
-  j["stderr_tail"] = outcome.stderr_tail;
-  j["wall_time_s"] = outcome.wall_time_s;
-  j["host"] = outcome.host;
-  j["started_utc"] = outcome.started_utc;
-  if (!outcome.slurm_job.empty()) j["slurm_job"] = outcome.slurm_job;
-  return j.dump(2) + "\n";
+  OutcomeFields fields;
+  fields.cell = cell.name;
+  fields.index = cell.index;
+  fields.scenario = cell.scenario;
+  fields.seed = cell.seed;
+  fields.set = OverrideTexts(cell.overrides);
+  fields.outcome = outcome;
+  return archive::ToJson(archive::Write(fields)) + "\n";
 }
 
 CellOutcome ParseCellOutcome(const std::string& json_text, const std::string& source_name) {
-  const Json j = ParseJson(json_text, source_name);
-  CellOutcome o;
-  const std::string status = Get<std::string>(j, "status", source_name, "");
-  bool known = false;
-  for (CellStatus s : {CellStatus::kPending, CellStatus::kOk, CellStatus::kFailed,
-                       CellStatus::kTimedOut, CellStatus::kInterrupted}) {
-    if (status == ToString(s)) {
-      o.status = s;
-      known = true;
-    }
-  }
-  if (!known) throw SweepError(source_name, "status", "unknown status '" + status + "'");
-  if (j.contains("exit_code") && !j["exit_code"].is_null()) {
-    o.exit_code = Get<int>(j, "exit_code", source_name, "");
-  }
-  o.reason = Get<std::string>(j, "reason", source_name, "");
-  o.stderr_tail = Get<std::string>(j, "stderr_tail", source_name, "");
-  o.wall_time_s = Get<double>(j, "wall_time_s", source_name, "");
-  o.host = Get<std::string>(j, "host", source_name, "");
-  o.started_utc = Get<std::string>(j, "started_utc", source_name, "");
-  if (j.contains("slurm_job")) o.slurm_job = Get<std::string>(j, "slurm_job", source_name, "");
-  return o;
+  OutcomeFields fields;
+  ReadJson(json_text, source_name, &fields);
+  return fields.outcome;
 }
 
 CellOutcome ReadCellOutcome(const fs::path& sweep_dir, const SweepCell& cell) {
@@ -786,22 +449,26 @@ CellOutcome ReadCellOutcome(const fs::path& sweep_dir, const SweepCell& cell) {
   return ParseCellOutcome(ReadTextFile(path), path.string());
 }
 
+// metrics.json is a run's output, not an options file: only its status and stop reason
+// are read, from the parsed tree.
 CellOutcome OutcomeFromMetrics(const std::string& metrics_json_text) {
   CellOutcome o;
+  o.status = CellStatus::kFailed;
+  const auto text_of = [](const Node* n) -> std::optional<std::string> {
+    if (n && n->IsScalar() && n->tag() == Node::Tag::kString) return n->text();
+    return std::nullopt;
+  };
   try {
-    const Json j = Json::parse(metrics_json_text);
-    const std::string status = j.at("status").get<std::string>();
-    if (status == "completed") {
+    const Node metrics = archive::ParseJson(metrics_json_text);
+    const std::optional<std::string> status = text_of(metrics.Find("status"));
+    if (!status) {
+      o.reason = "unreadable metrics.json: no status";
+    } else if (*status == "completed") {
       o.status = CellStatus::kOk;
     } else {
-      o.status = CellStatus::kFailed;
-      const std::string why = j.contains("stop_reason") && j["stop_reason"].is_string()
-                                  ? j["stop_reason"].get<std::string>()
-                                  : status;
-      o.reason = "run failed: " + why;
+      o.reason = "run failed: " + text_of(metrics.Find("stop_reason")).value_or(*status);
     }
-  } catch (const std::exception& e) {
-    o.status = CellStatus::kFailed;
+  } catch (const archive::Error& e) {
     o.reason = std::string("unreadable metrics.json: ") + e.what();
   }
   return o;

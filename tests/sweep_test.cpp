@@ -344,6 +344,34 @@ TEST(SweepCellTest, OutcomesRoundTripAndMetricsDecideFinishedRuns) {
   EXPECT_TRUE(CellFinished(dir, cell));
 }
 
+TEST(SweepCellTest, FolderJsonIsReadAsStrictlyAsSweepFiles) {
+  const SweepPlan plan = MakeSweepPlan(Parse(kOk + "set: [\"duration_s=5\"]\n"));
+  std::string json = SweepPlanJson(plan);
+  json.replace(json.find("\"group\""), 7, "\"grupo\"");
+  try {
+    ParseSweepPlan(json, "cells.json");
+    FAIL() << "no error";
+  } catch (const SweepError& e) {
+    EXPECT_EQ(e.key(), "cells[0].grupo");
+    EXPECT_EQ(e.reason().rfind("unknown key (expected one of: index, name, group, ", 0), 0u)
+        << e.reason();
+  }
+  const SweepCell cell = plan.cells[0];
+  CellOutcome o;
+  o.status = CellStatus::kOk;
+  o.exit_code = 0;
+  std::string outcome = CellOutcomeJson(cell, o);
+  EXPECT_EQ(ParseCellOutcome(outcome, "cell.json").exit_code, 0);
+  outcome.replace(outcome.find("\"exit_code\": 0"), 14, "\"exit_code\": \"0\"");
+  try {
+    ParseCellOutcome(outcome, "cell.json");
+    FAIL() << "no error";
+  } catch (const SweepError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "cell.json: exit_code: expected an integer, got the quoted string \"0\"");
+  }
+}
+
 // A sweep folder of three seeds of one cell, the last failed, built by hand.
 struct FakeSweep {
   SweepPlan plan;

@@ -57,6 +57,23 @@ struct EkfOdometryOptions {
   double vo_reference_inliers = 100.0;
 
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md), read and
+  /// written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("accel_noise", &accel_noise);
+    a->Visit("lateral_accel_noise", &lateral_accel_noise);
+    a->Visit("yaw_accel_noise", &yaw_accel_noise);
+    a->Visit("gyro_bias_walk", &gyro_bias_walk);
+    a->Visit("wheel_speed_std", &wheel_speed_std);
+    a->Visit("wheel_lateral_speed_std", &wheel_lateral_speed_std);
+    a->Visit("wheel_yaw_rate_std", &wheel_yaw_rate_std);
+    a->Visit("gyro_std", &gyro_std);
+    a->Visit("vo_speed_std", &vo_speed_std);
+    a->Visit("vo_yaw_rate_std", &vo_yaw_rate_std);
+    a->Visit("vo_reference_inliers", &vo_reference_inliers);
+  }
 };
 
 /// Not copyable; feed measurements in time order.

@@ -13,6 +13,14 @@ struct EncoderOptions {
   double rate_hz = 100.0;
 
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md), read and
+  /// written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("ticks_per_rev", &ticks_per_rev);
+    a->Visit("rate_hz", &rate_hz);
+  }
 };
 
 /// The count an incremental encoder shows at shaft angle `angle_rad` (counted

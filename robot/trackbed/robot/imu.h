@@ -30,6 +30,19 @@ struct ImuOptions {
   double accel_initial_bias_std = 2e-2;
 
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md), read and
+  /// written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("rate_hz", &rate_hz);
+    a->Visit("gyro_noise_density", &gyro_noise_density);
+    a->Visit("gyro_bias_random_walk", &gyro_bias_random_walk);
+    a->Visit("accel_noise_density", &accel_noise_density);
+    a->Visit("accel_bias_random_walk", &accel_bias_random_walk);
+    a->Visit("gyro_initial_bias_std", &gyro_initial_bias_std);
+    a->Visit("accel_initial_bias_std", &accel_initial_bias_std);
+  }
 };
 
 /// One IMU reading in the body frame.

@@ -31,6 +31,19 @@ struct RangeSensorOptions {
   Eigen::Vector3d mount_m{0.2, 0.0, 0.15};
 
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md), read and
+  /// written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("enabled", &enabled);
+    a->Visit("beams", &beams);
+    a->Visit("rate_hz", &rate_hz);
+    a->Visit("min_range_m", &min_range_m);
+    a->Visit("max_range_m", &max_range_m);
+    a->Visit("noise_std_m", &noise_std_m);
+    a->Visit("mount_m", &mount_m);
+  }
 };
 
 /// One scan: ranges in beam order (+infinity: no return within max_range_m), the beam

@@ -22,6 +22,19 @@ struct SprocketMotorOptions {
   double viscous_friction_nm_per_radps = 0.3;
 
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md), read and
+  /// written by the config archive (trackbed/common/archive.h). integral_gain_nm_per_rad
+  /// is not a scenario key.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("time_constant_s", &time_constant_s);
+    a->Visit("velocity_gain_nm_per_radps", &velocity_gain_nm_per_radps);
+    a->Visit("max_torque_nm", &max_torque_nm);
+    a->Visit("max_speed_radps", &max_speed_radps);
+    a->Visit("inertia_kgm2", &inertia_kgm2);
+    a->Visit("viscous_friction_nm_per_radps", &viscous_friction_nm_per_radps);
+  }
 };
 
 /// State of one sprocket drive. Angle and speed are of the sprocket shaft, which

@@ -50,6 +50,27 @@ struct StereoRigOptions {
   /// Whether time `t_s` falls in a blackout.
   bool InBlackout(double t_s) const;
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md), read and
+  /// written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("enabled", &enabled);
+    a->Visit("width_px", &width_px);
+    a->Visit("height_px", &height_px);
+    a->Visit("hfov_deg", &hfov_deg);
+    a->Visit("baseline_m", &baseline_m);
+    a->Visit("mount_m", &mount_m);
+    a->Visit("pitch_down_deg", &pitch_down_deg);
+    a->Visit("rate_hz", &rate_hz);
+    a->Visit("near_m", &near_m);
+    a->Visit("far_m", &far_m);
+    a->Visit("exposure", &exposure);
+    a->Visit("noise_std", &noise_std);
+    a->Visit("exposure_time_s", &exposure_time_s);
+    a->Visit("exposure_samples", &exposure_samples);
+    a->Visit("blackouts_s", &blackouts_s);
+  }
 };
 
 /// Geometry of the rig; immutable.

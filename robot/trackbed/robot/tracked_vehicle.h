@@ -89,6 +89,34 @@ struct TrackedVehicleOptions {
   SprocketMotorOptions motor;
 
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md), read and
+  /// written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("mass_kg", &mass_kg);
+    a->Visit("hull_size_m", &hull_size_m);
+    a->Visit("com_height_m", &com_height_m);
+    a->Visit("ground_clearance_m", &ground_clearance_m);
+    a->Visit("track_gauge_m", &track_gauge_m);
+    a->Visit("track_width_m", &track_width_m);
+    a->Visit("track_contact_length_m", &track_contact_length_m);
+    a->Visit("sprocket_radius_m", &sprocket_radius_m);
+    a->Visit("road_wheels_per_track", &road_wheels_per_track);
+    a->Visit("station_x_m", &station_x_m);
+    a->VisitEnum("contact", &contact, {{"tracks", Contact::kTracks}, {"wheels", Contact::kWheels}});
+    a->Visit("road_wheel_contact_length_m", &road_wheel_contact_length_m);
+    a->Visit("suspension_stiffness_npm", &suspension_stiffness_npm);
+    a->Visit("suspension_damping_nspm", &suspension_damping_nspm);
+    a->Visit("suspension_travel_m", &suspension_travel_m);
+    a->Visit("shear_damping_s", &shear_damping_s);
+    a->Visit("hull_contact_stiffness_npm", &hull_contact_stiffness_npm);
+    a->Visit("hull_friction", &hull_friction);
+    a->Visit("running_gear_resistance_coeff", &running_gear_resistance_coeff);
+    a->Visit("running_gear_speed_coeff_s_per_m", &running_gear_speed_coeff_s_per_m);
+    a->Visit("stall_time_s", &stall_time_s);
+    a->Visit("motor", &motor);
+  }
 };
 
 /// Index of the two tracks.

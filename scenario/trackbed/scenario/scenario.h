@@ -1,7 +1,9 @@
 // A scenario: everything one closed-loop run needs, as plain values.
 //
-// The YAML file format mirrors these structs key for key (scenario_yaml.h);
-// docs/scenario_format.md lists every key with its unit and default.
+// The YAML file format mirrors these structs key for key: each struct's Serialize
+// (here, and beside the sim/robot/estimation options structs it holds) lists its keys
+// for the config archive (trackbed/common/archive.h), which reads and writes them
+// (scenario_yaml.h). docs/scenario_format.md lists every key with its unit and default.
 #pragma once
 
 #include <cstdint>
@@ -10,6 +12,8 @@
 
 #include <Eigen/Core>
 
+#include "trackbed/common/archive.h"
+#include "trackbed/common/archive_eigen.h"
 #include "trackbed/estimation/ekf_odometry.h"
 #include "trackbed/robot/encoder.h"
 #include "trackbed/robot/imu.h"
@@ -21,6 +25,20 @@
 #include "trackbed/sim/static_object.h"
 #include "trackbed/sim/terrain.h"
 #include "trackbed/sim/world.h"
+
+namespace trackbed::archive {
+
+/// Scene objects (`scene.objects`) have a file form of their own rather than a field
+/// list: `type` picks the shape and the default appearance, a wall may be given by
+/// `from`/`to`, a box's yaw is in degrees (scenario_yaml.cpp).
+template <>
+struct Codec<sim::StaticObject> {
+  static void Read(const Node& node, const std::string& path, Wording wording,
+                   sim::StaticObject* object);
+  static Node Write(const sim::StaticObject& object);
+};
+
+}  // namespace trackbed::archive
 
 namespace trackbed::scenario {
 
@@ -37,6 +55,18 @@ struct SceneSpec {
   std::vector<sim::OccluderSpec> occluders;
 
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md), read and
+  /// written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("name", &name);
+    a->Visit("world", &world);
+    a->Visit("terrain", &terrain);
+    a->Visit("objects", &objects);  // a file form of their own: Codec<sim::StaticObject> above
+    a->Visit("appearance", &appearance);
+    a->Visit("occluders", &occluders);
+  }
 };
 
 /// Where the robot starts (on the ground, aligned with its slope).
@@ -44,6 +74,15 @@ struct StartPose {
   double x_m = 0.0;
   double y_m = 0.0;
   double yaw_deg = 0.0;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md), read and
+  /// written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("x_m", &x_m);
+    a->Visit("y_m", &y_m);
+    a->Visit("yaw_deg", &yaw_deg);
+  }
 };
 
 struct RobotSpec {
@@ -55,6 +94,18 @@ struct RobotSpec {
   robot::RangeSensorOptions range_sensor;
 
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md), read and
+  /// written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("start", &start);
+    a->Visit("vehicle", &vehicle);
+    a->Visit("encoders", &encoders);
+    a->Visit("imu", &imu);
+    a->Visit("stereo", &stereo);
+    a->Visit("range_sensor", &range_sensor);
+  }
 };
 
 /// One command of a time-stamped script, held until the next one.
@@ -66,6 +117,21 @@ struct DriveCommand {
   double yaw_rate_radps = 0.0;
   double left_mps = 0.0;
   double right_mps = 0.0;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md), read and
+  /// written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("t_s", &t_s);
+    // A twist or track speeds, never both; reading sets track_speeds from the keys used.
+    if (a->Either(&track_speeds, {"v_mps", "yaw_rate_radps"}, {"left_mps", "right_mps"})) {
+      a->Visit("left_mps", &left_mps);
+      a->Visit("right_mps", &right_mps);
+    } else {
+      a->Visit("v_mps", &v_mps);
+      a->Visit("yaw_rate_radps", &yaw_rate_radps);
+    }
+  }
 };
 
 /// How the robot is commanded: a replayed script, or a pure-pursuit driver
@@ -90,6 +156,21 @@ struct DriveSpec {
   double goal_tolerance_m = 0.1;
 
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md), read and
+  /// written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->VisitEnum("mode", &mode, {{"path", Mode::kPath}, {"script", Mode::kScript}});
+    a->Visit("waypoints", &waypoints);
+    a->Visit("closed", &closed);
+    a->Visit("laps", &laps);
+    a->Visit("speed_mps", &speed_mps);
+    a->Visit("lookahead_m", &lookahead_m);
+    a->Visit("rate_hz", &rate_hz);
+    a->Visit("goal_tolerance_m", &goal_tolerance_m);
+    a->Visit("script", &script);
+  }
 };
 
 /// The localization stack run on the robot's sensors (Ham et al. 2012).
@@ -141,6 +222,27 @@ struct EstimationSpec {
   estimation::EkfOdometryOptions ekf;
 
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md), read and
+  /// written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("enabled", &enabled);
+    a->Visit("icr_expansion", &icr_expansion);
+    a->Visit("icr_offset_m", &icr_offset_m);
+    a->Visit("slip_decay_time_s", &slip_decay_time_s);
+    a->Visit("slip_filter_time_s", &slip_filter_time_s);
+    a->Visit("min_inliers_for_slip", &min_inliers_for_slip);
+    a->Visit("fusion_rules", &fusion_rules);
+    a->Visit("fusion_weight_rise_time_s", &fusion_weight_rise_time_s);
+    a->Visit("vo_coast_time_s", &vo_coast_time_s);
+    a->Visit("vo_max_translation_per_frame_m", &vo_max_translation_per_frame_m);
+    a->Visit("vo_max_rotation_per_frame_deg", &vo_max_rotation_per_frame_deg);
+    a->Visit("vo_max_acceleration_mps2", &vo_max_acceleration_mps2);
+    a->Visit("vo_max_angular_acceleration_dps2", &vo_max_angular_acceleration_dps2);
+    a->Visit("vo_max_gyro_rotation_error_deg", &vo_max_gyro_rotation_error_deg);
+    a->Visit("ekf", &ekf);
+  }
 };
 
 /// A circular obstacle of a navigation scene: centre [m] (world frame) and physical
@@ -148,6 +250,14 @@ struct EstimationSpec {
 struct NavigationObstacleSpec {
   Eigen::Vector2d center{0.0, 0.0};
   double radius_m = 0.0;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md), read and
+  /// written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("center", &center);
+    a->Visit("radius_m", &radius_m);
+  }
 };
 
 /// A wall of a navigation scene, seen by the avoider as a chain of circles of radius
@@ -156,6 +266,15 @@ struct NavigationWallSpec {
   Eigen::Vector2d from{0.0, 0.0};
   Eigen::Vector2d to{0.0, 0.0};
   double radius_m = 0.1;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md), read and
+  /// written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("from", &from);
+    a->Visit("to", &to);
+    a->Visit("radius_m", &radius_m);
+  }
 };
 
 /// The accepted values of `navigation.field`, "none" first.
@@ -211,6 +330,33 @@ struct NavigationSpec {
   double stop_heading_tolerance_deg = 2.0;
 
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md), read and
+  /// written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("enabled", &enabled);
+    a->Visit("method", &method);
+    a->VisitEnum("mode", &mode,
+                 {{"kinematic", Mode::kKinematic}, {"closed_loop", Mode::kClosedLoop}});
+    a->Visit("goal", &goal);
+    a->Visit("obstacles", &obstacles);
+    a->Visit("walls", &walls);
+    a->Visit("field", &field);
+    a->Visit("field_seed", &field_seed);
+    a->Visit("safety_radius_m", &safety_radius_m);
+    a->Visit("footprint_radius_m", &footprint_radius_m);
+    a->Visit("control_period_s", &control_period_s);
+    a->Visit("wheel_radius_m", &wheel_radius_m);
+    a->Visit("wheel_separation_m", &wheel_separation_m);
+    a->Visit("max_wheel_speed_radps", &max_wheel_speed_radps);
+    a->Visit("stall_time_s", &stall_time_s);
+    a->Visit("pose_source", &pose_source);
+    a->Visit("max_speed_mps", &max_speed_mps);
+    a->Visit("max_yaw_rate_radps", &max_yaw_rate_radps);
+    a->Visit("stop_position_tolerance_m", &stop_position_tolerance_m);
+    a->Visit("stop_heading_tolerance_deg", &stop_heading_tolerance_deg);
+  }
 };
 
 /// Visual teach & repeat (Choi & Ha 2011; docs/teach_repeat.md). With `enabled`, one run
@@ -243,6 +389,22 @@ struct TeachRepeatSpec {
   bool stop_for_crossings = true;
 
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md), read and
+  /// written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("enabled", &enabled);
+    a->Visit("method", &method);
+    a->Visit("map", &map);
+    a->Visit("repeat_speed_mps", &repeat_speed_mps);
+    a->Visit("repeat_turn_rate_deg_s", &repeat_turn_rate_deg_s);
+    a->Visit("start_offset", &start_offset);
+    a->Visit("start_perturbation", &start_perturbation);
+    a->Visit("occluders", &occluders);
+    a->Visit("recovery_window_s", &recovery_window_s);
+    a->Visit("stop_for_crossings", &stop_for_crossings);
+  }
 };
 
 struct OutputsSpec {
@@ -251,6 +413,13 @@ struct OutputsSpec {
   std::string save_images = "none";
 
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md), read and
+  /// written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("save_images", &save_images);
+  }
 };
 
 struct Scenario {
@@ -266,6 +435,21 @@ struct Scenario {
   OutputsSpec outputs;
 
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md), read and
+  /// written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("seed", &seed);
+    a->Visit("duration_s", &duration_s);
+    a->Visit("scene", &scene);
+    a->Visit("robot", &robot);
+    a->Visit("drive", &drive);
+    a->Visit("estimation", &estimation);
+    a->Visit("navigation", &navigation);
+    a->Visit("teach_repeat", &teach_repeat);
+    a->Visit("outputs", &outputs);
+  }
 };
 
 /// `scenario` with every built-in material its terrain uses (the default and

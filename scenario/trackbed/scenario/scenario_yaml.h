@@ -5,7 +5,8 @@
 // source is the file, or the `--set key=value` override that introduced the
 // bad value. Missing keys keep the structs' defaults. The writer emits every
 // key, defaults included, with doubles in their shortest exact form, so
-// reading what it wrote gives the same scenario and the same text.
+// reading what it wrote gives the same scenario and the same text. Both go through
+// the config archive (trackbed/common/archive.h) and the structs' Serialize lists.
 #pragma once
 
 #include <stdexcept>
@@ -29,6 +30,9 @@ struct Override {
 /// ("--set: expected key=value, got '…'") when there is no '=', the key is empty
 /// or the key is not a dotted path of names and indices.
 Override ParseOverride(const std::string& key_equals_value);
+
+/// The `key=value` text ParseOverride reads back as `o`.
+std::string OverrideText(const Override& o);
 
 /// A scenario that cannot be read: a missing file, a YAML syntax error, an
 /// unknown key, a wrong type or an invalid value.

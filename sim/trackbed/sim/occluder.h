@@ -25,6 +25,19 @@ struct OccluderSpec {
   std::string appearance = "person";
 
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md), read and
+  /// written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("waypoints", &waypoints);
+    a->Visit("speed_mps", &speed_mps);
+    a->Visit("start_s", &start_s);
+    a->Visit("back_and_forth", &back_and_forth);
+    a->Visit("height_m", &height_m);
+    a->Visit("radius_m", &radius_m);
+    a->Visit("appearance", &appearance);
+  }
 };
 
 /// Where an occluder is at time `t_s`: xy position [m] and heading [rad].

@@ -45,6 +45,21 @@ struct SceneAppearance {
   double terrain_full_detail_m = 0.0;
 
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md), read and
+  /// written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("sun_azimuth_deg", &sun_azimuth_deg);
+    a->Visit("sun_elevation_deg", &sun_elevation_deg);
+    a->Visit("ambient", &ambient);
+    a->Visit("diffuse", &diffuse);
+    a->Visit("sky_gray", &sky_gray);
+    a->Visit("ceiling_height_m", &ceiling_height_m);
+    a->Visit("tree_crowns", &tree_crowns);
+    a->Visit("texture_size_px", &texture_size_px);
+    a->Visit("terrain_full_detail_m", &terrain_full_detail_m);
+  }
 };
 
 /// Renders grayscale and depth images of a World. Not copyable.

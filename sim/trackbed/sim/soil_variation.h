@@ -27,6 +27,14 @@ struct SoilVariationOptions {
   double correlation_length_m = 2.0;
 
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md), read and
+  /// written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("amplitude", &amplitude);
+    a->Visit("correlation_length_m", &correlation_length_m);
+  }
 };
 
 /// The seeded variation fields. Cheap to copy; thread-safe (no state).

@@ -35,6 +35,18 @@ struct TerrainRoughness {
   double slope_y = 0.0;
 
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md), read and
+  /// written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("undulation_amplitude_m", &undulation_amplitude_m);
+    a->Visit("undulation_wavelength_m", &undulation_wavelength_m);
+    a->Visit("bump_amplitude_m", &bump_amplitude_m);
+    a->Visit("bump_wavelength_m", &bump_wavelength_m);
+    a->Visit("slope_x", &slope_x);
+    a->Visit("slope_y", &slope_y);
+  }
 };
 
 /// Where a material lies: an axis-aligned rectangle or a disc in the world's xy plane.
@@ -52,6 +64,22 @@ struct MaterialRegion {
 
   bool Contains(double x, double y) const;
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md), read and
+  /// written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("material", &material);
+    a->VisitEnum("shape", &shape, {{"rectangle", Shape::kRectangle}, {"circle", Shape::kCircle}});
+    // Only the shape's own keys: those of the other shape are unknown keys.
+    if (shape == Shape::kRectangle) {
+      a->Visit("min", &min_m);
+      a->Visit("max", &max_m);
+    } else {
+      a->Visit("center", &center_m);
+      a->Visit("radius_m", &radius_m);
+    }
+  }
 };
 
 /// Everything that defines a terrain. Regions later in the list cover earlier ones.
@@ -70,6 +98,19 @@ struct TerrainOptions {
   SoilVariationOptions soil_variation;
 
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md), read and
+  /// written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("extent_m", &extent_m);
+    a->Visit("cell_size_m", &cell_size_m);
+    a->Visit("roughness", &roughness);
+    a->Visit("default_material", &default_material);
+    a->Visit("materials", &materials);
+    a->Visit("regions", &regions);
+    a->Visit("soil_variation", &soil_variation);
+  }
 };
 
 /// Height, normal and material of the ground at one point.

@@ -42,6 +42,23 @@ struct TerrainMaterial {
   bool IsRigid() const { return bekker_kc == 0.0 && bekker_kphi == 0.0; }
   /// Throws OptionError naming the field when a parameter is out of range.
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md), read and
+  /// written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("name", &name);
+    a->Visit("cohesion_pa", &cohesion_pa);
+    a->Visit("friction_angle_deg", &friction_angle_deg);
+    a->Visit("shear_modulus_m", &shear_modulus_m);
+    a->Visit("bekker_kc", &bekker_kc);
+    a->Visit("bekker_kphi", &bekker_kphi);
+    a->Visit("bekker_n", &bekker_n);
+    a->Visit("lateral_shear_modulus_ratio", &lateral_shear_modulus_ratio);
+    a->Visit("lateral_strength_ratio", &lateral_strength_ratio);
+    a->Visit("unit_weight_npm3", &unit_weight_npm3);
+    a->Visit("albedo", &albedo);
+  }
 };
 
 /// The mechanical parameters of the ground at one point: a material's values,

@@ -37,6 +37,14 @@ struct WorldOptions {
   double gravity_mps2 = 9.81;
 
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md), read and
+  /// written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("physics_step_s", &physics_step_s);
+    a->Visit("gravity_mps2", &gravity_mps2);
+  }
 };
 
 /// Result of a ray test.
