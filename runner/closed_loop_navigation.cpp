@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "trackbed/common/units.h"
 #include "trackbed/navigation/navigator_factory.h"
 #include "trackbed/runner/footprint_clearance.h"
 #include "trackbed/runner/navigation_scenario.h"
@@ -13,8 +14,6 @@
 
 namespace trackbed::runner {
 namespace {
-
-double Radians(double deg) { return deg * M_PI / 180.0; }
 
 navigation::NavigatorOptions OptionsFor(const scenario::Scenario& s) {
   const scenario::NavigationSpec& n = s.navigation;
@@ -27,7 +26,7 @@ navigation::NavigatorOptions OptionsFor(const scenario::Scenario& s) {
   o.setup.drive.wheel_separation_m = s.estimation.icr_expansion * s.robot.vehicle.track_gauge_m;
   o.setup.drive.max_wheel_speed_radps = n.max_speed_mps / r;
   o.setup.goal_position_tolerance_m = n.stop_position_tolerance_m;
-  o.setup.goal_heading_tolerance_rad = Radians(n.stop_heading_tolerance_deg);
+  o.setup.goal_heading_tolerance_rad = units::Radians(n.stop_heading_tolerance_deg);
   // The footprint the avoiders keep clear: the hull's half diagonal at least.
   const double half_diagonal = 0.5 * s.robot.vehicle.hull_size_m.head<2>().norm();
   const double footprint = std::max(n.footprint_radius_m, half_diagonal);
@@ -46,7 +45,8 @@ ClosedLoopNavigation::ClosedLoopNavigation(const scenario::Scenario& s,
       pose_source_(s.navigation.pose_source),
       objects_(std::move(objects)),
       on_step_(std::move(on_step)),
-      goal_{s.navigation.goal.x_m, s.navigation.goal.y_m, Radians(s.navigation.goal.yaw_deg)},
+      goal_{s.navigation.goal.x_m, s.navigation.goal.y_m,
+            units::Radians(s.navigation.goal.yaw_deg)},
       period_s_(s.navigation.control_period_s),
       time_limit_s_(s.duration_s),
       gauge_eff_m_(s.estimation.icr_expansion * s.robot.vehicle.track_gauge_m),

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "trackbed/common/units.h"
+
 namespace trackbed::runner {
 namespace {
-
-double Radians(double deg) { return deg * M_PI / 180.0; }
 
 navigation::DiffDriveParams DriveOf(const scenario::NavigationSpec& n) {
   navigation::DiffDriveParams d;
@@ -26,8 +26,8 @@ navigation::NavigationScene NavigationSceneOf(const scenario::Scenario& scenario
   if (n.field == "none") {
     scene.name = scenario.scene.name;
     const scenario::StartPose& s = scenario.robot.start;
-    scene.start = {s.x_m, s.y_m, Radians(s.yaw_deg)};
-    scene.goal = {n.goal.x_m, n.goal.y_m, Radians(n.goal.yaw_deg)};
+    scene.start = {s.x_m, s.y_m, units::Radians(s.yaw_deg)};
+    scene.goal = {n.goal.x_m, n.goal.y_m, units::Radians(n.goal.yaw_deg)};
   } else if (n.field == "random") {
     scene = navigation::RandomObstacleField(n.field_seed);
   } else if (n.field == "paper_left") {

@@ -47,10 +47,7 @@ RunMetrics RunToFolder(const scenario::Scenario& scenario, const fs::path& dir) 
   }
   ClosedLoopOptions options;
   options.dir = dir;
-  ClosedLoop loop(scenario, std::move(options));
-  loop.Start();
-  while (!loop.done()) loop.Step();
-  return loop.Finish();
+  return ClosedLoop(scenario, std::move(options)).Run();
 }
 
 }  // namespace trackbed::runner

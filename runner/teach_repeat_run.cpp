@@ -12,6 +12,7 @@
 #include <tuple>
 #include <utility>
 
+#include "trackbed/common/units.h"
 #include "trackbed/estimation/trajectory_io.h"
 #include "trackbed/estimation/wheel_odometry.h"
 #include "trackbed/perception/kitti_sequence.h"
@@ -29,8 +30,6 @@
 namespace trackbed::runner {
 namespace fs = std::filesystem;
 namespace {
-
-double Radians(double deg) { return deg * M_PI / 180.0; }
 
 // The teach pass: the scenario's own drive, images into the builder with the no-slip
 // wheel odometry at each image (metadata; 3D teaching scales milestones by it).
@@ -54,7 +53,8 @@ teach_repeat::TeachMap Teach(const scenario::Scenario& scenario, const fs::path&
   wo.icr_expansion = scenario.estimation.icr_expansion;
   wo.ticks_per_rev = rs.encoders.ticks_per_rev;
   wo.estimate_slip = false;
-  estimation::WheelOdometry odometry(wo, {rs.start.x_m, rs.start.y_m, Radians(rs.start.yaw_deg)});
+  estimation::WheelOdometry odometry(
+      wo, {rs.start.x_m, rs.start.y_m, units::Radians(rs.start.yaw_deg)});
   RunObservers extra;
   extra.on_stereo = [&](const StereoFrame& f) {
     odometry.AddEncoderSample(f.t_s, f.ticks[0], f.ticks[1]);
@@ -183,7 +183,7 @@ scenario::Scenario RepeatScenario(const scenario::Scenario& scenario) {
     dy += r * std::sin(a);
     dyaw += 2.0 * (2.0 * unit() - 1.0);
   }
-  const double yaw0 = Radians(scenario.robot.start.yaw_deg);
+  const double yaw0 = units::Radians(scenario.robot.start.yaw_deg);
   repeat.robot.start.x_m += std::cos(yaw0) * dx - std::sin(yaw0) * dy;
   repeat.robot.start.y_m += std::sin(yaw0) * dx + std::cos(yaw0) * dy;
   repeat.robot.start.yaw_deg += dyaw;
@@ -233,10 +233,10 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
 
   teach_repeat::FunnelLaneOptions o2;
   o2.forward_speed_mps = tr.repeat_speed_mps;
-  o2.turn_rate_radps = Radians(tr.repeat_turn_rate_deg_s);
+  o2.turn_rate_radps = units::Radians(tr.repeat_turn_rate_deg_s);
   teach_repeat::Localizer3dOptions o3;
   o3.forward_speed_mps = tr.repeat_speed_mps;
-  o3.max_yaw_rate_radps = Radians(tr.repeat_turn_rate_deg_s);
+  o3.max_yaw_rate_radps = units::Radians(tr.repeat_turn_rate_deg_s);
   const int milestones = static_cast<int>(map.milestones.size());
   const int teach_images = static_cast<int>(map.images.size());
   std::unique_ptr<teach_repeat::Repeater> repeater =

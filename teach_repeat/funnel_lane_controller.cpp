@@ -13,13 +13,6 @@
 namespace trackbed::teach_repeat {
 namespace {
 
-void AtLeast(const char* field, int value, int minimum) {
-  if (value < minimum) {
-    throw OptionError(
-        field, "must be >= " + std::to_string(minimum) + " (got " + std::to_string(value) + ")");
-  }
-}
-
 /// The base's settings from validated options (the options are checked before the map).
 MilestoneRepeaterSettings SettingsOf(const FunnelLaneOptions& options) {
   options.Validate();
@@ -46,10 +39,10 @@ void FunnelLaneOptions::Validate() const {
                       "must be in [0, 1) (got " + option_check::Describe(min_net_vote) + ")");
   }
   option_check::NonNegative("switch_hysteresis_px", switch_hysteresis_px);
-  AtLeast("min_frames_per_milestone", min_frames_per_milestone, 1);
-  AtLeast("min_features", min_features, 1);
-  AtLeast("lost_patience_frames", lost_patience_frames, 1);
-  AtLeast("start_milestone", start_milestone, 0);
+  option_check::AtLeast("min_frames_per_milestone", min_frames_per_milestone, 1);
+  option_check::AtLeast("min_features", min_features, 1);
+  option_check::AtLeast("lost_patience_frames", lost_patience_frames, 1);
+  option_check::AtLeast("start_milestone", start_milestone, 0);
   if (!(switch_progress > 0.0 && switch_progress <= 2.0)) {
     throw OptionError("switch_progress",
                       "must be in (0, 2] (got " + option_check::Describe(switch_progress) + ")");

@@ -18,13 +18,6 @@
 namespace trackbed::teach_repeat {
 namespace {
 
-void AtLeast(const char* field, int value, int minimum) {
-  if (value < minimum) {
-    throw OptionError(
-        field, "must be >= " + std::to_string(minimum) + " (got " + std::to_string(value) + ")");
-  }
-}
-
 cv::Point3d ToCv(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
 
 /// T_cam_first as OpenCV's (rvec, tvec) and back.
@@ -128,17 +121,17 @@ void Localizer3dOptions::Validate() const {
     throw OptionError("switch_progress",
                       "must be in (0, 2] (got " + option_check::Describe(switch_progress) + ")");
   }
-  AtLeast("max_switches_per_frame", max_switches_per_frame, 1);
-  AtLeast("min_features", min_features, 1);
-  AtLeast("lost_patience_frames", lost_patience_frames, 1);
-  AtLeast("start_milestone", start_milestone, 0);
+  option_check::AtLeast("max_switches_per_frame", max_switches_per_frame, 1);
+  option_check::AtLeast("min_features", min_features, 1);
+  option_check::AtLeast("lost_patience_frames", lost_patience_frames, 1);
+  option_check::AtLeast("start_milestone", start_milestone, 0);
   option_check::Nested("tracker", tracker);
   option_check::Nested("two_view", two_view);
   option_check::NonNegative("min_parallax_px", min_parallax_px);
   option_check::Positive("gate_px", gate_px);
   option_check::Positive("max_reprojection_px", max_reprojection_px);
-  AtLeast("min_pose_features", min_pose_features, 4);
-  AtLeast("search_radius_px", search_radius_px, 0);
+  option_check::AtLeast("min_pose_features", min_pose_features, 4);
+  option_check::AtLeast("search_radius_px", search_radius_px, 0);
   if (!(min_zncc > 0.0 && min_zncc <= 1.0)) {
     throw OptionError("min_zncc",
                       "must be in (0, 1] (got " + option_check::Describe(min_zncc) + ")");
@@ -150,7 +143,7 @@ void Localizer3dOptions::Validate() const {
         "must be in [0, 1) (got " + option_check::Describe(fallback_min_net_vote) + ")");
   }
   option_check::NonNegative("fallback_switch_hysteresis_px", fallback_switch_hysteresis_px);
-  AtLeast("fallback_min_frames_per_milestone", fallback_min_frames_per_milestone, 1);
+  option_check::AtLeast("fallback_min_frames_per_milestone", fallback_min_frames_per_milestone, 1);
 }
 
 MilestoneLocalizer3d::MilestoneLocalizer3d(TeachMap map, const Localizer3dOptions& options)

@@ -11,16 +11,6 @@
 #include "trackbed/common/option_error.h"
 
 namespace trackbed::teach_repeat {
-namespace {
-
-void AtLeast(const char* field, int value, int minimum) {
-  if (value < minimum) {
-    throw OptionError(
-        field, "must be >= " + std::to_string(minimum) + " (got " + std::to_string(value) + ")");
-  }
-}
-
-}  // namespace
 
 ErrorMinimumDetector::ErrorMinimumDetector(double hysteresis) : hysteresis_(hysteresis) {
   if (!(hysteresis >= 0.0 && std::isfinite(hysteresis))) {
@@ -45,7 +35,7 @@ bool ErrorMinimumDetector::Update(double error) {
 void MilestoneProgressOptions::Validate() const {
   option_check::Positive("min_flow_spread_px", min_flow_spread_px);
   option_check::Positive("outlier_px", outlier_px);
-  AtLeast("min_features", min_features, 3);
+  option_check::AtLeast("min_features", min_features, 3);
 }
 
 namespace {

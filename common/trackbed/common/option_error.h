@@ -60,6 +60,14 @@ inline void InRange(const char* field, double value, double lo, double hi) {
   }
 }
 
+/// Throws unless the count `value` >= `minimum`.
+inline void AtLeast(const char* field, int value, int minimum) {
+  if (value < minimum) {
+    throw OptionError(
+        field, "must be >= " + std::to_string(minimum) + " (got " + std::to_string(value) + ")");
+  }
+}
+
 /// Throws unless value is finite (any sign).
 inline void Finite(const char* field, double value) {
   if (!std::isfinite(value)) {
