@@ -151,7 +151,7 @@ class ClosedLoop::Impl {
   }
 
   void Start();
-  StepResult Step();
+  const StepResult& Step();
   RunMetrics Finish();
   bool done() const { return done_; }
   // Writes metrics.json saying why the run failed (when there is a folder).
@@ -190,6 +190,7 @@ class ClosedLoop::Impl {
   // localization stack's own time is the worker's busy time.
   StageTimes times_;
   RunObservers observers_;
+  StepResult step_;  // Step()'s result, reused
 
   std::unique_ptr<sim::World> world_;
   std::unique_ptr<robot::TrackedVehicle> vehicle_;
@@ -311,9 +312,14 @@ void ClosedLoop::Impl::BuildSchedule() {
   v_at_last_imu_ = vehicle_->chassis().v_world;
 }
 
-StepResult ClosedLoop::Impl::Step() {
+const StepResult& ClosedLoop::Impl::Step() {
   if (!started_) throw std::logic_error("ClosedLoop::Step: Start() first");
-  StepResult out;
+  StepResult& out = step_;
+  out.encoders.clear();  // clear() keeps the capacity: no allocation per step
+  out.imu.clear();
+  out.scans.clear();
+  out.stereo.clear();
+  out.stereo_frames = 0;
   while (!done_ && !StepOnce(&out)) {
   }
   out.t_s = clock_->now_s();
@@ -591,7 +597,7 @@ void ClosedLoop::Start() {
   }
 }
 
-StepResult ClosedLoop::Step() {
+const StepResult& ClosedLoop::Step() {
   try {
     return impl_->Step();
   } catch (const std::exception& e) {

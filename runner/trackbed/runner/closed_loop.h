@@ -75,8 +75,10 @@ class ClosedLoop {
   /// its sensors and its software.
   void Start();
   /// One control period: simulates up to and including the commander's next call and
-  /// the physics step after it. Returns what the sensors produced meanwhile.
-  StepResult Step();
+  /// the physics step after it. Returns what the sensors produced meanwhile, in a buffer
+  /// the loop reuses: valid until the next Step() (so a long run allocates nothing per
+  /// step).
+  const StepResult& Step();
   /// The run has ended (duration reached, the commander stopped it, a stall, a failure).
   bool done() const;
   /// Writes the rest of the run folder (plots, metrics.json) and returns the metrics.
