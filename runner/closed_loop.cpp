@@ -179,11 +179,12 @@ class ClosedLoop::Impl {
     done_ = true;
   }
   RunMetrics Metrics();
+  void ReleaseSimulation();
 
   scenario::Scenario scenario_;
   ClosedLoopOptions options_;
   std::unique_ptr<RunFolderWriter> folder_;
-  bool started_ = false, done_ = false, failed_ = false, time_ran_out_ = false;
+  bool started_ = false, finished_ = false, done_ = false, failed_ = false, time_ran_out_ = false;
   std::string stop_reason_ = "duration reached";
   std::chrono::steady_clock::time_point wall_start_;
   // Wall-clock seconds per stage (metrics.json `timing`), on this thread; the
@@ -314,6 +315,7 @@ void ClosedLoop::Impl::BuildSchedule() {
 
 const StepResult& ClosedLoop::Impl::Step() {
   if (!started_) throw std::logic_error("ClosedLoop::Step: Start() first");
+  if (finished_) throw std::logic_error("ClosedLoop::Step: the run is finished");
   StepResult& out = step_;
   out.encoders.clear();  // clear() keeps the capacity: no allocation per step
   out.imu.clear();
@@ -565,10 +567,28 @@ RunMetrics ClosedLoop::Impl::Metrics() {
   return m;
 }
 
+// Frees the world, the robot, its sensors and software and the scored trajectories
+// once the metrics are taken (the worker first: its tasks refer to the rest).
+void ClosedLoop::Impl::ReleaseSimulation() {
+  worker_.reset();
+  stack_.reset();
+  estimates_ = EstimatorScoring();
+  image_pairs_.clear();
+  free_pairs_.clear();
+  renderer_.reset();
+  range_sensor_.reset();
+  imu_.reset();
+  vehicle_.reset();
+  world_.reset();
+}
+
 RunMetrics ClosedLoop::Impl::Finish() {
   if (!started_) throw std::logic_error("ClosedLoop::Finish: Start() first");
+  if (finished_) throw std::logic_error("ClosedLoop::Finish: called twice");
+  finished_ = true;
   done_ = true;
   RunMetrics m = Metrics();
+  ReleaseSimulation();  // before the plots, so their memory does not add to the world's
   if (folder_) folder_->Close(scenario_, m);
   return m;
 }

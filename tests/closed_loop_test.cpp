@@ -131,9 +131,14 @@ TEST(ClosedLoopTest, AUsersCommanderReplaysRecordedTrackSpeeds) {
   EXPECT_EQ(Read(scripted / "encoders.csv"), Read(replayed / "encoders.csv"));
 }
 
-TEST(ClosedLoopTest, StepBeforeStartIsAnError) {
-  ClosedLoop loop(testing::FlatTrackSpeedRun("hard_floor", 0.2, 0.2, 1.0));
+TEST(ClosedLoopTest, StepOutsideStartAndFinishIsAnError) {
+  ClosedLoop loop(testing::FlatTrackSpeedRun("hard_floor", 0.2, 0.2, 0.1));
   EXPECT_THROW(loop.Step(), std::logic_error);
+  loop.Start();
+  loop.Step();
+  loop.Finish();
+  EXPECT_THROW(loop.Step(), std::logic_error);
+  EXPECT_THROW(loop.Finish(), std::logic_error);
 }
 
 }  // namespace
