@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "trackbed/common/units.h"
 #include "trackbed/estimation/icr_calibration.h"
 #include "trackbed/runner/closed_loop.h"
 #include "trackbed/scenario/scenario_yaml.h"
@@ -26,7 +27,7 @@ double Mean(double a, double b) { return (a + b) / 2.0; }
 double TractionCoefficient(const sim::TerrainMaterial& m, const robot::TrackedVehicleOptions& v) {
   const double area = 2.0 * v.track_contact_length_m * v.track_width_m;
   const double weight = v.mass_kg * 9.81;
-  return (m.cohesion_pa * area + weight * std::tan(m.friction_angle_deg * M_PI / 180.0)) / weight;
+  return (m.cohesion_pa * area + weight * std::tan(units::Radians(m.friction_angle_deg))) / weight;
 }
 
 // χ fitted separately in each scripted segment of icr_turns.yaml (10 s each:
@@ -78,7 +79,7 @@ void MaterialTable(const std::string& root) {
 void GradeTable(const std::string& root) {
   std::printf("\n| dry sand, uphill | tan θ | steady slip ratio (%%) |\n|---|---|---|\n");
   for (double deg : {0.0, 5.0, 10.0, 15.0, 20.0}) {
-    const double slope = std::tan(deg * M_PI / 180.0);
+    const double slope = std::tan(units::Radians(deg));
     const scenario::Scenario s =
         scenario::LoadScenario(root + "/scenes/calibration/straight_line.yaml",
                                {{"scene.terrain.default_material", "dry_sand"},

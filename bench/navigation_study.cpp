@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "bench_args.h"
+#include "trackbed/common/units.h"
 #include "trackbed/navigation/kinematic_simulation.h"
 #include "trackbed/navigation/navigator_factory.h"
 #include "trackbed/navigation/obstacle_fields.h"
@@ -66,7 +67,7 @@ void PaperTable(const std::vector<Variant>& variants) {
       const nav::NavigationMetrics& m = run.metrics;
       int reached = 0;
       for (const auto& s : run.subgoals) reached += s.reached ? 1 : 0;
-      const double final_yaw_deg = run.log.back().yaw_rad * 180.0 / M_PI;
+      const double final_yaw_deg = trackbed::units::Degrees(run.log.back().yaw_rad);
       std::printf("| %s | %s | %s | %s | %.2f | %s | %.3f | %.2f | %.2f | %d (%d) | %.0f |\n",
                   scene.name.c_str(), v.label.c_str(), m.success ? "yes" : "no", m.status.c_str(),
                   m.path_length_m, Time(m).c_str(), m.final_position_error_m, final_yaw_deg,
@@ -297,8 +298,8 @@ void Trace(const std::string& scene_name, const std::string& method) {
   std::printf("t,x,y,yaw_deg,v,w,left,right,target_x,target_y,subgoal,clearance\n");
   for (const nav::NavigationLogEntry& r : run.log) {
     std::printf("%.1f,%.3f,%.3f,%.1f,%.3f,%.3f,%.2f,%.2f,%.3f,%.3f,%d,%.3f\n", r.t_s, r.x_m, r.y_m,
-                r.yaw_rad * 180 / M_PI, r.v_mps, r.yaw_rate_radps, r.left_radps, r.right_radps,
-                r.target_x_m, r.target_y_m, r.subgoal_active ? 1 : 0, r.clearance_m);
+                trackbed::units::Degrees(r.yaw_rad), r.v_mps, r.yaw_rate_radps, r.left_radps,
+                r.right_radps, r.target_x_m, r.target_y_m, r.subgoal_active ? 1 : 0, r.clearance_m);
   }
 }
 

@@ -15,6 +15,7 @@
 
 #include "bench_args.h"
 #include "trackbed/estimation/stereo_visual_odometry.h"
+#include "trackbed/perception/opencv_views.h"
 #include "trackbed/robot/stereo_rig.h"
 #include "trackbed/runner/closed_loop.h"
 #include "trackbed/scenario/scenario_yaml.h"
@@ -61,7 +62,7 @@ int main(int argc, char** argv) {
       sim::Renderer renderer(world, s.scene.appearance, s.scene.occluders, s.seed,
                              s.robot.stereo.width_px, s.robot.stereo.height_px,
                              s.robot.stereo.near_m, s.robot.stereo.far_m);
-      sim::GrayImage l, r;
+      GrayImage l, r;
       const int n = std::min<int>(pairs, static_cast<int>(left.size()));
       // Rendering speed on n pairs spread along the whole route.
       const auto start = std::chrono::steady_clock::now();
@@ -78,15 +79,13 @@ int main(int argc, char** argv) {
         const std::size_t k = static_cast<std::size_t>(i);
         renderer.Render(rig.intrinsics(), left[k], 0.1 * i, &l, nullptr, &centers[k]);
         renderer.Render(rig.intrinsics(), right[k], 0.1 * i, &r, nullptr, &centers[k]);
-        lefts.push_back(cv::Mat(l.height, l.width, CV_8UC1, l.pixels.data()).clone());
-        rights.push_back(cv::Mat(r.height, r.width, CV_8UC1, r.pixels.data()).clone());
+        lefts.push_back(perception::AsCvMat(l).clone());
+        rights.push_back(perception::AsCvMat(r).clone());
       }
       // Visual odometry on the first n consecutive pairs, one OpenCV thread.
       const int threads = cv::getNumThreads();
       cv::setNumThreads(1);
-      const sim::PinholeIntrinsics& K = rig.intrinsics();
-      estimation::StereoVisualOdometry vo(perception::StereoCalibration::FromIntrinsics(
-          K.fx, K.fy, K.cx, K.cy, s.robot.stereo.baseline_m));
+      estimation::StereoVisualOdometry vo(rig.stereo_camera());
       const auto vo_start = std::chrono::steady_clock::now();
       for (int i = 0; i < n; ++i) vo.Process(lefts[i], rights[i], 0.1 * i);
       const double vo_seconds =
@@ -95,7 +94,7 @@ int main(int argc, char** argv) {
       // The sensor model (exposure and noise) on the left images, as the closed loop applies it.
       const auto sensor_start = std::chrono::steady_clock::now();
       for (int i = 0; i < n; ++i) {
-        sim::GrayImage img;
+        GrayImage img;
         img.width = lefts[i].cols;
         img.height = lefts[i].rows;
         img.pixels.assign(lefts[i].data, lefts[i].data + lefts[i].total());

@@ -9,6 +9,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "trackbed/perception/opencv_views.h"
 #include "trackbed/runner/closed_loop.h"
 #include "trackbed/scenario/scenario_yaml.h"
 
@@ -24,10 +25,7 @@ int main(int argc, char** argv) {
     cv::Mat pair;
     runner::RunObservers obs;
     obs.on_stereo = [&](const runner::StereoFrame& f) {
-      auto mat = [](const sim::GrayImage& g) {
-        return cv::Mat(g.height, g.width, CV_8UC1, const_cast<std::uint8_t*>(g.pixels.data()));
-      };
-      cv::hconcat(mat(*f.left), mat(*f.right), pair);
+      cv::hconcat(perception::AsCvMat(*f.left), perception::AsCvMat(*f.right), pair);
     };
     runner::RunClosedLoop(s, obs);
     if (pair.empty() || !cv::imwrite(argv[3], pair)) {

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "trackbed/common/option_error.h"
+#include "trackbed/common/se3.h"
 #include "trackbed/estimation/constant_velocity.h"
 
 namespace trackbed::estimation {
@@ -31,7 +32,7 @@ void LocalizationOptions::Validate() const {
 }
 
 LocalizationStack::LocalizationStack(const LocalizationOptions& options,
-                                     const perception::StereoCalibration* calibration,
+                                     const geometry::StereoCamera* camera,
                                      const Eigen::Isometry3d& T_body_left,
                                      const Eigen::Isometry3d& T_world_body0)
     : options_(options),
@@ -39,7 +40,7 @@ LocalizationStack::LocalizationStack(const LocalizationOptions& options,
       z0_(T_world_body0.translation().z()),
       wheel_(WithSlip(options.wheel, true), PlanarPose(T_world_body0)),
       wheel_noslip_(WithSlip(options.wheel, false), PlanarPose(T_world_body0)),
-      vo_(calibration ? std::make_unique<StereoVisualOdometry>(*calibration, options.vo) : nullptr),
+      vo_(camera ? std::make_unique<StereoVisualOdometry>(*camera, options.vo) : nullptr),
       fuzzy_(MakeFuzzy(options.fusion_rules_file)),
       fused_(PlanarPose(T_world_body0)),
       ekf_(options.ekf, PlanarPose(T_world_body0)),
@@ -64,8 +65,7 @@ void LocalizationStack::AddGyroSample(double t_s, const Eigen::Vector3d& rate_ra
     const Eigen::Vector3d phi = rate_radps * (t_s - t_gyro_);
     const double angle = phi.norm();
     if (angle > 0.0) {
-      R_gyro_since_frame_ =
-          R_gyro_since_frame_ * Eigen::AngleAxisd(angle, phi / angle).toRotationMatrix();
+      R_gyro_since_frame_ = R_gyro_since_frame_ * geometry::ExpSO3(phi);
     }
     gyro_since_frame_ = true;
   }

@@ -15,16 +15,11 @@
 #include <Eigen/Cholesky>
 
 #include "trackbed/common/option_error.h"
+#include "trackbed/common/se3.h"
 #include "trackbed/estimation/absolute_orientation.h"
 
 namespace trackbed::estimation {
 namespace {
-
-Eigen::Matrix3d Skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d S;
-  S << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return S;
-}
 
 /// Huber cost of a residual norm e with threshold k: e² inside, 2ke − k² outside.
 double Huber(double e, double k) { return e <= k ? e * e : 2.0 * k * e - k * k; }
@@ -32,7 +27,7 @@ double Huber(double e, double k) { return e <= k ? e * e : 2.0 * k * e - k * k; 
 /// Cost of the masked correspondences under T (points behind the camera count as a
 /// large constant, so a step that pushes points behind is not preferred).
 double RobustCost(const std::vector<MotionCorrespondence>& c, const std::vector<int>& active,
-                  const StereoCamera& camera, const Eigen::Isometry3d& T, double k,
+                  const geometry::StereoCamera& camera, const Eigen::Isometry3d& T, double k,
                   double* sum_sq) {
   double cost = 0.0, sq = 0.0;
   for (int i : active) {
@@ -49,7 +44,7 @@ double RobustCost(const std::vector<MotionCorrespondence>& c, const std::vector<
   return cost;
 }
 
-int CountInliers(const std::vector<MotionCorrespondence>& c, const StereoCamera& camera,
+int CountInliers(const std::vector<MotionCorrespondence>& c, const geometry::StereoCamera& camera,
                  const Eigen::Isometry3d& T, double threshold_px,
                  std::vector<unsigned char>* mask) {
   int count = 0;
@@ -66,44 +61,11 @@ int CountInliers(const std::vector<MotionCorrespondence>& c, const StereoCamera&
 // ---------------------------------------------------------------------------------------
 // Camera model and residuals.
 
-StereoCamera StereoCamera::FromCalibration(const perception::StereoCalibration& calibration) {
-  StereoCamera c;
-  c.fx = calibration.fx();
-  c.fy = calibration.fy();
-  c.cx = calibration.cx();
-  c.cy = calibration.cy();
-  c.baseline_m = calibration.baseline_m();
-  if (!(std::isfinite(c.fx) && c.fx > 0.0 && std::isfinite(c.fy) && c.fy > 0.0 &&
-        std::isfinite(c.baseline_m) && c.baseline_m > 0.0 && std::isfinite(c.cx) &&
-        std::isfinite(c.cy))) {
-    throw std::invalid_argument(
-        "StereoCamera::FromCalibration: needs fx, fy, baseline > 0 and finite cx, cy");
-  }
-  return c;
-}
-
-Eigen::Vector3d StereoCamera::Triangulate(double u, double v, double disparity_px) const {
-  const double Z = fx * baseline_m / disparity_px;
-  return {(u - cx) * Z / fx, (v - cy) * Z / fy, Z};
-}
-
-Eigen::Vector3d StereoCamera::Project(const Eigen::Vector3d& p) const {
-  const double inv_z = 1.0 / p.z();
-  return {fx * p.x() * inv_z + cx, fy * p.y() * inv_z + cy, fx * (p.x() - baseline_m) * inv_z + cx};
-}
-
 Eigen::Isometry3d ApplyIncrement(const MotionIncrement& delta, const Eigen::Isometry3d& T) {
-  const Eigen::Vector3d phi = delta.tail<3>();
-  const double angle = phi.norm();
-  const Eigen::Matrix3d dR = angle > 0.0 ? Eigen::AngleAxisd(angle, phi / angle).toRotationMatrix()
-                                         : Eigen::Matrix3d::Identity();
-  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
-  out.linear() = dR * T.linear();
-  out.translation() = dR * T.translation() + delta.head<3>();
-  return out;
+  return geometry::ApplyLeftIncrement(delta.head<3>(), delta.tail<3>(), T);
 }
 
-Eigen::Vector3d StereoReprojectionResidual(const StereoCamera& camera,
+Eigen::Vector3d StereoReprojectionResidual(const geometry::StereoCamera& camera,
                                            const Eigen::Isometry3d& T_curr_prev,
                                            const MotionCorrespondence& c,
                                            Eigen::Matrix<double, 3, 6>* J) {
@@ -114,17 +76,18 @@ Eigen::Vector3d StereoReprojectionResidual(const StereoCamera& camera,
     // times ∂p/∂δ = [I | −[p]×] (left increment: p ← Exp(φ)p + ρ ≈ p + ρ + φ × p).
     const double iz = 1.0 / p.z(), iz2 = iz * iz;
     Eigen::Matrix3d P;
-    P << camera.fx * iz, 0.0, -camera.fx * p.x() * iz2,  //
-        0.0, camera.fy * iz, -camera.fy * p.y() * iz2,   //
-        camera.fx * iz, 0.0, -camera.fx * (p.x() - camera.baseline_m) * iz2;
+    P << camera.left.fx * iz, 0.0, -camera.left.fx * p.x() * iz2,  //
+        0.0, camera.left.fy * iz, -camera.left.fy * p.y() * iz2,   //
+        camera.left.fx * iz, 0.0, -camera.left.fx * (p.x() - camera.baseline_m) * iz2;
     J->leftCols<3>() = P;
-    J->rightCols<3>() = -P * Skew(p);
+    J->rightCols<3>() = -P * geometry::Skew(p);
   }
   return r;
 }
 
-bool IsReprojectionInlier(const StereoCamera& camera, const Eigen::Isometry3d& T_curr_prev,
-                          const MotionCorrespondence& c, double threshold_px) {
+bool IsReprojectionInlier(const geometry::StereoCamera& camera,
+                          const Eigen::Isometry3d& T_curr_prev, const MotionCorrespondence& c,
+                          double threshold_px) {
   const Eigen::Vector3d p = T_curr_prev * c.p_prev;
   if (!(p.z() > 1e-6)) return false;
   const Eigen::Vector3d r = camera.Project(p) - c.z_curr;
@@ -179,7 +142,8 @@ int HypothesesNeeded(int count, std::size_t n, double log_failure, int it, int n
 /// (σ_Z = Z²σ_d/(fx·b)), so each pair is weighted by the inverse variance of the
 /// difference of its two depths, 1/(Z_prev⁴ + Z_curr⁴) (up to a constant).
 void RefitOnInliers(const std::vector<MotionCorrespondence>& correspondences,
-                    const StereoCamera& camera, double threshold_px, MotionRansacResult* result) {
+                    const geometry::StereoCamera& camera, double threshold_px,
+                    MotionRansacResult* result) {
   std::vector<Eigen::Vector3d> src, dst;
   std::vector<double> weights;
   for (std::size_t i = 0; i < correspondences.size(); ++i) {
@@ -203,7 +167,7 @@ void RefitOnInliers(const std::vector<MotionCorrespondence>& correspondences,
 }  // namespace
 
 void EstimateMotionRansac(const std::vector<MotionCorrespondence>& correspondences,
-                          const StereoCamera& camera, const MotionRansacOptions& options,
+                          const geometry::StereoCamera& camera, const MotionRansacOptions& options,
                           std::mt19937_64& rng, MotionRansacResult* result) {
   options.Validate();
   const std::size_t n = correspondences.size();
@@ -264,7 +228,7 @@ namespace {
 /// the active correspondences: weight 1 for a residual norm e <= k [px], k/e beyond;
 /// points behind the camera are skipped.
 void HuberNormalEquations(const std::vector<MotionCorrespondence>& correspondences,
-                          const std::vector<int>& active, const StereoCamera& camera,
+                          const std::vector<int>& active, const geometry::StereoCamera& camera,
                           const Eigen::Isometry3d& T, double k, Eigen::Matrix<double, 6, 6>* H,
                           MotionIncrement* g) {
   H->setZero();
@@ -286,7 +250,7 @@ void HuberNormalEquations(const std::vector<MotionCorrespondence>& correspondenc
 /// λ. False when no damping up to λ = 1e8 lowers the cost. *delta is the last step tried.
 bool DampedStep(const Eigen::Matrix<double, 6, 6>& H, const MotionIncrement& g,
                 const std::vector<MotionCorrespondence>& correspondences,
-                const std::vector<int>& active, const StereoCamera& camera, double k,
+                const std::vector<int>& active, const geometry::StereoCamera& camera, double k,
                 double* lambda, MotionIncrement* delta, Eigen::Isometry3d* T, double* cost,
                 double* sum_sq) {
   while (*lambda < 1e8) {
@@ -316,7 +280,7 @@ bool DampedStep(const Eigen::Matrix<double, 6, 6>& H, const MotionIncrement& g,
 
 MotionRefinementResult RefineMotionReprojection(
     const std::vector<MotionCorrespondence>& correspondences,
-    const std::vector<unsigned char>& mask, const StereoCamera& camera,
+    const std::vector<unsigned char>& mask, const geometry::StereoCamera& camera,
     const Eigen::Isometry3d& T_init, const MotionRefinementOptions& options) {
   options.Validate();
   if (!mask.empty() && mask.size() != correspondences.size()) {
@@ -392,9 +356,9 @@ namespace {
 /// RANSAC on the correspondences whose `candidates` entry is non-zero, its inlier mask
 /// spread back over all correspondences (0 for the others).
 void RansacOnCandidates(const std::vector<MotionCorrespondence>& correspondences,
-                        const std::vector<unsigned char>& candidates, const StereoCamera& camera,
-                        const MotionRansacOptions& options, std::mt19937_64& rng,
-                        MotionRansacResult* result) {
+                        const std::vector<unsigned char>& candidates,
+                        const geometry::StereoCamera& camera, const MotionRansacOptions& options,
+                        std::mt19937_64& rng, MotionRansacResult* result) {
   std::vector<MotionCorrespondence> subset;
   std::vector<std::size_t> index;  // subset → correspondences
   for (std::size_t j = 0; j < correspondences.size(); ++j) {
@@ -416,7 +380,7 @@ void RansacOnCandidates(const std::vector<MotionCorrespondence>& correspondences
 /// refinement (its motion with the rotation re-orthonormalised); `mask` must not be
 /// result->inlier_mask.
 void RefineAndReselect(const std::vector<MotionCorrespondence>& correspondences,
-                       const std::vector<unsigned char>& mask, const StereoCamera& camera,
+                       const std::vector<unsigned char>& mask, const geometry::StereoCamera& camera,
                        const Eigen::Isometry3d& T_init, const StereoMotionOptions& options,
                        StereoMotionResult* result) {
   const double threshold = options.ransac.threshold_px;
@@ -440,9 +404,9 @@ void RefineAndReselect(const std::vector<MotionCorrespondence>& correspondences,
 }  // namespace
 
 void EstimateStereoMotion(const std::vector<MotionCorrespondence>& correspondences,
-                          const std::vector<unsigned char>& candidates, const StereoCamera& camera,
-                          const StereoMotionOptions& options, std::mt19937_64& rng,
-                          StereoMotionResult* result) {
+                          const std::vector<unsigned char>& candidates,
+                          const geometry::StereoCamera& camera, const StereoMotionOptions& options,
+                          std::mt19937_64& rng, StereoMotionResult* result) {
   options.Validate();
   const std::size_t n = correspondences.size();
   if (!candidates.empty() && candidates.size() != n) {

@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "trackbed/common/option_error.h"
+#include "trackbed/common/se3.h"
+#include "trackbed/common/units.h"
 #include "trackbed/estimation/constant_velocity.h"
 
 namespace trackbed::estimation {
@@ -87,9 +89,18 @@ StereoMotionOptions MotionOptionsOf(const StereoVisualOdometryOptions& options) 
 
 }  // namespace
 
-StereoVisualOdometry::StereoVisualOdometry(const perception::StereoCalibration& calibration,
+namespace {
+
+geometry::StereoCamera Checked(const geometry::StereoCamera& camera) {
+  camera.CheckIntrinsics("StereoVisualOdometry");
+  return camera;
+}
+
+}  // namespace
+
+StereoVisualOdometry::StereoVisualOdometry(const geometry::StereoCamera& camera,
                                            const StereoVisualOdometryOptions& options)
-    : camera_(StereoCamera::FromCalibration(calibration)),
+    : camera_(Checked(camera)),
       options_(Validated(options)),
       motion_options_(MotionOptionsOf(options_)),
       tracker_(options_.tracker),
@@ -345,7 +356,7 @@ std::optional<StereoVisualOdometry::Failure> StereoVisualOdometry::EstimateMotio
 std::optional<std::string> StereoVisualOdometry::ExceedsFrameBounds(
     const Eigen::Isometry3d& T) const {
   const double moved_m = T.translation().norm();
-  const double turned_deg = Eigen::AngleAxisd(T.linear()).angle() * 180.0 / M_PI;
+  const double turned_deg = units::Degrees(geometry::RotationAngle(T.linear()));
   if (moved_m > options_.max_translation_per_frame_m ||
       turned_deg > options_.max_rotation_per_frame_deg) {
     char reason[256];
@@ -364,7 +375,7 @@ std::optional<std::string> StereoVisualOdometry::BreaksDynamics(
   if (frame.R_prev_curr_prior) {
     // T maps prev to curr: its rotation times the prior's (prev from curr) is the error.
     const double error_deg =
-        Eigen::AngleAxisd(T.linear() * *frame.R_prev_curr_prior).angle() * 180.0 / M_PI;
+        units::Degrees(geometry::RotationAngle(T.linear() * *frame.R_prev_curr_prior));
     if (error_deg > options_.max_rotation_prior_error_deg) {
       std::snprintf(reason, sizeof(reason),
                     "rotation departs from the prior's by %.2f deg (bound %.2f)", error_deg,
@@ -376,7 +387,7 @@ std::optional<std::string> StereoVisualOdometry::BreaksDynamics(
   const double dt = frame.t_s - last_t_s_;
   const Eigen::Isometry3d change = predicted.inverse() * T;
   const double change_m = change.translation().norm();
-  const double change_deg = Eigen::AngleAxisd(change.linear()).angle() * 180.0 / M_PI;
+  const double change_deg = units::Degrees(geometry::RotationAngle(change.linear()));
   const double bound_m = options_.max_acceleration_mps2 * dt * dt;
   const double bound_deg = frame.R_prev_curr_prior
                                ? std::numeric_limits<double>::infinity()

@@ -6,6 +6,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "trackbed/common/units.h"
+
 namespace trackbed::navigation {
 
 double PathLength(const std::vector<NavigationLogEntry>& log) {
@@ -61,7 +63,7 @@ NavigationMetrics ComputeNavigationMetrics(const std::vector<NavigationLogEntry>
   double position = 0.0, heading = 0.0;
   errors(log.back(), &position, &heading);
   m.final_position_error_m = position;
-  m.final_heading_error_deg = heading * 180.0 / M_PI;
+  m.final_heading_error_deg = units::Degrees(heading);
 
   m.min_clearance_m = std::numeric_limits<double>::infinity();
   double sum = 0.0;

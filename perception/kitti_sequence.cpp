@@ -95,12 +95,18 @@ std::size_t CountFrames(const fs::path& folder) {
   return indices.size();
 }
 
+/// The calibration as calib.txt holds it: KITTI's P0 (left) and P1 (right).
+struct KittiProjections {
+  Eigen::Matrix<double, 3, 4> P0 = Eigen::Matrix<double, 3, 4>::Zero();
+  Eigen::Matrix<double, 3, 4> P1 = Eigen::Matrix<double, 3, 4>::Zero();
+};
+
 /// Empty if `c` is a rectified KITTI stereo pair P0 = K [I|0], P1 = K [I|t] with
 /// t = (-fx b, 0, 0) and b > 0; otherwise the reason.
-std::string CalibrationProblem(const StereoCalibration& c) {
+std::string CalibrationProblem(const KittiProjections& c) {
   if (!c.P0.allFinite() || !c.P1.allFinite()) return "P0/P1 must be finite";
-  if (!(c.fx() > 0.0) || !(c.fy() > 0.0)) return "P0 must have fx > 0 and fy > 0";
-  const double tol = 1e-9 * std::max(1.0, std::abs(c.fx()));
+  if (!(c.P0(0, 0) > 0.0) || !(c.P0(1, 1) > 0.0)) return "P0 must have fx > 0 and fy > 0";
+  const double tol = 1e-9 * std::max(1.0, std::abs(c.P0(0, 0)));
   Eigen::Matrix<double, 1, 4> last_row;
   last_row << 0.0, 0.0, 1.0, 0.0;
   if ((c.P0.row(2) - last_row).cwiseAbs().maxCoeff() > tol || std::abs(c.P0(1, 0)) > tol) {
@@ -115,18 +121,20 @@ std::string CalibrationProblem(const StereoCalibration& c) {
   if (std::abs(c.P1(1, 3)) > tol || std::abs(c.P1(2, 3)) > tol) {
     return "P1's last column must be (-fx*baseline, 0, 0)";
   }
-  if (!(c.baseline_m() > 0.0)) return "P1 must have a positive baseline (P1(0,3) < 0)";
+  if (!(-c.P1(0, 3) / c.P1(0, 0) > 0.0)) {
+    return "P1 must have a positive baseline (P1(0,3) < 0)";
+  }
   return {};
 }
 
-StereoCalibration ReadCalibration(const fs::path& path) {
+geometry::StereoCamera ReadCalibration(const fs::path& path) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) {
     throw std::runtime_error("KittiSequence: " + path.string() + " not found");
   }
   std::ifstream in(path);
   if (!in) throw std::runtime_error("KittiSequence: cannot open " + path.string());
-  StereoCalibration calibration;
+  KittiProjections calibration;
   bool have_p0 = false, have_p1 = false;
   std::string line;
   std::vector<double> values;
@@ -165,7 +173,7 @@ StereoCalibration ReadCalibration(const fs::path& path) {
   if (!problem.empty()) {
     throw std::runtime_error("KittiSequence: " + path.string() + ": " + problem);
   }
-  return calibration;
+  return geometry::StereoCamera::FromProjections(calibration.P0, calibration.P1);
 }
 
 std::vector<double> ReadTimes(const fs::path& path) {
@@ -215,23 +223,6 @@ std::vector<Eigen::Isometry3d> ReadPoses(const fs::path& path) {
 }
 
 }  // namespace
-
-StereoCalibration StereoCalibration::FromIntrinsics(double fx, double fy, double cx, double cy,
-                                                    double baseline_m) {
-  if (!(std::isfinite(fx) && fx > 0.0) || !(std::isfinite(fy) && fy > 0.0) || !std::isfinite(cx) ||
-      !std::isfinite(cy) || !(std::isfinite(baseline_m) && baseline_m > 0.0)) {
-    throw std::invalid_argument(
-        "StereoCalibration::FromIntrinsics: needs fx, fy, baseline_m > 0 and finite cx, cy");
-  }
-  Eigen::Matrix3d K;
-  K << fx, 0.0, cx, 0.0, fy, cy, 0.0, 0.0, 1.0;
-  StereoCalibration c;
-  c.P0.leftCols<3>() = K;
-  c.P0.col(3).setZero();
-  c.P1.leftCols<3>() = K;
-  c.P1.col(3) << -fx * baseline_m, 0.0, 0.0;
-  return c;
-}
 
 // ---------------------------------------------------------------------------
 // KittiSequence
@@ -289,6 +280,8 @@ KittiSequence::KittiSequence(const std::filesystem::path& dir,
     throw std::runtime_error("KittiSequence: cannot read image " + first.string());
   }
   image_size_ = image.size();
+  calibration_.left.width_px = image_size_.width;
+  calibration_.left.height_px = image_size_.height;
 }
 
 cv::Mat KittiSequence::LoadLeft(std::size_t i) const { return Load("image_0", i); }
@@ -317,8 +310,9 @@ cv::Mat KittiSequence::Load(const char* folder, std::size_t i) const {
 // ---------------------------------------------------------------------------
 // KittiWriter
 
-KittiWriter::KittiWriter(const std::filesystem::path& dir, const StereoCalibration& calibration)
+KittiWriter::KittiWriter(const std::filesystem::path& dir, const geometry::StereoCamera& camera)
     : dir_(dir) {
+  const KittiProjections calibration{camera.LeftProjection(), camera.RightProjection()};
   const std::string problem = CalibrationProblem(calibration);
   if (!problem.empty()) throw std::invalid_argument("KittiWriter: " + problem);
 

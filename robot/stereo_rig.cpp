@@ -7,6 +7,7 @@
 
 #include "trackbed/common/option_error.h"
 #include "trackbed/common/split_mix.h"
+#include "trackbed/common/units.h"
 
 namespace trackbed::robot {
 
@@ -47,15 +48,15 @@ bool StereoRigOptions::InBlackout(double t_s) const {
 
 StereoRig::StereoRig(const StereoRigOptions& options) : options_(options) {
   options_.Validate();
-  intrinsics_ = sim::PinholeIntrinsics::FromFieldOfView(options_.width_px, options_.height_px,
-                                                        options_.hfov_deg * M_PI / 180.0);
+  intrinsics_ = geometry::PinholeCamera::FromFieldOfView(options_.width_px, options_.height_px,
+                                                         units::Radians(options_.hfov_deg));
   // Camera axes in body axes for a level camera: z_cam = x_body, x_cam = −y_body,
   // y_cam = −z_body; then tilt down about the camera's x axis.
   Eigen::Matrix3d R_body_cam;
   R_body_cam.col(0) = -Eigen::Vector3d::UnitY();
   R_body_cam.col(1) = -Eigen::Vector3d::UnitZ();
   R_body_cam.col(2) = Eigen::Vector3d::UnitX();
-  const double pitch = options_.pitch_down_deg * M_PI / 180.0;
+  const double pitch = units::Radians(options_.pitch_down_deg);
   R_body_cam = R_body_cam * Eigen::AngleAxisd(-pitch, Eigen::Vector3d::UnitX()).toRotationMatrix();
   const Eigen::Vector3d half_baseline = 0.5 * options_.baseline_m * R_body_cam.col(0);
   T_body_left_.setIdentity();
@@ -66,7 +67,7 @@ StereoRig::StereoRig(const StereoRigOptions& options) : options_(options) {
 }
 
 void ApplySensorModel(double exposure, double noise_std, std::uint64_t seed, std::uint64_t frame,
-                      int camera, sim::GrayImage* image) {
+                      int camera, GrayImage* image) {
   if (exposure == 1.0 && noise_std == 0.0) return;
   // Noise values come from a table of 65536 samples of the Irwin–Hall sum of
   // four uniforms (zero mean, unit variance: close to Gaussian), indexed by a

@@ -13,7 +13,9 @@
 #include <utility>
 
 #include "trackbed/common/split_mix.h"
+#include "trackbed/common/units.h"
 #include "trackbed/estimation/skid_steer.h"
+#include "trackbed/perception/opencv_views.h"
 #include "trackbed/robot/encoder.h"
 #include "trackbed/robot/tracked_vehicle.h"
 #include "trackbed/runner/closed_loop_navigation.h"
@@ -48,15 +50,12 @@ EstimateSample EstimateAfterEncoders(estimation::LocalizationStack& stack, const
 }
 
 LocalizationFrame LocalizeStereoFrame(estimation::LocalizationStack& stack, double t_s,
-                                      bool blackout, const sim::GrayImage& left,
-                                      const sim::GrayImage& right) {
-  const auto as_mat = [](const sim::GrayImage& g) {
-    return cv::Mat(g.height, g.width, CV_8UC1, const_cast<std::uint8_t*>(g.pixels.data()));
-  };
+                                      bool blackout, const GrayImage& left,
+                                      const GrayImage& right) {
   LocalizationFrame lf;
   lf.t_s = t_s;
   lf.camera_blackout = blackout;
-  lf.report = stack.AddStereoFrame(t_s, as_mat(left), as_mat(right));
+  lf.report = stack.AddStereoFrame(t_s, perception::AsCvMat(left), perception::AsCvMat(right));
   lf.visual_odometry = stack.visual_odometry();
   return lf;
 }
@@ -95,7 +94,7 @@ struct CameraPipeline {
   std::int64_t frame_index;
   bool blackout;
 
-  void Apply(sim::GrayImage* left, sim::GrayImage* right) const {
+  void Apply(GrayImage* left, GrayImage* right) const {
     const auto frame = static_cast<std::uint64_t>(frame_index);
     robot::ApplySensorModel(stereo.exposure, stereo.noise_std, noise_seed, frame, 0, left);
     robot::ApplySensorModel(stereo.exposure, stereo.noise_std, noise_seed, frame, 1, right);
@@ -158,7 +157,7 @@ class ClosedLoop::Impl {
   void RecordFailure(const std::exception& e);
 
  private:
-  using ImagePair = std::pair<sim::GrayImage, sim::GrayImage>;
+  using ImagePair = std::pair<GrayImage, GrayImage>;
 
   void BuildWorld();
   void BuildSoftware();
@@ -200,7 +199,7 @@ class ClosedLoop::Impl {
   std::int64_t last_ticks_[2] = {0, 0};
   std::optional<robot::StereoRig> rig_;
   std::unique_ptr<sim::Renderer> renderer_;
-  sim::GrayImage left_image_, right_image_;
+  GrayImage left_image_, right_image_;
   std::unique_ptr<sim::CameraExposure> exposure_;
   std::unique_ptr<estimation::LocalizationStack> stack_;
   EstimatorScoring estimates_;
@@ -249,8 +248,8 @@ void ClosedLoop::Impl::BuildWorld() {
       scenario_.scene.world,
       sim::Terrain(scenario_.scene.terrain, split_mix::Stream(scenario_.seed, 0)),
       scenario_.scene.objects);
-  vehicle_ = std::make_unique<robot::TrackedVehicle>(rs.vehicle, world_.get(), rs.start.x_m,
-                                                     rs.start.y_m, rs.start.yaw_deg * M_PI / 180.0);
+  vehicle_ = std::make_unique<robot::TrackedVehicle>(
+      rs.vehicle, world_.get(), rs.start.x_m, rs.start.y_m, units::Radians(rs.start.yaw_deg));
   imu_ = std::make_unique<robot::Imu>(rs.imu, scenario_.scene.world.gravity_mps2,
                                       split_mix::Stream(scenario_.seed, 1));
   if (rs.stereo.enabled) {
@@ -276,14 +275,10 @@ void ClosedLoop::Impl::BuildWorld() {
 void ClosedLoop::Impl::BuildSoftware() {
   const scenario::RobotSpec& rs = scenario_.robot;
   if (scenario_.estimation.enabled) {
-    std::optional<perception::StereoCalibration> calibration;
-    if (rig_) {
-      const sim::PinholeIntrinsics& K = rig_->intrinsics();
-      calibration = perception::StereoCalibration::FromIntrinsics(K.fx, K.fy, K.cx, K.cy,
-                                                                  rs.stereo.baseline_m);
-    }
+    std::optional<geometry::StereoCamera> camera;
+    if (rig_) camera = rig_->stereo_camera();
     stack_ = std::make_unique<estimation::LocalizationStack>(
-        LocalizationOptionsOf(scenario_), calibration ? &*calibration : nullptr,
+        LocalizationOptionsOf(scenario_), camera ? &*camera : nullptr,
         rig_ ? rig_->T_body_left() : Eigen::Isometry3d::Identity(),
         vehicle_->chassis().T_world_body);
   }
@@ -434,8 +429,8 @@ bool ClosedLoop::Impl::TakeStereoFrame(const robot::ChassisState& truth, StepRes
   // With the worker, the pair is rendered straight into a buffer that the worker then
   // reads, so the main thread copies no image.
   ImagePair* pair = worker_ ? FreePair() : nullptr;
-  sim::GrayImage& left = pair ? pair->first : left_image_;
-  sim::GrayImage& right = pair ? pair->second : right_image_;
+  GrayImage& left = pair ? pair->first : left_image_;
+  GrayImage& right = pair ? pair->second : right_image_;
   // Each image is exposed around the frame's time (an instant by default).
   const sim::BodyMotion motion{truth.T_world_body, truth.v_world, truth.omega_world};
   exposure_->Render(*renderer_, rig_->intrinsics(), motion, rig_->T_body_left(), frame.t_s, &left,
@@ -466,8 +461,7 @@ bool ClosedLoop::Impl::TakeStereoFrame(const robot::ChassisState& truth, StepRes
   if (options_.step_images) out->stereo.push_back({frame.t_s, left, right});
   if (observers_.on_stereo) observers_.on_stereo(frame);
   if (image_commander) {
-    const cv::Mat left_mat(left.height, left.width, CV_8UC1,
-                           const_cast<std::uint8_t*>(left.pixels.data()));
+    const cv::Mat left_mat = perception::AsCvMat(left);
     if (!Control(truth, &left_mat)) return false;
   }
   if (pair) SubmitFrame(pair, truth.T_world_body, frame.t_s, finish, finish_on_worker);

@@ -13,6 +13,7 @@
 #include "trackbed/estimation/trajectory.h"
 #include "trackbed/estimation/trajectory_metrics.h"
 #include "trackbed/perception/kitti_sequence.h"
+#include "trackbed/perception/opencv_views.h"
 #include "trackbed/runner/log_file.h"
 #include "trackbed/runner/navigation_log.h"
 #include "trackbed/runner/navigation_scenario.h"
@@ -35,7 +36,7 @@ nlohmann::ordered_json SlipJson(const SlipStats& s) {
 
 // Intrinsics and extrinsics of the stereo rig, as used for rendering.
 std::string StereoCalibrationJson(const robot::StereoRig& rig) {
-  const sim::PinholeIntrinsics& K = rig.intrinsics();
+  const geometry::PinholeCamera& K = rig.intrinsics();
   auto pose = [](const Eigen::Isometry3d& T) {
     nlohmann::ordered_json rows = nlohmann::ordered_json::array();
     for (int r = 0; r < 4; ++r) {
@@ -351,10 +352,8 @@ RunFolderWriter::RunFolderWriter(const scenario::Scenario& scenario, const fs::p
     const robot::StereoRig rig(scenario.robot.stereo);
     WriteAtomically(dir / "stereo_calibration.json", StereoCalibrationJson(rig));
     if (scenario.outputs.save_images == "kitti") {
-      const sim::PinholeIntrinsics& K = rig.intrinsics();
-      files_->kitti = std::make_unique<perception::KittiWriter>(
-          dir / "images", perception::StereoCalibration::FromIntrinsics(
-                              K.fx, K.fy, K.cx, K.cy, scenario.robot.stereo.baseline_m));
+      files_->kitti =
+          std::make_unique<perception::KittiWriter>(dir / "images", rig.stereo_camera());
     }
   }
   if (scenario.navigation.enabled) {
@@ -373,10 +372,7 @@ RunObservers RunFolderWriter::observers() {
   if (f.kitti) {
     o.on_stereo = [&f](const StereoFrame& s) {
       if (s.index == 0) f.T_world_cam0 = s.T_world_left;
-      auto as_mat = [](const sim::GrayImage& g) {
-        return cv::Mat(g.height, g.width, CV_8UC1, const_cast<std::uint8_t*>(g.pixels.data()));
-      };
-      f.kitti->Add(s.t_s, as_mat(*s.left), as_mat(*s.right),
+      f.kitti->Add(s.t_s, perception::AsCvMat(*s.left), perception::AsCvMat(*s.right),
                    f.T_world_cam0.inverse() * s.T_world_left);
     };
   }

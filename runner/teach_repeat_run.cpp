@@ -15,7 +15,7 @@
 #include "trackbed/common/units.h"
 #include "trackbed/estimation/trajectory_io.h"
 #include "trackbed/estimation/wheel_odometry.h"
-#include "trackbed/perception/kitti_sequence.h"
+#include "trackbed/perception/opencv_views.h"
 #include "trackbed/runner/closed_loop.h"
 #include "trackbed/runner/repeat_commander.h"
 #include "trackbed/runner/run_folder.h"
@@ -39,10 +39,8 @@ teach_repeat::TeachMap Teach(const scenario::Scenario& scenario, const fs::path&
   teach.teach_repeat.enabled = false;
   const scenario::RobotSpec& rs = scenario.robot;
   const robot::StereoRig rig(rs.stereo);
-  const sim::PinholeIntrinsics& K = rig.intrinsics();
   const teach_repeat::CameraIntrinsics camera = teach_repeat::CameraIntrinsics::FromCalibration(
-      perception::StereoCalibration::FromIntrinsics(K.fx, K.fy, K.cx, K.cy, rs.stereo.baseline_m),
-      cv::Size(rs.stereo.width_px, rs.stereo.height_px));
+      rig.stereo_camera(), cv::Size(rs.stereo.width_px, rs.stereo.height_px));
   teach_repeat::MilestoneBuilderOptions options;
   options.mode = scenario.teach_repeat.method == "3d" ? teach_repeat::TeachMode::k3d
                                                       : teach_repeat::TeachMode::k2d;
@@ -58,9 +56,7 @@ teach_repeat::TeachMap Teach(const scenario::Scenario& scenario, const fs::path&
   RunObservers extra;
   extra.on_stereo = [&](const StereoFrame& f) {
     odometry.AddEncoderSample(f.t_s, f.ticks[0], f.ticks[1]);
-    const cv::Mat left(f.left->height, f.left->width, CV_8UC1,
-                       const_cast<std::uint8_t*>(f.left->pixels.data()));
-    builder.AddImage(left, f.t_s, odometry.pose());
+    builder.AddImage(perception::AsCvMat(*f.left), f.t_s, odometry.pose());
   };
   extra.on_sample = [&](const RunSample& s) {
     taught_path->push_back(s.chassis.T_world_body.translation().head<2>());

@@ -30,7 +30,7 @@ CameraExposure::CameraExposure(double exposure_time_s, int samples)
   }
 }
 
-void CameraExposure::Render(Renderer& renderer, const PinholeIntrinsics& K,
+void CameraExposure::Render(Renderer& renderer, const geometry::PinholeCamera& K,
                             const BodyMotion& motion, const Eigen::Isometry3d& T_body_camera,
                             double t_s, GrayImage* gray, const Eigen::Vector2d* detail_center_xy) {
   const int n = samples();

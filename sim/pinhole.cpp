@@ -1,4 +1,4 @@
-// Pinhole model and its OpenGL projection (see pinhole.h).
+// The pinhole camera's OpenGL projection (see pinhole.h).
 //
 // Derivation of OpenGlProjection: with X, Y, Z the OpenCV camera coordinates
 // (X = x_gl, Y = −y_gl, Z = −z_gl), OpenGL puts the centre of window pixel
@@ -12,20 +12,16 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace trackbed::sim {
 
-PinholeIntrinsics PinholeIntrinsics::FromFieldOfView(int width_px, int height_px, double hfov_rad) {
-  PinholeIntrinsics K;
-  K.width_px = width_px;
-  K.height_px = height_px;
-  K.fx = K.fy = 0.5 * width_px / std::tan(0.5 * hfov_rad);
-  K.cx = 0.5 * (width_px - 1);
-  K.cy = 0.5 * (height_px - 1);
-  return K;
-}
-
-Eigen::Matrix4d OpenGlProjection(const PinholeIntrinsics& K, double near_m, double far_m) {
+Eigen::Matrix4d OpenGlProjection(const geometry::PinholeCamera& K, double near_m, double far_m) {
+  if (!K.distortion.is_zero()) {
+    throw std::invalid_argument(
+        "OpenGlProjection: rasterises an ideal pinhole; a lens with "
+        "distortion must be applied to the rendered image");
+  }
   const double w = K.width_px, h = K.height_px;
   Eigen::Matrix4d P = Eigen::Matrix4d::Zero();
   P(0, 0) = 2.0 * K.fx / w;

@@ -23,6 +23,7 @@
 #include <stdexcept>
 
 #include "trackbed/common/option_error.h"
+#include "trackbed/common/units.h"
 #include "trackbed/sim/procedural_texture.h"
 #include "trackbed/sim/terrain_detail.h"
 
@@ -340,7 +341,7 @@ struct Renderer::Gl {
       glPushMatrix();
       glTranslated(o.center_m.x(), o.center_m.y(), o.base_z_m);
       if (o.shape == StaticObject::Shape::kBox) {
-        glRotated(o.yaw_rad * 180.0 / M_PI, 0, 0, 1);
+        glRotated(units::Degrees(o.yaw_rad), 0, 0, 1);
         glTranslated(0, 0, o.size_m.z() / 2);
         DrawBox(o.size_m, tex.meters_per_repeat);
         const double r = 0.5 * o.size_m.head<2>().norm();
@@ -487,7 +488,7 @@ std::string Renderer::gl_description() const {
   return std::string(renderer ? renderer : "?") + " / " + (version ? version : "?");
 }
 
-void Renderer::Render(const PinholeIntrinsics& K, const Eigen::Isometry3d& T_world_camera,
+void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d& T_world_camera,
                       double t_s, GrayImage* gray, DepthImage* depth,
                       const Eigen::Vector2d* detail_center_xy) {
   Gl& g = *gl_;
@@ -512,8 +513,8 @@ void Renderer::Render(const PinholeIntrinsics& K, const Eigen::Isometry3d& T_wor
   view = view * T_camera_world.matrix();
   glMatrixMode(GL_MODELVIEW);
   glLoadMatrixd(view.data());
-  const double az = g.appearance.sun_azimuth_deg * M_PI / 180.0;
-  const double el = g.appearance.sun_elevation_deg * M_PI / 180.0;
+  const double az = units::Radians(g.appearance.sun_azimuth_deg);
+  const double el = units::Radians(g.appearance.sun_elevation_deg);
   const float sun[] = {static_cast<float>(std::cos(el) * std::cos(az)),
                        static_cast<float>(std::cos(el) * std::sin(az)),
                        static_cast<float>(std::sin(el)), 0.0f};
@@ -573,7 +574,7 @@ void Renderer::Render(const PinholeIntrinsics& K, const Eigen::Isometry3d& T_wor
     glPushMatrix();
     glTranslated(pose.position_m.x(), pose.position_m.y(),
                  g.terrain->Height(pose.position_m.x(), pose.position_m.y()));
-    glRotated(pose.yaw_rad * 180.0 / M_PI, 0, 0, 1);
+    glRotated(units::Degrees(pose.yaw_rad), 0, 0, 1);
     glCallList(g.occluder_lists[k]);
     glPopMatrix();
   }

@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "trackbed/common/option_error.h"
+#include "trackbed/common/units.h"
 
 namespace trackbed::sim {
 
@@ -52,7 +53,7 @@ void SoilPoint::SetTanPhi(double t) {
 SoilPoint SoilOf(const TerrainMaterial& m) {
   SoilPoint s;
   s.cohesion_pa = m.cohesion_pa;
-  s.SetTanPhi(std::tan(m.friction_angle_deg * M_PI / 180.0));
+  s.SetTanPhi(std::tan(units::Radians(m.friction_angle_deg)));
   s.shear_modulus_m = m.shear_modulus_m;
   s.lateral_shear_modulus_m = m.shear_modulus_m * m.lateral_shear_modulus_ratio;
   s.lateral_strength_ratio = m.lateral_strength_ratio;
@@ -80,7 +81,7 @@ TerrainMaterial Make(const char* name, double c_pa, double phi_deg, double k_m, 
   return m;
 }
 
-double DegOfFriction(double mu) { return std::atan(mu) * 180.0 / M_PI; }
+double DegOfFriction(double mu) { return units::Degrees(std::atan(mu)); }
 
 // Bulk unit weights γ [N/m³] (Das, Principles of Geotechnical Engineering: loose
 // dry sand 14–16 kN/m³, moist loams and clays 17–19 kN/m³): only the weight

@@ -178,13 +178,13 @@ class Reader {
 
 // --- CameraIntrinsics, enums. -------------------------------------------------------------
 
-CameraIntrinsics CameraIntrinsics::FromCalibration(const perception::StereoCalibration& calibration,
+CameraIntrinsics CameraIntrinsics::FromCalibration(const geometry::StereoCamera& calibration,
                                                    cv::Size image_size) {
   CameraIntrinsics c;
-  c.fx = calibration.fx();
-  c.fy = calibration.fy();
-  c.cx = calibration.cx();
-  c.cy = calibration.cy();
+  c.fx = calibration.left.fx;
+  c.fy = calibration.left.fy;
+  c.cx = calibration.left.cx;
+  c.cy = calibration.left.cy;
   c.width = image_size.width;
   c.height = image_size.height;
   c.Validate();

@@ -12,6 +12,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "trackbed/common/option_error.h"
+#include "trackbed/common/se3.h"
 #include "trackbed/estimation/pose2.h"
 
 namespace trackbed::teach_repeat {
@@ -62,17 +63,11 @@ double ParabolaPeak(double a, double b, double c) {
   return std::clamp(0.5 * (a - c) / denominator, -0.5, 0.5);
 }
 
-Eigen::Matrix3d Skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d S;
-  S << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return S;
-}
-
 /// Sampson residuals (signed, normalised image units) of x_b ᵀ [t]× R x_a = 0.
 void SampsonResiduals(const std::vector<Eigen::Vector3d>& xa,
                       const std::vector<Eigen::Vector3d>& xb, const Eigen::Matrix3d& R,
                       const Eigen::Vector3d& t, Eigen::VectorXd* r) {
-  const Eigen::Matrix3d E = Skew(t) * R;
+  const Eigen::Matrix3d E = geometry::Skew(t) * R;
   r->resize(static_cast<Eigen::Index>(xa.size()));
   for (std::size_t i = 0; i < xa.size(); ++i) {
     const Eigen::Vector3d Ea = E * xa[i];
@@ -96,10 +91,7 @@ void RefineRelativePose(const std::vector<Eigen::Vector3d>& xa,
   auto apply = [](const Eigen::Matrix<double, 5, 1>& d, const Eigen::Matrix3d& R0,
                   const Eigen::Vector3d& t0, Eigen::Matrix3d* R1, Eigen::Vector3d* t1) {
     const Eigen::Vector3d w = d.head<3>();
-    const double angle = w.norm();
-    const Eigen::Matrix3d dR = angle > 0.0 ? Eigen::AngleAxisd(angle, w / angle).toRotationMatrix()
-                                           : Eigen::Matrix3d::Identity();
-    *R1 = dR * R0;
+    *R1 = geometry::ExpSO3(w) * R0;
     Eigen::Vector3d b1 = t0.unitOrthogonal();
     Eigen::Vector3d b2 = t0.normalized().cross(b1);
     *t1 = (t0 + d(3) * b1 + d(4) * b2).normalized();

@@ -6,6 +6,7 @@
 #include <opencv2/core.hpp>
 
 #include "trackbed/perception/kitti_sequence.h"
+#include "trackbed/perception/opencv_views.h"
 #include "trackbed/runner/closed_loop.h"
 #include "trackbed/runner/run_scenario.h"
 #include "trackbed/scenario/scenario_yaml.h"
@@ -27,15 +28,11 @@ TEST(KittiExportTest, ExportReadsBackAsTheSameImagesCalibrationAndPoses) {
   std::vector<cv::Mat> lefts, rights;
   std::vector<Eigen::Isometry3d> T_world_left;
   std::vector<double> times;
-  sim::PinholeIntrinsics K;
+  geometry::PinholeCamera K;
   runner::RunObservers obs;
   obs.on_stereo = [&](const runner::StereoFrame& f) {
-    lefts.push_back(cv::Mat(f.left->height, f.left->width, CV_8UC1,
-                            const_cast<std::uint8_t*>(f.left->pixels.data()))
-                        .clone());
-    rights.push_back(cv::Mat(f.right->height, f.right->width, CV_8UC1,
-                             const_cast<std::uint8_t*>(f.right->pixels.data()))
-                         .clone());
+    lefts.push_back(perception::AsCvMat(*f.left).clone());
+    rights.push_back(perception::AsCvMat(*f.right).clone());
     T_world_left.push_back(f.T_world_left);
     times.push_back(f.t_s);
     K = f.rig->intrinsics();
@@ -45,10 +42,10 @@ TEST(KittiExportTest, ExportReadsBackAsTheSameImagesCalibrationAndPoses) {
 
   const perception::KittiSequence seq(dir / "images");
   ASSERT_EQ(seq.size(), lefts.size());
-  EXPECT_NEAR(seq.calibration().fx(), K.fx, 1e-9);
-  EXPECT_NEAR(seq.calibration().cx(), K.cx, 1e-9);
-  EXPECT_NEAR(seq.calibration().cy(), K.cy, 1e-9);
-  EXPECT_NEAR(seq.calibration().baseline_m(), 0.12, 1e-12);
+  EXPECT_NEAR(seq.calibration().left.fx, K.fx, 1e-9);
+  EXPECT_NEAR(seq.calibration().left.cx, K.cx, 1e-9);
+  EXPECT_NEAR(seq.calibration().left.cy, K.cy, 1e-9);
+  EXPECT_NEAR(seq.calibration().baseline_m, 0.12, 1e-12);
   ASSERT_TRUE(seq.has_poses());
   for (std::size_t i = 0; i < seq.size(); ++i) {
     EXPECT_EQ(cv::norm(seq.LoadLeft(i), lefts[i], cv::NORM_INF), 0.0) << i;

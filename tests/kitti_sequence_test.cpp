@@ -30,6 +30,17 @@ fs::path RealKittiDir() { return fs::path(TRACKBED_DATA_DIR) / "kitti06"; }
                  << ": set TRACKBED_DATA_DIR";                        \
   }
 
+/// A rectified pair with these intrinsics [px] and baseline [m] (no image size).
+geometry::StereoCamera Camera(double fx, double fy, double cx, double cy, double baseline_m) {
+  geometry::StereoCamera c;
+  c.left.fx = fx;
+  c.left.fy = fy;
+  c.left.cx = cx;
+  c.left.cy = cy;
+  c.baseline_m = baseline_m;
+  return c;
+}
+
 Eigen::Isometry3d RandomPose(std::mt19937& rng) {
   std::normal_distribution<double> n(0.0, 1.0);
   Eigen::Quaterniond q(n(rng), n(rng), n(rng), n(rng));
@@ -105,8 +116,7 @@ class KittiSequenceTest : public ::testing::Test {
   }
 
   fs::path dir_;
-  StereoCalibration calibration_ =
-      StereoCalibration::FromIntrinsics(400.125, 401.5, 319.75, 239.25, 0.12);
+  geometry::StereoCamera calibration_ = Camera(400.125, 401.5, 319.75, 239.25, 0.12);
 };
 
 TEST_F(KittiSequenceTest, RealKitti06Reads) {
@@ -114,13 +124,15 @@ TEST_F(KittiSequenceTest, RealKitti06Reads) {
   const KittiSequence sequence(RealKittiDir());
   ASSERT_EQ(sequence.size(), 51u);
   EXPECT_EQ(sequence.image_size(), cv::Size(1226, 370));
-  const StereoCalibration& c = sequence.calibration();
-  EXPECT_NEAR(c.fx(), 707.0912, 1e-9);
-  EXPECT_NEAR(c.fy(), 707.0912, 1e-9);
-  EXPECT_NEAR(c.cx(), 601.8873, 1e-9);
-  EXPECT_NEAR(c.cy(), 183.1104, 1e-9);
-  EXPECT_NEAR(c.baseline_m(), 0.537, 1e-3);
-  EXPECT_NEAR(c.baseline_m(), 379.8145 / 707.0912, 1e-12);
+  const geometry::StereoCamera& c = sequence.calibration();
+  EXPECT_NEAR(c.left.fx, 707.0912, 1e-9);
+  EXPECT_NEAR(c.left.fy, 707.0912, 1e-9);
+  EXPECT_NEAR(c.left.cx, 601.8873, 1e-9);
+  EXPECT_NEAR(c.left.cy, 183.1104, 1e-9);
+  EXPECT_EQ(c.left.width_px, 1226);
+  EXPECT_EQ(c.left.height_px, 370);
+  EXPECT_NEAR(c.baseline_m, 0.537, 1e-3);
+  EXPECT_NEAR(c.baseline_m, 379.8145 / 707.0912, 1e-12);
 
   ASSERT_EQ(sequence.times_s().size(), 51u);
   EXPECT_EQ(sequence.times_s().front(), 0.0);
@@ -193,9 +205,10 @@ TEST_F(KittiSequenceTest, WriterReaderRoundTrip) {
   const KittiSequence sequence(seq);
   ASSERT_EQ(sequence.size(), 6u);
   EXPECT_EQ(sequence.image_size(), cv::Size(64, 48));
-  EXPECT_LE((sequence.calibration().P0 - calibration_.P0).cwiseAbs().maxCoeff(), 1e-9);
-  EXPECT_LE((sequence.calibration().P1 - calibration_.P1).cwiseAbs().maxCoeff(), 1e-9);
-  EXPECT_NEAR(sequence.calibration().baseline_m(), 0.12, 1e-9);
+  const geometry::StereoCamera& read = sequence.calibration();
+  EXPECT_LE((read.LeftProjection() - calibration_.LeftProjection()).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_LE((read.RightProjection() - calibration_.RightProjection()).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_NEAR(read.baseline_m, 0.12, 1e-9);
   ASSERT_TRUE(sequence.has_poses());
   for (std::size_t k = 0; k < 6; ++k) {
     EXPECT_EQ(cv::norm(sequence.LoadLeft(k), lefts[k], cv::NORM_INF), 0.0);
@@ -246,8 +259,8 @@ TEST_F(KittiSequenceTest, AcceptsRealKittiCalibAndTimesStyle) {
             "9.999738645903e-01 4.859485810390e-04 -7.206933692422e-03 -2.921968648686e-01\r\n");
   WriteText(seq / "times.txt", "0.000000e+00\n1.036224e-01\r\n2.072416e-01\n\n");
   const KittiSequence sequence(seq);
-  EXPECT_NEAR(sequence.calibration().fx(), 718.856, 1e-9);
-  EXPECT_NEAR(sequence.calibration().baseline_m(), 386.1448 / 718.856, 1e-12);
+  EXPECT_NEAR(sequence.calibration().left.fx, 718.856, 1e-9);
+  EXPECT_NEAR(sequence.calibration().baseline_m, 386.1448 / 718.856, 1e-12);
   EXPECT_NEAR(sequence.times_s()[2], 0.2072416, 1e-12);
 }
 
@@ -321,8 +334,11 @@ TEST_F(KittiSequenceTest, MissingOrMalformedFilesThrowNamingTheFile) {
 }
 
 TEST_F(KittiSequenceTest, WriterRejectsBadInput) {
-  StereoCalibration bad = calibration_;
-  bad.P1(0, 3) = 10.0;  // negative baseline
+  geometry::StereoCamera bad = calibration_;
+  bad.baseline_m = -0.1;
+  EXPECT_THROW(KittiWriter(dir_ / "bad", bad), std::invalid_argument);
+  bad = calibration_;
+  bad.left.fy = 0.0;
   EXPECT_THROW(KittiWriter(dir_ / "bad", bad), std::invalid_argument);
 
   KittiWriter writer(dir_ / "w", calibration_);
@@ -375,28 +391,6 @@ TEST(KittiPoseLineTest, RejectsMalformedLines) {
                                          {"not a rotation"});
   ExpectThrowWith<std::invalid_argument>([] { ParseKittiPoseLine("-1 0 0 0 0 1 0 0 0 0 1 0"); },
                                          {"not a rotation"});
-}
-
-TEST(StereoCalibrationTest, FromIntrinsicsMatchesKittiForm) {
-  const StereoCalibration c =
-      StereoCalibration::FromIntrinsics(707.0912, 707.5, 601.8873, 183.1104, 0.537);
-  EXPECT_EQ(c.fx(), 707.0912);
-  EXPECT_EQ(c.fy(), 707.5);
-  EXPECT_EQ(c.cx(), 601.8873);
-  EXPECT_EQ(c.cy(), 183.1104);
-  EXPECT_NEAR(c.baseline_m(), 0.537, 1e-15);
-  EXPECT_NEAR(c.P1(0, 3), -707.0912 * 0.537, 1e-12);
-  EXPECT_TRUE(c.P0.col(3).isZero());
-  EXPECT_EQ(c.K()(2, 2), 1.0);
-  // A point X in the left frame projects with P1 where the right camera (at +b x) sees it.
-  const Eigen::Vector4d X(1.0, -0.5, 10.0, 1.0);
-  const Eigen::Vector3d left = c.P0 * X, right = c.P1 * X;
-  EXPECT_NEAR(left.x() / left.z() - right.x() / right.z(), c.fx() * c.baseline_m() / 10.0, 1e-9);
-  EXPECT_THROW(StereoCalibration::FromIntrinsics(0, 1, 0, 0, 0.1), std::invalid_argument);
-  EXPECT_THROW(StereoCalibration::FromIntrinsics(1, 1, 0, 0, -0.1), std::invalid_argument);
-  EXPECT_THROW(
-      StereoCalibration::FromIntrinsics(1, 1, std::numeric_limits<double>::quiet_NaN(), 0, 0.1),
-      std::invalid_argument);
 }
 
 }  // namespace

@@ -44,7 +44,7 @@ double MeanCornersAlongRoute(const std::string& file, int views, double min_resp
             .toRotationMatrix();
     T_world_body.translation() =
         Eigen::Vector3d(p.x(), p.y(), world.terrain().Height(p.x(), p.y()) + 0.2);
-    sim::GrayImage image;
+    GrayImage image;
     renderer.Render(rig.intrinsics(), T_world_body * rig.T_body_left(), 0.0, &image, nullptr);
     robot::ApplySensorModel(s.robot.stereo.exposure, s.robot.stereo.noise_std, s.seed,
                             static_cast<std::uint64_t>(i), 0, &image);

@@ -23,7 +23,7 @@ std::uint64_t SplitMix(std::uint64_t z) {
 // table of 65536 Irwin-Hall(4) samples from (seed), indexed by the 16-bit
 // quarters of a xorshift64* stream keyed by (seed, frame, camera).
 void Reference(double exposure, double noise_std, std::uint64_t seed, std::uint64_t frame,
-               int camera, sim::GrayImage* image) {
+               int camera, GrayImage* image) {
   std::vector<float> table(1 << 16);
   std::uint64_t state = SplitMix(seed ^ 0x5eed5eedULL);
   const double norm = 1.0 / (65536.0 * std::sqrt(4.0 / 12.0));
@@ -50,8 +50,8 @@ void Reference(double exposure, double noise_std, std::uint64_t seed, std::uint6
   }
 }
 
-sim::GrayImage Ramp(int width, int height) {
-  sim::GrayImage img;
+GrayImage Ramp(int width, int height) {
+  GrayImage img;
   img.width = width;
   img.height = height;
   img.pixels.resize(static_cast<std::size_t>(width) * height);
@@ -70,7 +70,7 @@ TEST(SensorModelTest, GivesTheBytesOfItsDescription) {
   for (const Case& c : {Case{640, 480, 1.0, 1.0, 1, 0, 0}, Case{640, 480, 1.0, 1.0, 1, 37, 1},
                         Case{17, 19, 1.3, 0.0, 5, 2, 0}, Case{33, 7, 0.8, 2.5, 9, 1000, 1},
                         Case{3, 1, 1.0, 4.0, 2, 3, 0}}) {
-    sim::GrayImage a = Ramp(c.width, c.height), b = a;
+    GrayImage a = Ramp(c.width, c.height), b = a;
     ApplySensorModel(c.exposure, c.noise_std, c.seed, c.frame, c.camera, &a);
     Reference(c.exposure, c.noise_std, c.seed, c.frame, c.camera, &b);
     EXPECT_EQ(a.pixels, b.pixels) << c.width << "x" << c.height << " frame " << c.frame;
@@ -78,9 +78,9 @@ TEST(SensorModelTest, GivesTheBytesOfItsDescription) {
 }
 
 TEST(SensorModelTest, NoiseHasTheConfiguredSpreadAndDependsOnFrameAndCamera) {
-  sim::GrayImage flat = Ramp(640, 480);
+  GrayImage flat = Ramp(640, 480);
   std::fill(flat.pixels.begin(), flat.pixels.end(), 100);
-  sim::GrayImage a = flat, b = flat, c = flat, again = flat;
+  GrayImage a = flat, b = flat, c = flat, again = flat;
   ApplySensorModel(1.0, 3.0, 7, 10, 0, &a);
   ApplySensorModel(1.0, 3.0, 7, 10, 1, &b);  // the other camera
   ApplySensorModel(1.0, 3.0, 7, 11, 0, &c);  // the next frame
@@ -104,12 +104,12 @@ TEST(SensorModelTest, NoiseHasTheConfiguredSpreadAndDependsOnFrameAndCamera) {
 }
 
 TEST(SensorModelTest, ClampsToTheEightBitRange) {
-  sim::GrayImage img = Ramp(64, 64);
+  GrayImage img = Ramp(64, 64);
   ApplySensorModel(3.0, 1.0, 1, 0, 0, &img);
   int saturated = 0;
   for (std::uint8_t p : img.pixels) saturated += p == 255;
   EXPECT_GT(saturated, 64 * 64 / 2);  // 3 x grey over 85 saturates: two thirds of the ramp
-  sim::GrayImage dark = Ramp(64, 64);
+  GrayImage dark = Ramp(64, 64);
   std::fill(dark.pixels.begin(), dark.pixels.end(), 0);
   ApplySensorModel(1.0, 5.0, 1, 0, 0, &dark);
   int zeros = 0;

@@ -19,6 +19,7 @@
 #include "stereo_test_rig.h"
 #include "trackbed/common/option_error.h"
 #include "trackbed/estimation/absolute_orientation.h"
+#include "trackbed/estimation/stereo_visual_odometry.h"
 
 namespace trackbed::estimation {
 namespace {
@@ -32,11 +33,12 @@ using stereo_test::TranslationError;
 /// Points in front of the camera, visible in both images, 2–40 m away.
 std::vector<Eigen::Vector3d> RandomPoints(int n, std::mt19937_64& rng) {
   std::uniform_real_distribution<double> u(40.0, 600.0), v(20.0, 460.0), z(2.0, 40.0);
-  const StereoCamera c = TestCamera();
+  const geometry::StereoCamera c = TestCamera();
   std::vector<Eigen::Vector3d> points;
   for (int i = 0; i < n; ++i) {
     const double Z = z(rng);
-    points.emplace_back((u(rng) - c.cx) * Z / c.fx, (v(rng) - c.cy) * Z / c.fy, Z);
+    points.emplace_back((u(rng) - c.left.cx) * Z / c.left.fx, (v(rng) - c.left.cy) * Z / c.left.fy,
+                        Z);
   }
   return points;
 }
@@ -45,30 +47,25 @@ std::vector<Eigen::Vector3d> RandomPoints(int n, std::mt19937_64& rng) {
 // Camera model and Jacobian.
 
 TEST(StereoCameraTest, TriangulateInvertsProject) {
-  const StereoCamera c = TestCamera();
+  const geometry::StereoCamera c = TestCamera();
   std::mt19937_64 rng(1);
   for (const Eigen::Vector3d& p : RandomPoints(50, rng)) {
     const Eigen::Vector3d z = c.Project(p);
-    EXPECT_NEAR(z.x() - z.z(), c.fx * c.baseline_m / p.z(), 1e-9);  // disparity = fx·b/Z
+    EXPECT_NEAR(z.x() - z.z(), c.left.fx * c.baseline_m / p.z(), 1e-9);  // disparity = fx·b/Z
     const Eigen::Vector3d back = c.Triangulate(z.x(), z.y(), z.x() - z.z());
     EXPECT_LT((back - p).norm(), 1e-9 * p.norm());
   }
 }
 
-TEST(StereoCameraTest, FromCalibrationReadsKittiMatrices) {
-  const perception::StereoCalibration k =
-      perception::StereoCalibration::FromIntrinsics(707.0912, 707.0912, 601.8873, 183.1104, 0.537);
-  const StereoCamera c = StereoCamera::FromCalibration(k);
-  EXPECT_DOUBLE_EQ(c.fx, 707.0912);
-  EXPECT_DOUBLE_EQ(c.cx, 601.8873);
-  EXPECT_DOUBLE_EQ(c.cy, 183.1104);
-  EXPECT_NEAR(c.baseline_m, 0.537, 1e-12);
-  EXPECT_THROW(StereoCamera::FromCalibration(perception::StereoCalibration{}),
-               std::invalid_argument);
+TEST(StereoCameraTest, VisualOdometryRefusesACameraWithoutFocalLengthOrBaseline) {
+  EXPECT_THROW(StereoVisualOdometry(geometry::StereoCamera{}), std::invalid_argument);
+  geometry::StereoCamera c = TestCamera();
+  c.baseline_m = -0.1;
+  EXPECT_THROW(StereoVisualOdometry{c}, std::invalid_argument);
 }
 
 TEST(StereoReprojectionTest, AnalyticJacobianMatchesCentralDifferences) {
-  const StereoCamera c = TestCamera();
+  const geometry::StereoCamera c = TestCamera();
   std::mt19937_64 rng(2);
   std::normal_distribution<double> n(0.0, 1.0);
   for (int trial = 0; trial < 20; ++trial) {
@@ -123,7 +120,7 @@ struct Synthetic {
 /// unrelated point (both its 3-D point and its observation).
 Synthetic MakeCorrespondences(const Eigen::Isometry3d& T_curr_prev, int n, double outliers,
                               std::mt19937_64& rng) {
-  const StereoCamera c = TestCamera();
+  const geometry::StereoCamera c = TestCamera();
   Synthetic s;
   const std::vector<Eigen::Vector3d> prev = RandomPoints(n, rng);
   std::uniform_real_distribution<double> coin(0.0, 1.0);
@@ -210,7 +207,7 @@ TEST(MotionRefinementTest, ReducesTheErrorOfHornOnNoisyStereo) {
   // With pixel noise, Horn on triangulated points suffers from the far points' depth
   // noise (σ_Z ∝ Z², even with inverse-variance weights as in RANSAC's refit); the
   // reprojection error is what the measurements constrain.
-  const StereoCamera c = TestCamera();
+  const geometry::StereoCamera c = TestCamera();
   std::mt19937_64 rng(7);
   std::normal_distribution<double> noise(0.0, 0.3);
   const Eigen::Isometry3d truth = Pose({0.01, 0.03, 0.0}, {0.05, 0.0, 0.5});
@@ -267,13 +264,14 @@ struct NoisyStereo {
 
 NoisyStereo MakeNoisyStereo(const Eigen::Isometry3d& truth, int n, double outliers, double sigma_px,
                             std::mt19937_64& rng) {
-  const StereoCamera c = TestCamera();
+  const geometry::StereoCamera c = TestCamera();
   std::uniform_real_distribution<double> u(60.0, 580.0), v(40.0, 440.0), z(2.0, 15.0);
   std::uniform_real_distribution<double> coin(0.0, 1.0);
   std::normal_distribution<double> noise(0.0, 1.0);  // scaled: sigma_px may be 0
   const auto random_point = [&]() {
     const double Z = z(rng);
-    return Eigen::Vector3d((u(rng) - c.cx) * Z / c.fx, (v(rng) - c.cy) * Z / c.fy, Z);
+    return Eigen::Vector3d((u(rng) - c.left.cx) * Z / c.left.fx,
+                           (v(rng) - c.left.cy) * Z / c.left.fy, Z);
   };
   const auto measure = [&](const Eigen::Vector3d& p) {
     const Eigen::Vector3d e(noise(rng), noise(rng), noise(rng));

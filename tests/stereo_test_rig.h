@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "trackbed/common/se3.h"
 #include "trackbed/estimation/stereo_motion_estimation.h"
 
 namespace trackbed::estimation::stereo_test {
@@ -14,12 +15,14 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kDegPerRad = 180.0 / kPi;
 
 /// fx = 500, fy = 505 px, principal point at the centre of 640×480, baseline 0.12 m.
-inline StereoCamera TestCamera() {
-  StereoCamera c;
-  c.fx = 500.0;
-  c.fy = 505.0;
-  c.cx = 319.5;
-  c.cy = 239.5;
+inline geometry::StereoCamera TestCamera() {
+  geometry::StereoCamera c;
+  c.left.width_px = 640;
+  c.left.height_px = 480;
+  c.left.fx = 500.0;
+  c.left.fy = 505.0;
+  c.left.cx = 319.5;
+  c.left.cy = 239.5;
   c.baseline_m = 0.12;
   return c;
 }
@@ -27,8 +30,7 @@ inline StereoCamera TestCamera() {
 /// The pose with rotation Exp(axis_angle) [rad] and translation t [m].
 inline Eigen::Isometry3d Pose(const Eigen::Vector3d& axis_angle, const Eigen::Vector3d& t) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  const double angle = axis_angle.norm();
-  if (angle > 0.0) T.linear() = Eigen::AngleAxisd(angle, axis_angle / angle).toRotationMatrix();
+  T.linear() = geometry::ExpSO3(axis_angle);
   T.translation() = t;
   return T;
 }

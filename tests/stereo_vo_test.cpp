@@ -51,22 +51,19 @@ class SyntheticScene {
     texture_ = (noise - mean[0]) * (60.0 / stddev[0]) + 128.0;
   }
 
-  static perception::StereoCalibration Calibration() {
-    const StereoCamera c = TestCamera();
-    return perception::StereoCalibration::FromIntrinsics(c.fx, c.fy, c.cx, c.cy, c.baseline_m);
-  }
+  static geometry::StereoCamera Calibration() { return TestCamera(); }
 
   /// Left (right = false) or right image of the left camera at pose T_world_cam.
   cv::Mat Render(const Eigen::Isometry3d& T_world_cam, bool right) const {
-    const StereoCamera c = TestCamera();
+    const geometry::StereoCamera c = TestCamera();
     Eigen::Isometry3d T = T_world_cam;
     if (right) T.translation() += T.linear() * Eigen::Vector3d(c.baseline_m, 0.0, 0.0);
     cv::Mat map_x(kHeight, kWidth, CV_32F), map_y(kHeight, kWidth, CV_32F);
     const Eigen::Vector3d o = T.translation();
     for (int v = 0; v < kHeight; ++v) {
       for (int u = 0; u < kWidth; ++u) {
-        const Eigen::Vector3d ray =
-            T.linear() * Eigen::Vector3d((u - c.cx) / c.fx, (v - c.cy) / c.fy, 1.0);
+        const Eigen::Vector3d ray = T.linear() * Eigen::Vector3d((u - c.left.cx) / c.left.fx,
+                                                                 (v - c.left.cy) / c.left.fy, 1.0);
         // 1 cm texels. Wall z = kWallZ: column (x + 6)·100, row (y + 6)·100; floor
         // y = kFloorY (camera y is down): column (x + 6)·100, row 1200 + z·100.
         double t_wall = (kWallZ - o.z()) / ray.z();
@@ -283,7 +280,7 @@ TEST(StereoVisualOdometryTest, ARotationPriorVetsEveryFramesConsensusEvenAfterAF
 // a gyro that turns about the body's x axis instead, the frames fail.
 TEST(LocalizationStackTest, GyroRatesAreTurnedIntoTheCamerasFrameForVisualOdometry) {
   const SyntheticScene scene;
-  const perception::StereoCalibration calibration = SyntheticScene::Calibration();
+  const geometry::StereoCamera calibration = SyntheticScene::Calibration();
   // Body x forward, z up; the camera (OpenCV axes) looks along x, pitched 5° down.
   Eigen::Matrix3d R_body_cam;
   R_body_cam.col(0) = -Eigen::Vector3d::UnitY();  // right

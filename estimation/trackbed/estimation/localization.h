@@ -12,12 +12,12 @@
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
+#include "trackbed/common/stereo_camera.h"
 #include "trackbed/estimation/ekf_odometry.h"
 #include "trackbed/estimation/fuzzy_fusion.h"
 #include "trackbed/estimation/pose2.h"
 #include "trackbed/estimation/stereo_visual_odometry.h"
 #include "trackbed/estimation/wheel_odometry.h"
-#include "trackbed/perception/kitti_sequence.h"
 
 namespace trackbed::estimation {
 
@@ -67,9 +67,8 @@ struct LocalizationFrameReport {
 class LocalizationStack {
  public:
   /// `T_body_left`: the left camera (OpenCV axes) in the body frame.
-  /// `calibration` null: no camera, wheel odometry only.
-  LocalizationStack(const LocalizationOptions& options,
-                    const perception::StereoCalibration* calibration,
+  /// `camera` (the calibrated rectified pair) null: no camera, wheel odometry only.
+  LocalizationStack(const LocalizationOptions& options, const geometry::StereoCamera* camera,
                     const Eigen::Isometry3d& T_body_left, const Eigen::Isometry3d& T_world_body0);
   ~LocalizationStack();
   LocalizationStack(const LocalizationStack&) = delete;

@@ -25,31 +25,9 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "trackbed/perception/kitti_sequence.h"
+#include "trackbed/common/stereo_camera.h"
 
 namespace trackbed::estimation {
-
-/// Rectified pinhole stereo pair: both cameras share fx, fy, cx, cy; the right camera
-/// sits baseline_m along the left camera's +x axis.
-struct StereoCamera {
-  double fx = 0.0;          ///< focal length along x [px], > 0
-  double fy = 0.0;          ///< focal length along y [px], > 0
-  double cx = 0.0;          ///< principal point x [px]
-  double cy = 0.0;          ///< principal point y [px]
-  double baseline_m = 0.0;  ///< [m], > 0
-
-  /// From a KITTI-form calibration (P0, P1). Throws std::invalid_argument unless fx, fy,
-  /// baseline > 0 and cx, cy finite.
-  static StereoCamera FromCalibration(const perception::StereoCalibration& calibration);
-
-  /// Point in the left camera frame [m] from a left pixel (u, v) [px] and disparity
-  /// d = u_left − u_right [px] > 0: Z = fx·b/d, X = (u − cx)·Z/fx, Y = (v − cy)·Z/fy.
-  Eigen::Vector3d Triangulate(double u, double v, double disparity_px) const;
-
-  /// Projection of a point p (left camera frame, Z > 0) into the pair: (u_left, v,
-  /// u_right) [px], u_right = fx·(X − b)/Z + cx.
-  Eigen::Vector3d Project(const Eigen::Vector3d& p) const;
-};
 
 /// One 3-D–3-D correspondence between consecutive frames.
 struct MotionCorrespondence {
@@ -67,7 +45,7 @@ Eigen::Isometry3d ApplyIncrement(const MotionIncrement& delta, const Eigen::Isom
 /// Stereo reprojection residual r = Project(T_curr_prev · p_prev) − z_curr [px] (u_left,
 /// v, u_right), and, if J is not null, its Jacobian ∂r/∂δ (3×6) at δ = 0 for the
 /// increment of ApplyIncrement. The point must be in front of the camera (Z > 0).
-Eigen::Vector3d StereoReprojectionResidual(const StereoCamera& camera,
+Eigen::Vector3d StereoReprojectionResidual(const geometry::StereoCamera& camera,
                                            const Eigen::Isometry3d& T_curr_prev,
                                            const MotionCorrespondence& c,
                                            Eigen::Matrix<double, 3, 6>* J = nullptr);
@@ -75,8 +53,9 @@ Eigen::Vector3d StereoReprojectionResidual(const StereoCamera& camera,
 /// True when p_prev, moved by T_curr_prev, lies in front of the current camera and
 /// reprojects within threshold_px of z_curr in both the left (u, v) and the right (u, v)
 /// image.
-bool IsReprojectionInlier(const StereoCamera& camera, const Eigen::Isometry3d& T_curr_prev,
-                          const MotionCorrespondence& c, double threshold_px);
+bool IsReprojectionInlier(const geometry::StereoCamera& camera,
+                          const Eigen::Isometry3d& T_curr_prev, const MotionCorrespondence& c,
+                          double threshold_px);
 
 /// RANSAC over minimal samples of 3 correspondences.
 struct MotionRansacOptions {
@@ -110,7 +89,7 @@ struct MotionRansacResult {
 /// (its mask buffer is reused). Needs >= 3 correspondences for success. Options are
 /// validated (OptionError).
 void EstimateMotionRansac(const std::vector<MotionCorrespondence>& correspondences,
-                          const StereoCamera& camera, const MotionRansacOptions& options,
+                          const geometry::StereoCamera& camera, const MotionRansacOptions& options,
                           std::mt19937_64& rng, MotionRansacResult* result);
 
 /// Levenberg–Marquardt on the stereo reprojection error.
@@ -145,7 +124,7 @@ struct MotionRefinementResult {
 /// std::invalid_argument for a mask of the wrong size; OptionError for bad options.
 MotionRefinementResult RefineMotionReprojection(
     const std::vector<MotionCorrespondence>& correspondences,
-    const std::vector<unsigned char>& mask, const StereoCamera& camera,
+    const std::vector<unsigned char>& mask, const geometry::StereoCamera& camera,
     const Eigen::Isometry3d& T_init, const MotionRefinementOptions& options);
 
 /// Options of EstimateStereoMotion: RANSAC, the refinement, and how many inliers make a
@@ -213,8 +192,8 @@ struct StereoMotionResult {
 /// (its buffers are reused); `candidates` must not be one of them. Throws OptionError for
 /// invalid options, std::invalid_argument for a candidates mask of the wrong size.
 void EstimateStereoMotion(const std::vector<MotionCorrespondence>& correspondences,
-                          const std::vector<unsigned char>& candidates, const StereoCamera& camera,
-                          const StereoMotionOptions& options, std::mt19937_64& rng,
-                          StereoMotionResult* result);
+                          const std::vector<unsigned char>& candidates,
+                          const geometry::StereoCamera& camera, const StereoMotionOptions& options,
+                          std::mt19937_64& rng, StereoMotionResult* result);
 
 }  // namespace trackbed::estimation

@@ -45,7 +45,6 @@
 #include "trackbed/estimation/stereo_motion_estimation.h"
 #include "trackbed/perception/feature_tracker.h"
 #include "trackbed/perception/harris_corners.h"
-#include "trackbed/perception/kitti_sequence.h"
 #include "trackbed/perception/stereo_matcher.h"
 
 namespace trackbed::estimation {
@@ -170,9 +169,10 @@ struct VoFrameResult {
 /// copyable.
 class StereoVisualOdometry {
  public:
-  /// Throws OptionError for invalid options, std::invalid_argument for a calibration
-  /// without positive fx, fy, baseline.
-  StereoVisualOdometry(const perception::StereoCalibration& calibration,
+  /// `camera`: the calibrated, rectified pair the images come from (its image size is
+  /// not used). Throws OptionError for invalid options, std::invalid_argument for a
+  /// camera without positive fx, fy, baseline.
+  StereoVisualOdometry(const geometry::StereoCamera& camera,
                        const StereoVisualOdometryOptions& options = {});
   StereoVisualOdometry(const StereoVisualOdometry&) = delete;
   StereoVisualOdometry& operator=(const StereoVisualOdometry&) = delete;
@@ -189,7 +189,7 @@ class StereoVisualOdometry {
   /// Forgets all features and the pose: the next frame is a first frame again.
   void Reset();
 
-  const StereoCamera& camera() const { return camera_; }
+  const geometry::StereoCamera& camera() const { return camera_; }
   const StereoVisualOdometryOptions& options() const { return options_; }
   const Eigen::Isometry3d& T_world_cam() const { return T_world_cam_; }
 
@@ -253,7 +253,7 @@ class StereoVisualOdometry {
   void Replenish(const cv::Mat& left, const cv::Mat& right, Features* features);
   bool UsablePoint(const Eigen::Vector3d& p) const;
 
-  StereoCamera camera_;
+  geometry::StereoCamera camera_;
   StereoVisualOdometryOptions options_;
   StereoMotionOptions motion_options_;  // options_'s ransac, refinement, min_inliers
   perception::FeatureTracker tracker_;

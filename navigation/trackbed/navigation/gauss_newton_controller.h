@@ -42,6 +42,7 @@
 // finishes a turn), which is why no further gain appears.
 #pragma once
 
+#include "trackbed/common/units.h"
 #include "trackbed/navigation/diff_drive.h"
 #include "trackbed/navigation/navigation_setup.h"
 
@@ -54,7 +55,7 @@ struct GaussNewtonOptions {
   double epsilon_m = 0.05;
   /// Heading band [rad], in (0, π): ρ = 1 (turn) until |bearing − heading| is within it,
   /// then ρ = 0 (drive). The paper calls it "the set range" without a value.
-  double heading_band_rad = 5.0 * M_PI / 180.0;
+  double heading_band_rad = units::Radians(5.0);
   /// Levenberg–Marquardt damping λ [m²/rad² — the units of JᵀWJ], > 0.
   double damping = 1e-9;
   /// Weight of the position error during the turn phase, in [0, 1]; see the file

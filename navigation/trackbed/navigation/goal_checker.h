@@ -7,6 +7,7 @@
 #include <cmath>
 #include <vector>
 
+#include "trackbed/common/units.h"
 #include "trackbed/navigation/circle_obstacle.h"
 #include "trackbed/navigation/diff_drive.h"
 #include "trackbed/navigation/navigation_setup.h"
@@ -17,7 +18,7 @@ struct GoalCheckerOptions {
   /// The goal is reached within this distance [m], > 0.
   double position_tolerance_m = 0.1;
   /// ... and with the heading within this angle of the goal heading [rad], in (0, π].
-  double heading_tolerance_rad = 2.0 * M_PI / 180.0;
+  double heading_tolerance_rad = units::Radians(2.0);
 
   /// Throws OptionError naming the first invalid field.
   void Validate() const;

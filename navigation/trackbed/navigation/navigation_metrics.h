@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "trackbed/common/units.h"
 #include "trackbed/navigation/diff_drive.h"
 
 namespace trackbed::navigation {
@@ -30,7 +31,7 @@ struct NavigationLogEntry {
 /// collision, not later than the time limit.
 struct SuccessCriteria {
   double position_tolerance_m = 0.1;
-  double heading_tolerance_rad = 2.0 * M_PI / 180.0;
+  double heading_tolerance_rad = units::Radians(2.0);
   double time_limit_s = 120.0;
 };
 

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "trackbed/common/units.h"
 #include "trackbed/navigation/diff_drive.h"
 
 namespace trackbed::navigation {
@@ -16,7 +17,7 @@ struct NavigationSetup {
   /// The goal is reached within this distance [m], > 0.
   double goal_position_tolerance_m = 0.1;
   /// ... and with the heading within this angle of the goal heading [rad], in (0, π].
-  double goal_heading_tolerance_rad = 2.0 * M_PI / 180.0;
+  double goal_heading_tolerance_rad = units::Radians(2.0);
 
   /// Throws OptionError naming the first invalid field (nested as `drive.…`).
   void Validate() const;

@@ -38,6 +38,7 @@
 
 #include <Eigen/Core>
 
+#include "trackbed/common/units.h"
 #include "trackbed/navigation/circle_obstacle.h"
 #include "trackbed/navigation/navigation_setup.h"
 #include "trackbed/navigation/navigator.h"
@@ -70,7 +71,7 @@ struct PotentialFieldOptions {
   /// Yaw-rate cap [rad/s], > 0.
   double max_yaw_rate_radps = 6.0;
   /// Heading error beyond which the robot turns in place [rad], in (0, π].
-  double turn_in_place_rad = 60.0 * M_PI / 180.0;
+  double turn_in_place_rad = units::Radians(60.0);
   /// Within this distance of the goal [m], > 0, the robot stops and turns to the goal
   /// heading; keep it below the goal position tolerance.
   double final_distance_m = 0.05;

@@ -79,6 +79,7 @@
 
 #include <Eigen/Core>
 
+#include "trackbed/common/units.h"
 #include "trackbed/navigation/circle_obstacle.h"
 #include "trackbed/navigation/diff_drive.h"
 
@@ -150,7 +151,7 @@ struct SubgoalOptions {
   double reached_distance_m = 0.2;
   /// Obstacles are tested only when the heading is within this angle of the bearing to
   /// the active target [rad], in (0, π] (rule 1; match the controller's heading band).
-  double alignment_band_rad = 5.0 * M_PI / 180.0;
+  double alignment_band_rad = units::Radians(5.0);
   /// Plan around whole clusters of overlapping safety circles (rule 2); false applies
   /// the paper's single-circle rule to the nearest blocking circle.
   bool cluster_obstacles = true;

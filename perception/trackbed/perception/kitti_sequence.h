@@ -24,30 +24,9 @@
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
+#include "trackbed/common/stereo_camera.h"
+
 namespace trackbed::perception {
-
-/// Rectified stereo calibration in KITTI form: P0 (left) and P1 (right) 3x4 projection
-/// matrices, P1 = K [I | (-fx*b, 0, 0)^T], with P0 = K [I | 0]. Pixel coordinates follow
-/// OpenCV: the centre of the top-left pixel is (0, 0), x right, y down.
-struct StereoCalibration {
-  Eigen::Matrix<double, 3, 4> P0 = Eigen::Matrix<double, 3, 4>::Zero();
-  Eigen::Matrix<double, 3, 4> P1 = Eigen::Matrix<double, 3, 4>::Zero();
-
-  double fx() const { return P0(0, 0); }  ///< focal length along x [px]
-  double fy() const { return P0(1, 1); }  ///< focal length along y [px]
-  double cx() const { return P0(0, 2); }  ///< principal point x [px]
-  double cy() const { return P0(1, 2); }  ///< principal point y [px]
-  /// Stereo baseline [m]: -P1(0,3) / P1(0,0).
-  double baseline_m() const { return -P1(0, 3) / P1(0, 0); }
-  /// The left camera's intrinsic matrix (the left 3x3 block of P0).
-  Eigen::Matrix3d K() const { return P0.leftCols<3>(); }
-
-  /// From a pinhole K [px] and baseline [m] (right camera displaced +b along the left
-  /// camera's x axis). Throws std::invalid_argument unless fx, fy, baseline_m > 0 and
-  /// cx, cy are finite.
-  static StereoCalibration FromIntrinsics(double fx, double fy, double cx, double cy,
-                                          double baseline_m);
-};
 
 /// A KITTI-odometry-layout sequence (see the file comment). Reads the text files on
 /// construction; images are read on demand.
@@ -65,7 +44,8 @@ class KittiSequence {
                          const std::filesystem::path& poses_file = {});
 
   const std::filesystem::path& directory() const { return dir_; }
-  const StereoCalibration& calibration() const { return calibration_; }
+  /// The rectified pair of calib.txt's P0 and P1, with frame 0's image size.
+  const geometry::StereoCamera& calibration() const { return calibration_; }
   std::size_t size() const { return times_s_.size(); }  ///< number of frames
   /// Size [px] of frame 0's left image; every image loaded is checked against it.
   cv::Size image_size() const { return image_size_; }
@@ -86,7 +66,7 @@ class KittiSequence {
   cv::Mat Load(const char* folder, std::size_t i) const;
 
   std::filesystem::path dir_;
-  StereoCalibration calibration_;
+  geometry::StereoCamera calibration_;
   std::vector<double> times_s_;
   std::vector<Eigen::Isometry3d> poses_;
   cv::Size image_size_;
@@ -99,9 +79,10 @@ class KittiSequence {
 /// Not copyable.
 class KittiWriter {
  public:
-  /// Throws std::invalid_argument for a calibration that is not K [I|0] / K [I|t] with
-  /// positive fx, fy and baseline, and std::runtime_error if a file cannot be written.
-  KittiWriter(const std::filesystem::path& dir, const StereoCalibration& calibration);
+  /// Writes calib.txt with `camera`'s P0 and P1. Throws std::invalid_argument for a
+  /// camera without positive fx, fy and baseline, and std::runtime_error if a file
+  /// cannot be written.
+  KittiWriter(const std::filesystem::path& dir, const geometry::StereoCamera& camera);
   ~KittiWriter();
   KittiWriter(const KittiWriter&) = delete;
   KittiWriter& operator=(const KittiWriter&) = delete;

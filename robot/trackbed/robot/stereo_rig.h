@@ -8,6 +8,7 @@
 
 #include <Eigen/Geometry>
 
+#include "trackbed/common/stereo_camera.h"
 #include "trackbed/sim/image.h"
 #include "trackbed/sim/pinhole.h"
 
@@ -80,14 +81,16 @@ class StereoRig {
 
   const StereoRigOptions& options() const { return options_; }
   /// Intrinsics of both cameras (rectified, identical).
-  const sim::PinholeIntrinsics& intrinsics() const { return intrinsics_; }
+  const geometry::PinholeCamera& intrinsics() const { return intrinsics_; }
+  /// The rectified pair: the intrinsics and `options().baseline_m`.
+  geometry::StereoCamera stereo_camera() const { return {intrinsics_, options_.baseline_m}; }
   /// Left / right camera (OpenCV axes: x right, y down, z forward) in the body frame.
   const Eigen::Isometry3d& T_body_left() const { return T_body_left_; }
   const Eigen::Isometry3d& T_body_right() const { return T_body_right_; }
 
  private:
   StereoRigOptions options_;
-  sim::PinholeIntrinsics intrinsics_;
+  geometry::PinholeCamera intrinsics_;
   Eigen::Isometry3d T_body_left_, T_body_right_;
 };
 
@@ -95,6 +98,6 @@ class StereoRig {
 /// near-Gaussian with `noise_std` grey levels, drawn from a generator keyed by
 /// (seed, frame, camera) so every image is reproducible on its own.
 void ApplySensorModel(double exposure, double noise_std, std::uint64_t seed, std::uint64_t frame,
-                      int camera, sim::GrayImage* image);
+                      int camera, GrayImage* image);
 
 }  // namespace trackbed::robot

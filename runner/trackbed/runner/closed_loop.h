@@ -44,7 +44,7 @@ struct EncoderReading {
 /// A stereo pair a Step took, as the robot's cameras gave it.
 struct StereoImages {
   double t_s = 0.0;
-  sim::GrayImage left, right;
+  GrayImage left, right;
 };
 
 /// What the sensors produced in one Step, and the truth at its end.

@@ -38,8 +38,8 @@ struct RunSample {
 struct StereoFrame {
   std::int64_t index = 0;  ///< 0, 1, 2, … at the camera rate.
   double t_s = 0.0;
-  const sim::GrayImage* left = nullptr;
-  const sim::GrayImage* right = nullptr;
+  const GrayImage* left = nullptr;
+  const GrayImage* right = nullptr;
   Eigen::Isometry3d T_world_left;  ///< Ground truth of the left camera (OpenCV axes).
   Eigen::Isometry3d T_world_right;
   const robot::StereoRig* rig = nullptr;

@@ -49,7 +49,7 @@ class CameraExposure {
   /// The image of the camera at `T_body_camera` on a body moving as `motion`,
   /// exposed around `t_s`. `detail_center_xy` as for Renderer::Render (held for
   /// the whole exposure, so the terrain's meshes do not change within it).
-  void Render(Renderer& renderer, const PinholeIntrinsics& K, const BodyMotion& motion,
+  void Render(Renderer& renderer, const geometry::PinholeCamera& K, const BodyMotion& motion,
               const Eigen::Isometry3d& T_body_camera, double t_s, GrayImage* gray,
               const Eigen::Vector2d* detail_center_xy = nullptr);
 

@@ -1,19 +1,13 @@
-// Images the renderer produces: 8-bit grayscale and metric depth, row-major,
-// row 0 at the top (image convention, not OpenGL's).
+// Images the renderer produces: 8-bit grayscale (the shared GrayImage) and metric
+// depth, row-major, row 0 at the top (image convention, not OpenGL's).
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
+#include "trackbed/common/gray_image.h"
+
 namespace trackbed::sim {
-
-struct GrayImage {
-  int width = 0;
-  int height = 0;
-  std::vector<std::uint8_t> pixels;  ///< width * height, row-major, top row first.
-
-  std::uint8_t at(int u, int v) const { return pixels[static_cast<std::size_t>(v) * width + u]; }
-};
 
 /// Depth along the camera's optical axis (z of the OpenCV camera frame) [m];
 /// +infinity where the ray meets nothing (sky).

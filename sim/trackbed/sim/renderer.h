@@ -81,7 +81,7 @@ class Renderer {
   /// detail is measured from `detail_center_xy` (world x, y [m]), or from the
   /// camera when it is null: pass one point for both cameras of a stereo pair
   /// so that they see the same ground.
-  void Render(const PinholeIntrinsics& K, const Eigen::Isometry3d& T_world_camera, double t_s,
+  void Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d& T_world_camera, double t_s,
               GrayImage* gray, DepthImage* depth,
               const Eigen::Vector2d* detail_center_xy = nullptr);
 

@@ -87,6 +87,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "trackbed/common/units.h"
 #include "trackbed/perception/feature_tracker.h"
 #include "trackbed/teach_repeat/milestone_repeater.h"
 #include "trackbed/teach_repeat/milestone_switch.h"
@@ -100,7 +101,7 @@ struct FunnelLaneOptions {
   /// Constant forward speed [m/s], > 0 (Choi & Ha's lab repeat: 0.05 m/s).
   double forward_speed_mps = 0.05;
   /// Bang-bang turn rate [rad/s], > 0 (Choi & Ha's lab repeat: 4°/s).
-  double turn_rate_radps = 4.0 * M_PI / 180.0;
+  double turn_rate_radps = units::Radians(4.0);
   /// Net vote fraction needed to turn, in [0, 1) (see the file comment).
   double min_net_vote = 0.1;
   /// Rise of the accumulated x-error above its minimum that switches milestones [px], >= 0.

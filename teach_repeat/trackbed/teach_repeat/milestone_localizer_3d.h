@@ -57,6 +57,7 @@
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
+#include "trackbed/common/units.h"
 #include "trackbed/perception/feature_tracker.h"
 #include "trackbed/teach_repeat/milestone_repeater.h"
 #include "trackbed/teach_repeat/teach_map.h"
@@ -78,7 +79,7 @@ struct Localizer3dOptions {
   /// Constant forward speed [m/s], > 0 (Choi & Ha's lab repeat: 0.05 m/s).
   double forward_speed_mps = 0.05;
   /// Largest |yaw rate| [rad/s], > 0 (Choi & Ha's lab repeat: 4°/s).
-  double max_yaw_rate_radps = 4.0 * M_PI / 180.0;
+  double max_yaw_rate_radps = units::Radians(4.0);
   /// Distance scale L of the steering law [m], > 0 (see the file comment).
   double convergence_distance_m = 1.0;
   /// Feed the taught curvature of the milestone forward into the steering law (file

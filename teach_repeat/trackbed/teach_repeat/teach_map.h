@@ -35,8 +35,8 @@
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
+#include "trackbed/common/stereo_camera.h"
 #include "trackbed/estimation/pose2.h"
-#include "trackbed/perception/kitti_sequence.h"
 
 namespace trackbed::teach_repeat {
 
@@ -51,7 +51,7 @@ struct CameraIntrinsics {
 
   /// The left camera of a calibration, for images of `image_size`. Throws OptionError
   /// for a calibration without positive focal lengths or an empty size.
-  static CameraIntrinsics FromCalibration(const perception::StereoCalibration& calibration,
+  static CameraIntrinsics FromCalibration(const geometry::StereoCamera& calibration,
                                           cv::Size image_size);
   /// K as a 3×3 matrix.
   cv::Matx33d K() const;
