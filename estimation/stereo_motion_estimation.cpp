@@ -114,12 +114,11 @@ void MotionRansacOptions::Validate() const {
 namespace {
 
 /// Three distinct indices drawn uniformly (a repeat is drawn again).
-void DrawSample(std::uniform_int_distribution<std::size_t>& pick, std::mt19937_64& rng,
-                std::size_t s[3]) {
-  s[0] = pick(rng);
-  do s[1] = pick(rng);
+void DrawSample(std::size_t n, random::Generator& rng, std::size_t s[3]) {
+  s[0] = rng.UniformIndex(n);
+  do s[1] = rng.UniformIndex(n);
   while (s[1] == s[0]);
-  do s[2] = pick(rng);
+  do s[2] = rng.UniformIndex(n);
   while (s[2] == s[0] || s[2] == s[1]);
 }
 
@@ -168,7 +167,7 @@ void RefitOnInliers(const std::vector<MotionCorrespondence>& correspondences,
 
 void EstimateMotionRansac(const std::vector<MotionCorrespondence>& correspondences,
                           const geometry::StereoCamera& camera, const MotionRansacOptions& options,
-                          std::mt19937_64& rng, MotionRansacResult* result) {
+                          random::Generator& rng, MotionRansacResult* result) {
   options.Validate();
   const std::size_t n = correspondences.size();
   result->success = false;
@@ -179,7 +178,6 @@ void EstimateMotionRansac(const std::vector<MotionCorrespondence>& correspondenc
   if (n < 3) return;
 
   std::vector<Eigen::Vector3d> src(3), dst(3);
-  std::uniform_int_distribution<std::size_t> pick(0, n - 1);
   int best = -1;
   Eigen::Isometry3d best_T = Eigen::Isometry3d::Identity();
   int needed = options.max_iterations;
@@ -187,7 +185,7 @@ void EstimateMotionRansac(const std::vector<MotionCorrespondence>& correspondenc
   for (int it = 0; it < needed; ++it) {
     ++result->iterations;
     std::size_t s[3];
-    DrawSample(pick, rng, s);
+    DrawSample(n, rng, s);
     for (int k = 0; k < 3; ++k) {
       src[static_cast<std::size_t>(k)] = correspondences[s[k]].p_prev;
       dst[static_cast<std::size_t>(k)] = correspondences[s[k]].p_curr;
@@ -358,7 +356,7 @@ namespace {
 void RansacOnCandidates(const std::vector<MotionCorrespondence>& correspondences,
                         const std::vector<unsigned char>& candidates,
                         const geometry::StereoCamera& camera, const MotionRansacOptions& options,
-                        std::mt19937_64& rng, MotionRansacResult* result) {
+                        random::Generator& rng, MotionRansacResult* result) {
   std::vector<MotionCorrespondence> subset;
   std::vector<std::size_t> index;  // subset → correspondences
   for (std::size_t j = 0; j < correspondences.size(); ++j) {
@@ -406,7 +404,7 @@ void RefineAndReselect(const std::vector<MotionCorrespondence>& correspondences,
 void EstimateStereoMotion(const std::vector<MotionCorrespondence>& correspondences,
                           const std::vector<unsigned char>& candidates,
                           const geometry::StereoCamera& camera, const StereoMotionOptions& options,
-                          std::mt19937_64& rng, StereoMotionResult* result) {
+                          random::Generator& rng, StereoMotionResult* result) {
   options.Validate();
   const std::size_t n = correspondences.size();
   if (!candidates.empty() && candidates.size() != n) {

@@ -114,7 +114,7 @@ void StereoVisualOdometry::Reset() {
   T_world_cam_ = Eigen::Isometry3d::Identity();
   last_T_curr_prev_ = Eigen::Isometry3d::Identity();
   last_motion_valid_ = false;
-  rng_.seed(options_.seed);
+  rng_ = random::Generator(options_.seed);
 }
 
 bool StereoVisualOdometry::UsablePoint(const Eigen::Vector3d& p) const {

@@ -5,10 +5,11 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "trackbed/common/random.h"
+#include "trackbed/common/units.h"
+
 namespace trackbed::navigation {
 namespace {
-
-constexpr double kDeg = M_PI / 180.0;
 
 void AddWall(std::vector<Circle>* obstacles, Eigen::Vector2d a, Eigen::Vector2d b) {
   for (const Circle& c : WallCircles(a, b, kWallRadiusM, kWallSpacingM)) {
@@ -18,20 +19,18 @@ void AddWall(std::vector<Circle>* obstacles, Eigen::Vector2d a, Eigen::Vector2d 
 
 }  // namespace
 
-double UniformUnit(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
-
 NavigationScene RandomObstacleField(std::uint64_t seed, const RandomFieldOptions& options) {
   if (options.min_obstacles < 0 || options.max_obstacles < options.min_obstacles) {
     throw std::invalid_argument("RandomObstacleField: bad obstacle count range");
   }
-  std::mt19937_64 rng(seed);
+  random::Generator rng(seed);
   NavigationScene scene;
   scene.name = "random_" + std::to_string(seed);
-  const double bearing = options.max_bearing_rad * (2.0 * UniformUnit(rng) - 1.0);
-  const double heading = -M_PI + 2.0 * M_PI * UniformUnit(rng);
+  const double bearing = options.max_bearing_rad * (2.0 * rng.Uniform() - 1.0);
+  const double heading = -M_PI + 2.0 * M_PI * rng.Uniform();
   const int span = options.max_obstacles - options.min_obstacles + 1;
   const int count =
-      options.min_obstacles + std::min(span - 1, static_cast<int>(span * UniformUnit(rng)));
+      options.min_obstacles + std::min(span - 1, static_cast<int>(span * rng.Uniform()));
   scene.goal = {options.goal_distance_m * std::cos(bearing),
                 options.goal_distance_m * std::sin(bearing), heading};
 
@@ -50,9 +49,9 @@ NavigationScene RandomObstacleField(std::uint64_t seed, const RandomFieldOptions
     for (int attempt = 0; attempt < 100000 && !placed; ++attempt) {
       Circle c;
       c.radius_m =
-          options.min_radius_m + (options.max_radius_m - options.min_radius_m) * UniformUnit(rng);
-      c.centre.x() = lo.x() + (hi.x() - lo.x()) * UniformUnit(rng);
-      c.centre.y() = lo.y() + (hi.y() - lo.y()) * UniformUnit(rng);
+          options.min_radius_m + (options.max_radius_m - options.min_radius_m) * rng.Uniform();
+      c.centre.x() = lo.x() + (hi.x() - lo.x()) * rng.Uniform();
+      c.centre.y() = lo.y() + (hi.y() - lo.y()) * rng.Uniform();
       if (SurfaceDistance(start, c) >= options.keep_out_m &&
           SurfaceDistance(goal, c) >= options.keep_out_m) {
         scene.obstacles.push_back(c);
@@ -68,11 +67,11 @@ NavigationScene RandomObstacleField(std::uint64_t seed, const RandomFieldOptions
 }
 
 NavigationScene PaperSceneLeft() {
-  return {"paper_left", {0, 0, 0}, {-5, 5, 90 * kDeg}, {Circle{{-2.5, 2.5}, 0.0}}};
+  return {"paper_left", {0, 0, 0}, {-5, 5, units::Radians(90.0)}, {Circle{{-2.5, 2.5}, 0.0}}};
 }
 
 NavigationScene PaperSceneRight() {
-  return {"paper_right", {0, 0, 0}, {5, 5, 90 * kDeg}, {Circle{{2.5, 2.5}, 0.0}}};
+  return {"paper_right", {0, 0, 0}, {5, 5, units::Radians(90.0)}, {Circle{{2.5, 2.5}, 0.0}}};
 }
 
 NavigationScene UTrapScene() {
@@ -91,7 +90,7 @@ NavigationScene NarrowGapScene() {
 }
 
 NavigationScene GoalBesideWallScene() {
-  NavigationScene s{"goal_beside_wall", {0, 0, 0}, {10, 0, 90 * kDeg}, {}};
+  NavigationScene s{"goal_beside_wall", {0, 0, 0}, {10, 0, units::Radians(90.0)}, {}};
   AddWall(&s.obstacles, {10.8, -4}, {10.8, 4});
   return s;
 }

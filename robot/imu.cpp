@@ -26,7 +26,7 @@ Imu::Imu(const ImuOptions& options, double gravity_mps2, std::uint64_t seed)
 }
 
 Eigen::Vector3d Imu::Gaussian3() {
-  const double a = normal_(rng_), b = normal_(rng_), c = normal_(rng_);
+  const double a = rng_.Gaussian(), b = rng_.Gaussian(), c = rng_.Gaussian();
   return {a, b, c};
 }
 

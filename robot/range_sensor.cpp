@@ -5,15 +5,10 @@
 #include <limits>
 
 #include "trackbed/common/option_error.h"
+#include "trackbed/common/random.h"
 #include "trackbed/common/split_mix.h"
 
 namespace trackbed::robot {
-namespace {
-
-// A uniform draw in (0, 1) from the top 53 bits.
-double Unit(std::uint64_t bits) { return (static_cast<double>(bits >> 11) + 0.5) * 0x1.0p-53; }
-
-}  // namespace
 
 void RangeSensorOptions::Validate() const {
   if (beams < 8) throw OptionError("beams", "must be >= 8 (got " + std::to_string(beams) + ")");
@@ -56,11 +51,10 @@ RangeScanSample RangeSensor::Scan(const sim::World& world, const Eigen::Isometry
   for (std::size_t k = 0; k < angles_rad_.size(); ++k) {
     // Box–Muller from two draws of the scan's own stream (same bits on every platform).
     state = split_mix::Mix(state);
-    const double u1 = Unit(state);
+    const double u1 = random::OpenUnitInterval(state);
     state = split_mix::Mix(state);
-    const double u2 = Unit(state);
-    const double noise =
-        options_.noise_std_m * std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);
+    const double u2 = random::OpenUnitInterval(state);
+    const double noise = options_.noise_std_m * random::BoxMuller(u1, u2);
     const Eigen::Vector3d direction =
         R * Eigen::Vector3d(std::cos(angles_rad_[k]), std::sin(angles_rad_[k]), 0.0);
     const std::optional<sim::RayHit> hit =

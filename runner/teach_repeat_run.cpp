@@ -6,12 +6,12 @@
 #include <cstdio>
 #include <fstream>
 #include <limits>
-#include <random>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
 #include <utility>
 
+#include "trackbed/common/random.h"
 #include "trackbed/common/units.h"
 #include "trackbed/estimation/trajectory_io.h"
 #include "trackbed/estimation/wheel_odometry.h"
@@ -172,8 +172,8 @@ scenario::Scenario RepeatScenario(const scenario::Scenario& scenario) {
   scenario::Scenario repeat = scenario;
   double dx = tr.start_offset.x_m, dy = tr.start_offset.y_m, dyaw = tr.start_offset.yaw_deg;
   if (tr.start_perturbation) {
-    std::mt19937_64 rng(scenario.seed ^ 0x7eac4ULL);
-    const auto unit = [&rng] { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
+    random::Generator rng(scenario.seed ^ 0x7eac4ULL);
+    const auto unit = [&rng] { return rng.Uniform(); };
     const double r = 0.05 * std::sqrt(unit()), a = 2.0 * M_PI * unit();
     dx += r * std::cos(a);
     dy += r * std::sin(a);

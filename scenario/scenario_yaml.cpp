@@ -23,6 +23,7 @@
 
 #include "trackbed/common/archive.h"
 #include "trackbed/common/option_error.h"
+#include "trackbed/common/units.h"
 
 namespace trackbed::scenario {
 
@@ -39,9 +40,7 @@ using sim::StaticObject;
 
 constexpr archive::Wording kWording = archive::Wording::kDetailed;
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kRadPerDeg = M_PI / 180.0;
-
-double DegToRad(double deg) { return deg * kRadPerDeg; }
+double DegToRad(double deg) { return units::Radians(deg); }
 
 // The degrees to write for a yaw of `rad` radians. Reading converts with
 // DegToRad, which not every double is the image of; so take r = `rad` when some
@@ -49,10 +48,10 @@ double DegToRad(double deg) { return deg * kRadPerDeg; }
 // the shortest decimal among the doubles d with DegToRad(d) == r. Reading it
 // gives r, whose degrees are again this text: the round trip is exact.
 double YawDegreesFor(double rad) {
-  if (!std::isfinite(rad) || rad == 0.0) return rad / kRadPerDeg;
+  if (!std::isfinite(rad) || rad == 0.0) return units::Degrees(rad);
   const auto up = [](double d) { return std::nextafter(d, kInf); };
   const auto down = [](double d) { return std::nextafter(d, -kInf); };
-  double lo = rad / kRadPerDeg;  // within a few ulps of the answer
+  double lo = units::Degrees(rad);  // within a few ulps of the answer
   for (int i = 0; i < 16 && DegToRad(lo) > rad; ++i) lo = down(lo);
   for (int i = 0; i < 16 && DegToRad(up(lo)) <= rad; ++i) lo = up(lo);
   const double below = DegToRad(lo), above = DegToRad(up(lo));

@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
-#include <random>
 #include <stdexcept>
 
 #include "trackbed/common/option_error.h"
+#include "trackbed/common/random.h"
 #include "trackbed/common/split_mix.h"
 
 namespace trackbed::sim {
@@ -64,14 +64,13 @@ namespace {
 class ValueNoise {
  public:
   ValueNoise(double x0, double y0, double width, double height, double wavelength,
-             std::mt19937_64* rng)
+             random::Generator* rng)
       : x0_(x0), y0_(y0), wavelength_(wavelength) {
     nx_ = static_cast<int>(std::ceil(width / wavelength)) + 2;
     ny_ = static_cast<int>(std::ceil(height / wavelength)) + 2;
     values_.resize(static_cast<std::size_t>(nx_) * ny_);
     for (double& v : values_) {
-      // 53 random bits to a double in [-1, 1): exact and portable.
-      v = static_cast<double>((*rng)() >> 11) * 0x1.0p-52 - 1.0;
+      v = 2.0 * rng->Uniform() - 1.0;  // in [-1, 1), exactly
     }
   }
 
@@ -120,7 +119,7 @@ Terrain::Terrain(const TerrainOptions& options, std::uint64_t seed)
   rows_ = static_cast<int>(std::ceil((options.extent_m[3] - y0_) / cell_)) + 1;
 
   // Heights: two octaves for each of undulation and bumps, then the slope.
-  std::mt19937_64 rng(seed ^ 0x7e77a1ULL);
+  random::Generator rng(seed ^ 0x7e77a1ULL);
   const TerrainRoughness& r = options.roughness;
   const double width = cell_ * (cols_ - 1), height = cell_ * (rows_ - 1);
   ValueNoise hills(x0_, y0_, width, height, r.undulation_wavelength_m, &rng);

@@ -420,9 +420,11 @@ TEST(ScenarioYamlTest, WallFromToBecomesRotatedBox) {
   EXPECT_EQ(wall.size_m.y(), 0.1);
   EXPECT_EQ(wall.size_m.z(), 2.5);
   EXPECT_TRUE(std::isnan(wall.base_z_m));
+  // The yaw written is the shortest decimal whose units::Radians is exactly atan2(4, 3)
+  // (one unit in the last place below its nearest decimal in degrees, 53.13010235415598).
   const std::string text = ScenarioToYaml(s);
   EXPECT_NE(text.find("    - type: wall\n      center: [2.5, 3]\n      size_m: [5, 0.1, 2.5]\n"
-                      "      yaw_deg: 53.13010235415598\n      appearance: plain_paint\n"),
+                      "      yaw_deg: 53.13010235415597\n      appearance: plain_paint\n"),
             std::string::npos)
       << text;
   EXPECT_EQ(RoundTrip(text), text);

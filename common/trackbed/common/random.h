@@ -36,6 +36,8 @@ class Generator {
   std::uint64_t Bits() { return engine_(); }
   /// Uniform in [0, 1).
   double Uniform() { return UnitInterval(engine_()); }
+  /// Uniform in [lo, hi): lo + (hi − lo)·Uniform().
+  double Uniform(double lo, double hi) { return lo + (hi - lo) * Uniform(); }
   /// Uniform integer in [0, n), n ≥ 1, without modulo bias: draws above the largest
   /// multiple of n are rejected and redrawn, the rest taken modulo n.
   std::uint64_t UniformIndex(std::uint64_t n);
@@ -44,6 +46,10 @@ class Generator {
     const double u1 = OpenUnitInterval(engine_());
     return BoxMuller(u1, UnitInterval(engine_()));
   }
+
+  /// Same state: the same draws follow.
+  friend bool operator==(const Generator& a, const Generator& b) { return a.engine_ == b.engine_; }
+  friend bool operator!=(const Generator& a, const Generator& b) { return !(a == b); }
 
  private:
   std::mt19937_64 engine_;

@@ -19,12 +19,12 @@
 // current frame.
 #pragma once
 
-#include <random>
 #include <vector>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "trackbed/common/random.h"
 #include "trackbed/common/stereo_camera.h"
 
 namespace trackbed::estimation {
@@ -90,7 +90,7 @@ struct MotionRansacResult {
 /// validated (OptionError).
 void EstimateMotionRansac(const std::vector<MotionCorrespondence>& correspondences,
                           const geometry::StereoCamera& camera, const MotionRansacOptions& options,
-                          std::mt19937_64& rng, MotionRansacResult* result);
+                          random::Generator& rng, MotionRansacResult* result);
 
 /// Levenberg–Marquardt on the stereo reprojection error.
 struct MotionRefinementOptions {
@@ -194,6 +194,6 @@ struct StereoMotionResult {
 void EstimateStereoMotion(const std::vector<MotionCorrespondence>& correspondences,
                           const std::vector<unsigned char>& candidates,
                           const geometry::StereoCamera& camera, const StereoMotionOptions& options,
-                          std::mt19937_64& rng, StereoMotionResult* result);
+                          random::Generator& rng, StereoMotionResult* result);
 
 }  // namespace trackbed::estimation

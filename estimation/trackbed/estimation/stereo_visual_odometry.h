@@ -34,7 +34,6 @@
 
 #include <cstdint>
 #include <optional>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -84,7 +83,7 @@ struct StereoVisualOdometryOptions {
   /// RANSAC options (threshold in px of reprojection error; it also re-selects the
   /// inliers after the refinement).
   MotionRansacOptions ransac;
-  /// Seed of the RANSAC generator (std::mt19937_64); the same seed and images give the
+  /// Seed of the RANSAC generator (random::Generator); the same seed and images give the
   /// same result.
   std::uint64_t seed = 1;
   /// Fewer inliers than this is a failure (see the file comment), >= 3.
@@ -258,7 +257,7 @@ class StereoVisualOdometry {
   StereoMotionOptions motion_options_;  // options_'s ransac, refinement, min_inliers
   perception::FeatureTracker tracker_;
   perception::StereoMatcher matcher_;
-  std::mt19937_64 rng_;
+  random::Generator rng_;
 
   // State carried between frames.
   bool has_previous_ = false;

@@ -6,7 +6,6 @@
 #pragma once
 
 #include <cstdint>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -26,11 +25,6 @@ struct NavigationScene {
 /// Radius [m] and link spacing [m] of the walls built by the trap scenes.
 inline constexpr double kWallRadiusM = 0.1;
 inline constexpr double kWallSpacingM = 0.5;
-
-/// A uniform draw in [0, 1) from the top 53 bits of one mt19937_64 output: the same
-/// sequence with every standard library (std::uniform_real_distribution's is not
-/// specified).
-double UniformUnit(std::mt19937_64& rng);
 
 struct RandomFieldOptions {
   /// Distance from the start to the goal [m].

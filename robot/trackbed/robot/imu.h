@@ -7,9 +7,9 @@
 // density 2.0e-3 m/s²/√Hz, accel bias random walk 3.0e-3 m/s³/√Hz.
 #pragma once
 
-#include <random>
-
 #include <Eigen/Geometry>
+
+#include "trackbed/common/random.h"
 
 namespace trackbed::robot {
 
@@ -74,8 +74,7 @@ class Imu {
 
   ImuOptions options_;
   double gravity_mps2_;
-  std::mt19937_64 rng_;
-  std::normal_distribution<double> normal_{0.0, 1.0};
+  random::Generator rng_;
   Eigen::Vector3d gyro_bias_, accel_bias_;
 };
 
