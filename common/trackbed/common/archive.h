@@ -204,11 +204,18 @@ struct Field {
   /// Writing: the key is left out when the value is empty (nothing, an empty list or
   /// string, false).
   bool omit_empty = false;
+  /// Reading: a missing required key is reported at its Visit, before the keys visited
+  /// after it and before unknown keys. For formats whose readers went key by key before
+  /// the archive (the teach map's map.json), so that a renamed key reads as missing.
+  bool missing_at_once = false;
 };
 /// Field{true}: the key must be there.
 inline constexpr Field kRequired{true, nullptr, false};
 /// Field{false, nullptr, true}: written only when not empty.
 inline constexpr Field kOmitEmpty{false, nullptr, true};
+/// Field{true, nullptr, false, true}: the key must be there, and its absence is the first
+/// error.
+inline constexpr Field kRequiredAtOnce{true, nullptr, false, true};
 
 /// How a type is read from a Node and written to one. Specialized below for scalars,
 /// lists, optionals, raw Nodes and Entries; the primary template handles structs with
@@ -331,7 +338,7 @@ class Reader {
   bool Has(const char* key) const;
 
   /// Rejects the keys no Visit asked for, listing those it did; then reports the first
-  /// required key that was missing.
+  /// required key that was missing (but see Field::missing_at_once).
   void Finish() const;
 
   /// Throws Error at `path.key` (at this map for an empty key).
