@@ -1,6 +1,6 @@
 // The config archive: one strict reader and writer for every options file trackbed
-// reads (scenarios, sweep files, a sweep folder's cells.json and cell.json), in YAML
-// and in JSON.
+// reads (scenarios, sweep files, a sweep folder's cells.json and cell.json) and for the
+// teach map's map.json, in YAML and in JSON.
 //
 // After Drake's yaml_read_archive: each options struct lists its keys once, beside its
 // fields, in a template member
@@ -179,7 +179,7 @@ Node& Reach(Node& root, const Path& path, std::string* where);
 
 /// How a reader words what it found. The scenario and sweep formats had readers of
 /// their own before the archive, whose messages are part of their contract.
-/// kDetailed (scenario files): `'5'`, `the quoted string "5"`, `a list of 2`,
+/// kDetailed (scenario files, the teach map): `'5'`, `the quoted string "5"`, `a list of 2`,
 /// `nothing`; unknown keys `(allowed: …)`; unsigned integers `an integer in [0, 2^64)`.
 /// kBrief (sweep files, sweep folders): scalars as in kDetailed where a scalar was
 /// expected, else `a scalar`; `a list`, `null`; unknown keys `(expected one of: …)`;
