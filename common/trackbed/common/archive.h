@@ -1,6 +1,6 @@
 // The config archive: one strict reader and writer for every options file trackbed
-// reads (scenarios, sweep files, a sweep folder's cells.json and cell.json) and for the
-// teach map's map.json, in YAML and in JSON.
+// reads (scenarios, sweep files, a sweep folder's cells.json, cell.json and
+// slurm/jobs.json) and for the teach map's map.json, in YAML and in JSON.
 //
 // After Drake's yaml_read_archive: each options struct lists its keys once, beside its
 // fields, in a template member
