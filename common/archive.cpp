@@ -331,8 +331,10 @@ Reader::Reader(const Node& node, std::string path, Wording wording)
 const Node* Reader::Take(const char* key, const Field& field) {
   asked_.emplace_back(key);
   const Node* child = node_->Find(key);
-  if (!child && field.required && !missing_) {
-    missing_ = {key, field.what ? std::string("missing (") + field.what + ")" : "missing"};
+  if (!child && field.required) {
+    std::string reason = field.what ? std::string("missing (") + field.what + ")" : "missing";
+    if (field.missing_at_once) Fail(key, reason);
+    if (!missing_) missing_ = {key, std::move(reason)};
   }
   return child;
 }

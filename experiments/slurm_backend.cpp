@@ -15,15 +15,13 @@
 #include <utility>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
+#include "trackbed/common/archive.h"
 #include "trackbed/experiments/sweep_report.h"
 
 namespace trackbed::experiments {
 namespace {
 
 namespace fs = std::filesystem;
-using Json = nlohmann::json;
 using experiments::CellOutcome;
 using experiments::CellStatus;
 using experiments::SweepCell;
@@ -40,43 +38,24 @@ fs::path SlurmDir(const fs::path& dir) { return dir / "slurm"; }
 fs::path JobsFile(const fs::path& dir) { return SlurmDir(dir) / "jobs.json"; }
 fs::path LogDir(const fs::path& dir) { return SlurmDir(dir) / "logs"; }
 
-// One `sbatch` of this sweep: the array job and the cell each task runs.
-struct Submission {
-  std::string job_id;              ///< Slurm's array job id
-  std::vector<std::size_t> cells;  ///< task i runs cell cells[i]
-  std::string list;                ///< the list file, relative to the sweep folder
-  std::string submitted_utc;
+/// jobs.json.
+struct JobsFields {
+  std::vector<SlurmSubmission> jobs;
+
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("jobs", &jobs, archive::kRequired);
+  }
 };
 
-std::vector<Submission> ReadSubmissions(const fs::path& dir) {
-  std::vector<Submission> subs;
+std::vector<SlurmSubmission> ReadSubmissions(const fs::path& dir) {
   const fs::path file = JobsFile(dir);
-  if (!fs::exists(file)) return subs;
-  try {
-    const Json j = Json::parse(experiments::ReadTextFile(file));
-    for (const Json& s : j.at("jobs")) {
-      Submission sub;
-      sub.job_id = s.at("job_id").get<std::string>();
-      sub.cells = s.at("cells").get<std::vector<std::size_t>>();
-      sub.list = s.at("list").get<std::string>();
-      sub.submitted_utc = s.at("submitted_utc").get<std::string>();
-      subs.push_back(std::move(sub));
-    }
-  } catch (const std::exception& e) {
-    throw std::runtime_error(file.string() + ": unreadable: " + e.what());
-  }
-  return subs;
+  if (!fs::exists(file)) return {};
+  return ParseSlurmJobs(experiments::ReadTextFile(file), file.string());
 }
 
-void WriteSubmissions(const fs::path& dir, const std::vector<Submission>& subs) {
-  Json jobs = Json::array();
-  for (const Submission& s : subs) {
-    jobs.push_back({{"job_id", s.job_id},
-                    {"cells", s.cells},
-                    {"list", s.list},
-                    {"submitted_utc", s.submitted_utc}});
-  }
-  experiments::WriteFileAtomically(JobsFile(dir), Json{{"jobs", jobs}}.dump(2) + "\n");
+void WriteSubmissions(const fs::path& dir, const std::vector<SlurmSubmission>& subs) {
+  experiments::WriteFileAtomically(JobsFile(dir), SlurmJobsJson(subs));
 }
 
 // What Slurm says of one array task.
@@ -150,9 +129,9 @@ std::optional<std::map<std::size_t, TaskState>> QueryTasks(const std::string& jo
 
 // The cells of `subs` that Slurm still has queued or running. Throws when Slurm
 // cannot be asked: resubmitting blind could run a cell twice at once.
-std::map<std::size_t, std::string> BusyCells(const std::vector<Submission>& subs) {
+std::map<std::size_t, std::string> BusyCells(const std::vector<SlurmSubmission>& subs) {
   std::map<std::size_t, std::string> busy;  // cell -> job id
-  for (const Submission& s : subs) {
+  for (const SlurmSubmission& s : subs) {
     const auto tasks = QueryTasks(s.job_id);
     if (!tasks) {
       throw std::runtime_error("squeue cannot tell whether job " + s.job_id +
@@ -250,12 +229,12 @@ std::string WithSlurmLog(const fs::path& dir, const std::string& run_tail, const
 
 // Follows `subs`' tasks of the cells in `watch` until none is queued or running.
 // Returns the interrupting signal, or 0.
-int Follow(const fs::path& dir, const SweepPlan& plan, const std::vector<Submission>& subs,
+int Follow(const fs::path& dir, const SweepPlan& plan, const std::vector<SlurmSubmission>& subs,
            const std::set<std::size_t>& watch, const SlurmOptions& options,
            const BlockedSignals& signals, Progress& progress) {
   // cell -> (submission, task) of its latest submission.
-  std::map<std::size_t, std::pair<const Submission*, std::size_t>> where;
-  for (const Submission& s : subs) {
+  std::map<std::size_t, std::pair<const SlurmSubmission*, std::size_t>> where;
+  for (const SlurmSubmission& s : subs) {
     for (std::size_t t = 0; t < s.cells.size(); ++t) where[s.cells[t]] = {&s, t};
   }
   std::set<std::size_t> open = watch;
@@ -307,6 +286,22 @@ int Follow(const fs::path& dir, const SweepPlan& plan, const std::vector<Submiss
 }
 
 }  // namespace
+
+std::string SlurmJobsJson(const std::vector<SlurmSubmission>& submissions) {
+  return archive::ToJson(archive::Write(JobsFields{submissions})) + "\n";
+}
+
+std::vector<SlurmSubmission> ParseSlurmJobs(const std::string& json_text,
+                                            const std::string& source_name) {
+  JobsFields fields;
+  try {
+    // The sweep folder's brief wording, as cells.json and cell.json.
+    archive::Read(archive::ParseJson(json_text), "", archive::Wording::kBrief, &fields);
+  } catch (const archive::Error& e) {
+    throw SweepError(source_name, e.path(), e.reason());
+  }
+  return fields.jobs;
+}
 
 void CheckSlurmAvailable() {
   std::vector<std::string> missing;
@@ -376,7 +371,7 @@ int RunSlurmSweep(const fs::path& dir, const SweepPlan& plan, const SlurmOptions
                                 "quotes or '%' (they would reach #SBATCH lines)");
   }
   fs::create_directories(LogDir(dir));
-  std::vector<Submission> subs = ReadSubmissions(dir);
+  std::vector<SlurmSubmission> subs = ReadSubmissions(dir);
   const std::map<std::size_t, std::string> busy = BusyCells(subs);
 
   std::vector<const SweepCell*> to_run;
@@ -423,8 +418,8 @@ int RunSlurmSweep(const fs::path& dir, const SweepPlan& plan, const SlurmOptions
       throw std::runtime_error("sbatch " + script.string() + " failed (exit " +
                                std::to_string(r.exit_code) + "): " + LastLine(r.err));
     }
-    Submission sub{job_id, cells, fs::relative(script, dir).replace_extension(".cells").string(),
-                   UtcNow()};
+    SlurmSubmission sub{job_id, cells,
+                        fs::relative(script, dir).replace_extension(".cells").string(), UtcNow()};
     subs.push_back(sub);
     WriteSubmissions(dir, subs);
     watch.insert(cells.begin(), cells.end());

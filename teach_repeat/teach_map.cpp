@@ -1,4 +1,6 @@
-// The teach map and its on-disk format (see teach_map.h, docs/teach_repeat.md).
+// The teach map and its on-disk format (see teach_map.h, docs/teach_repeat.md). map.json
+// goes through the config archive in its file form (the structs below); patches.bin and
+// the key images are written and read here.
 #include "trackbed/teach_repeat/teach_map.h"
 
 #include <algorithm>
@@ -8,29 +10,30 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "trackbed/common/archive.h"
+#include "trackbed/common/archive_eigen.h"
 #include "trackbed/common/option_error.h"
 
 namespace trackbed::teach_repeat {
 namespace {
 
 namespace fs = std::filesystem;
-using OrderedJson = nlohmann::ordered_json;
-using Json = nlohmann::json;
 
-constexpr char kFormatName[] = "trackbed.teach_map";
 constexpr char kMapFile[] = "map.json";
 constexpr char kPatchFile[] = "patches.bin";
 constexpr char kKeyImageDir[] = "key_images";
 constexpr char kPatchMagic[8] = {'T', 'B', 'P', 'A', 'T', 'C', 'H', '1'};
 constexpr std::size_t kPatchHeaderBytes = 8 + 4 + 4 + 8;
+// map.json's messages say what they found, as scenario files' do.
+constexpr archive::Wording kWording = archive::Wording::kDetailed;
 
 std::string KeyImageName(std::size_t milestone) {
   char name[32];
@@ -69,110 +72,176 @@ std::optional<std::string> ReadFile(const fs::path& path) {
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
-// --- Writing. ---------------------------------------------------------------------------
+// --- map.json's file form, key for key, for the config archive. ---------------------------
+//
+// These structs mirror the file, not the TeachMap: the counts, file names, format name
+// and version are written for readers of the file, images are stored as columns (t_s,
+// odometry), poses and features as flat lists of numbers. MapToFile and MapFromFile
+// convert, the latter checking what one key cannot check alone (counts against lists,
+// image indices against images.count). Every key is required, and a missing key is
+// reported before the keys after it (archive::kRequiredAtOnce), as map.json's reader
+// always did; unknown keys are rejected. `format` and `version` are checked as soon as
+// they are read, so a map of another version is reported as such rather than by its
+// other keys.
 
-OrderedJson OdometryJson(const std::optional<estimation::Pose2>& pose) {
-  if (!pose) return nullptr;
-  return OrderedJson::array({pose->x, pose->y, pose->yaw});
-}
+/// map.json's `format`.
+constexpr char kFormatName[] = "trackbed.teach_map";
 
-OrderedJson MilestoneJson(const Milestone& m, std::size_t index) {
-  OrderedJson j;
-  j["first_image"] = m.first_image;
-  j["last_image"] = m.last_image;
-  j["first_t_s"] = m.first_t_s;
-  j["last_t_s"] = m.last_t_s;
-  j["cut"] = ToString(m.cut);
-  j["reconstructed"] = m.reconstructed;
-  OrderedJson T = OrderedJson::array();
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 4; ++c) T.push_back(m.T_first_last.matrix()(r, c));
+/// `camera`: the pinhole intrinsics (teach_map.h's CameraIntrinsics, field for field).
+struct CameraFile {
+  double fx = 0.0, fy = 0.0, cx = 0.0, cy = 0.0;
+  int width = 0, height = 0;
+
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("fx", &fx, archive::kRequiredAtOnce);
+    a->Visit("fy", &fy, archive::kRequiredAtOnce);
+    a->Visit("cx", &cx, archive::kRequiredAtOnce);
+    a->Visit("cy", &cy, archive::kRequiredAtOnce);
+    a->Visit("width", &width, archive::kRequiredAtOnce);
+    a->Visit("height", &height, archive::kRequiredAtOnce);
   }
-  j["T_first_last"] = T;
-  j["reprojection_error_px"] = m.reprojection_error_px;
-  j["baseline_m"] = m.baseline_m;
-  j["key_image"] = KeyImageName(index);
-  j["feature_count"] = m.features.size();
-  OrderedJson features = OrderedJson::array();
-  for (const MilestoneFeature& f : m.features) {
-    // float → double is exact, and so is the way back on loading.
-    features.push_back(
-        OrderedJson::array({static_cast<double>(f.first_px.x), static_cast<double>(f.first_px.y),
-                            static_cast<double>(f.last_px.x), static_cast<double>(f.last_px.y),
-                            f.p_first.x(), f.p_first.y(), f.p_first.z()}));
-  }
-  j["features"] = std::move(features);
-  return j;
-}
-
-// --- Reading, with the path of every value in the error messages. -------------------------
-
-class Reader {
- public:
-  explicit Reader(std::string file) : file_(std::move(file)) {}
-
-  [[noreturn]] void Fail(const std::string& where, const std::string& what) const {
-    throw std::runtime_error("LoadTeachMap: " + file_ + (where.empty() ? "" : ": " + where) + ": " +
-                             what);
-  }
-
-  const Json& Key(const Json& object, const char* key, const std::string& path) const {
-    if (!object.is_object()) Fail(path, "expected an object");
-    const auto it = object.find(key);
-    if (it == object.end()) Fail(Join(path, key), "missing");
-    return *it;
-  }
-
-  double Number(const Json& j, const std::string& path) const {
-    if (!j.is_number()) Fail(path, "expected a number");
-    const double value = j.get<double>();
-    if (!std::isfinite(value)) Fail(path, "not a finite number");
-    return value;
-  }
-
-  std::int64_t Integer(const Json& j, const std::string& path) const {
-    if (!j.is_number_integer()) Fail(path, "expected an integer");
-    return j.get<std::int64_t>();
-  }
-
-  bool Boolean(const Json& j, const std::string& path) const {
-    if (!j.is_boolean()) Fail(path, "expected true or false");
-    return j.get<bool>();
-  }
-
-  std::string String(const Json& j, const std::string& path) const {
-    if (!j.is_string()) Fail(path, "expected a string");
-    return j.get<std::string>();
-  }
-
-  const Json& Array(const Json& j, const std::string& path, std::size_t expected = kAny) const {
-    if (!j.is_array()) Fail(path, "expected an array");
-    if (expected != kAny && j.size() != expected) {
-      Fail(path,
-           "expected " + std::to_string(expected) + " entries, found " + std::to_string(j.size()));
-    }
-    return j;
-  }
-
-  std::optional<estimation::Pose2> Odometry(const Json& j, const std::string& path) const {
-    if (j.is_null()) return std::nullopt;
-    Array(j, path, 3);
-    return estimation::Pose2{Number(j[0], path + "[0]"), Number(j[1], path + "[1]"),
-                             Number(j[2], path + "[2]")};
-  }
-
-  static std::string Join(const std::string& path, const std::string& key) {
-    return path.empty() ? key : path + "." + key;
-  }
-  static std::string Index(const std::string& path, std::size_t i) {
-    return path + "[" + std::to_string(i) + "]";
-  }
-
-  static constexpr std::size_t kAny = static_cast<std::size_t>(-1);
-
- private:
-  std::string file_;
 };
+
+/// `images`: every teach image's time and, when recorded, wheel odometry (x, y, yaw),
+/// as two lists of `count` entries.
+struct ImagesFile {
+  std::int64_t count = 0;
+  std::vector<double> t_s;
+  std::vector<std::optional<Eigen::Vector3d>> odometry;  ///< null: none recorded
+
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("count", &count, archive::kRequiredAtOnce);
+    a->Visit("t_s", &t_s, archive::kRequiredAtOnce);
+    a->Visit("odometry", &odometry, archive::kRequiredAtOnce);
+  }
+};
+
+/// A feature's row: first_px (x, y), last_px (x, y), p_first (x, y, z).
+using FeatureRow = Eigen::Matrix<double, 7, 1>;
+/// T_first_last's top three rows, row by row.
+using PoseRows = Eigen::Matrix<double, 12, 1>;
+
+/// One of `milestones`.
+struct MilestoneFile {
+  int first_image = 0, last_image = 0;
+  double first_t_s = 0.0, last_t_s = 0.0;
+  MilestoneCut cut = MilestoneCut::kInterval;
+  bool reconstructed = false;
+  PoseRows T_first_last = PoseRows::Zero();
+  double reprojection_error_px = 0.0;
+  double baseline_m = 0.0;
+  std::string key_image;  ///< the key image's file, relative to the map's directory
+  std::int64_t feature_count = 0;
+  std::vector<FeatureRow> features;
+
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("first_image", &first_image, archive::kRequiredAtOnce);
+    a->Visit("last_image", &last_image, archive::kRequiredAtOnce);
+    a->Visit("first_t_s", &first_t_s, archive::kRequiredAtOnce);
+    a->Visit("last_t_s", &last_t_s, archive::kRequiredAtOnce);
+    a->VisitEnum("cut", &cut,
+                 {{ToString(MilestoneCut::kInterval), MilestoneCut::kInterval},
+                  {ToString(MilestoneCut::kReprojectionError), MilestoneCut::kReprojectionError},
+                  {ToString(MilestoneCut::kTooFewFeatures), MilestoneCut::kTooFewFeatures},
+                  {ToString(MilestoneCut::kMaxImages), MilestoneCut::kMaxImages},
+                  {ToString(MilestoneCut::kEndOfTeach), MilestoneCut::kEndOfTeach}},
+                 archive::kRequiredAtOnce);
+    a->Visit("reconstructed", &reconstructed, archive::kRequiredAtOnce);
+    a->Visit("T_first_last", &T_first_last, archive::kRequiredAtOnce);
+    a->Visit("reprojection_error_px", &reprojection_error_px, archive::kRequiredAtOnce);
+    a->Visit("baseline_m", &baseline_m, archive::kRequiredAtOnce);
+    a->Visit("key_image", &key_image, archive::kRequiredAtOnce);
+    a->Visit("feature_count", &feature_count, archive::kRequiredAtOnce);
+    a->Visit("features", &features, archive::kRequiredAtOnce);
+  }
+};
+
+/// map.json.
+struct MapFile {
+  std::string format = kFormatName;
+  int version = kTeachMapFormatVersion;
+  TeachMode mode = TeachMode::k2d;
+  CameraFile camera;
+  int patch_size_px = 0;
+  std::string patches_file;  ///< the patch file, relative to the map's directory
+  std::int64_t patch_count = 0;
+  ImagesFile images;
+  std::vector<MilestoneFile> milestones;
+
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("format", &format, archive::kRequiredAtOnce);
+    if (format != kFormatName) {
+      a->Fail("format", "expected \"" + std::string(kFormatName) + "\", found \"" + format + "\"");
+    }
+    a->Visit("version", &version, archive::kRequiredAtOnce);
+    if (version != kTeachMapFormatVersion) {
+      a->Fail("version", "unsupported version " + std::to_string(version) +
+                             " (this build reads version " +
+                             std::to_string(kTeachMapFormatVersion) + ")");
+    }
+    a->VisitEnum(
+        "mode", &mode,
+        {{ToString(TeachMode::k2d), TeachMode::k2d}, {ToString(TeachMode::k3d), TeachMode::k3d}},
+        archive::kRequiredAtOnce);
+    a->Visit("camera", &camera, archive::kRequiredAtOnce);
+    a->Visit("patch_size_px", &patch_size_px, archive::kRequiredAtOnce);
+    a->Visit("patches_file", &patches_file, archive::kRequiredAtOnce);
+    a->Visit("patch_count", &patch_count, archive::kRequiredAtOnce);
+    a->Visit("images", &images, archive::kRequiredAtOnce);
+    a->Visit("milestones", &milestones, archive::kRequiredAtOnce);
+  }
+};
+
+// --- map.json's file form from a map. -----------------------------------------------------
+
+MilestoneFile MilestoneToFile(const Milestone& m, std::size_t index) {
+  MilestoneFile f;
+  f.first_image = m.first_image;
+  f.last_image = m.last_image;
+  f.first_t_s = m.first_t_s;
+  f.last_t_s = m.last_t_s;
+  f.cut = m.cut;
+  f.reconstructed = m.reconstructed;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 4; ++c) f.T_first_last[4 * r + c] = m.T_first_last.matrix()(r, c);
+  }
+  f.reprojection_error_px = m.reprojection_error_px;
+  f.baseline_m = m.baseline_m;
+  f.key_image = KeyImageName(index);
+  f.feature_count = static_cast<std::int64_t>(m.features.size());
+  for (const MilestoneFeature& feature : m.features) {
+    // float → double is exact, and so is the way back on loading.
+    FeatureRow& row = f.features.emplace_back();
+    row << feature.first_px.x, feature.first_px.y, feature.last_px.x, feature.last_px.y,
+        feature.p_first;
+  }
+  return f;
+}
+
+MapFile MapToFile(const TeachMap& map) {
+  MapFile f;
+  f.mode = map.mode;
+  const CameraIntrinsics& c = map.camera;
+  f.camera = {c.fx, c.fy, c.cx, c.cy, c.width, c.height};
+  f.patch_size_px = map.patch_size_px;
+  f.patches_file = kPatchFile;
+  f.patch_count = static_cast<std::int64_t>(map.feature_count());
+  f.images.count = static_cast<std::int64_t>(map.images.size());
+  for (const TeachImageRecord& r : map.images) {
+    f.images.t_s.push_back(r.t_s);
+    f.images.odometry.push_back(
+        r.odometry ? std::optional<Eigen::Vector3d>({r.odometry->x, r.odometry->y, r.odometry->yaw})
+                   : std::nullopt);
+  }
+  for (std::size_t k = 0; k < map.milestones.size(); ++k) {
+    f.milestones.push_back(MilestoneToFile(map.milestones[k], k));
+  }
+  return f;
+}
 
 }  // namespace
 
@@ -341,170 +410,124 @@ void SaveTeachMap(const TeachMap& map, const std::string& dir) {
   }
   WriteFile(root / kPatchFile, patches);
 
-  // map.json.
-  OrderedJson j;
-  j["format"] = kFormatName;
-  j["version"] = kTeachMapFormatVersion;
-  j["mode"] = ToString(map.mode);
-  j["camera"] = {{"fx", map.camera.fx}, {"fy", map.camera.fy},       {"cx", map.camera.cx},
-                 {"cy", map.camera.cy}, {"width", map.camera.width}, {"height", map.camera.height}};
-  j["patch_size_px"] = map.patch_size_px;
-  j["patches_file"] = kPatchFile;
-  j["patch_count"] = count;
-  OrderedJson times = OrderedJson::array(), odometry = OrderedJson::array();
-  for (const TeachImageRecord& r : map.images) {
-    times.push_back(r.t_s);
-    odometry.push_back(OdometryJson(r.odometry));
-  }
-  j["images"] = {{"count", map.images.size()}, {"t_s", times}, {"odometry", odometry}};
-  OrderedJson milestones = OrderedJson::array();
-  for (std::size_t k = 0; k < map.milestones.size(); ++k) {
-    milestones.push_back(MilestoneJson(map.milestones[k], k));
-  }
-  j["milestones"] = std::move(milestones);
-  WriteFile(root / kMapFile, j.dump(1) + "\n");
+  // map.json, in its file form, one space per level of indentation.
+  WriteFile(root / kMapFile, archive::ToJson(archive::Write(MapToFile(map)), 1) + "\n");
 }
 
 // --- Load. --------------------------------------------------------------------------------
 
 namespace {
 
-/// map.json, parsed; throws when it is missing, unreadable or not JSON.
-Json ReadMapJson(const fs::path& map_path, const Reader& rd) {
-  const std::optional<std::string> text = ReadFile(map_path);
-  if (!text)
-    throw std::runtime_error("LoadTeachMap: " + map_path.string() + ": missing or unreadable");
-  Json j;
+/// map.json, read into its file form. Throws archive::Error naming the key at fault.
+MapFile ReadMapFile(const std::string& text) {
+  archive::Node root;
   try {
-    j = Json::parse(*text);
-  } catch (const Json::exception& e) {
-    rd.Fail("", std::string("not valid JSON (truncated?): ") + e.what());
+    root = archive::ParseJson(text);
+  } catch (const archive::SyntaxError& e) {
+    throw archive::Error("", "not valid JSON (truncated?): " + e.detail());
   }
-  return j;
+  MapFile file;
+  archive::Read(root, "", kWording, &file);
+  return file;
 }
 
-/// Throws unless map.json names this format and the version this build reads.
-void CheckFormat(const Reader& rd, const Json& j) {
-  const std::string format = rd.String(rd.Key(j, "format", ""), "format");
-  if (format != kFormatName) {
-    rd.Fail("format", "expected \"" + std::string(kFormatName) + "\", found \"" + format + "\"");
-  }
-  const std::int64_t version = rd.Integer(rd.Key(j, "version", ""), "version");
-  if (version != kTeachMapFormatVersion) {
-    rd.Fail("version", "unsupported version " + std::to_string(version) +
-                           " (this build reads version " + std::to_string(kTeachMapFormatVersion) +
-                           ")");
-  }
-}
-
-/// The map's teach mode, camera and patch size.
-void ReadModeCameraAndPatchSize(const Reader& rd, const Json& j, TeachMap* map) {
-  try {
-    map->mode = ParseTeachMode(rd.String(rd.Key(j, "mode", ""), "mode"));
-  } catch (const std::invalid_argument& e) {
-    rd.Fail("mode", e.what());
-  }
-  const Json& cam = rd.Key(j, "camera", "");
-  map->camera.fx = rd.Number(rd.Key(cam, "fx", "camera"), "camera.fx");
-  map->camera.fy = rd.Number(rd.Key(cam, "fy", "camera"), "camera.fy");
-  map->camera.cx = rd.Number(rd.Key(cam, "cx", "camera"), "camera.cx");
-  map->camera.cy = rd.Number(rd.Key(cam, "cy", "camera"), "camera.cy");
-  map->camera.width = static_cast<int>(rd.Integer(rd.Key(cam, "width", "camera"), "camera.width"));
-  map->camera.height =
-      static_cast<int>(rd.Integer(rd.Key(cam, "height", "camera"), "camera.height"));
-  try {
-    map->camera.Validate();
-  } catch (const OptionError& e) {
-    rd.Fail("camera." + e.field(), e.reason());
-  }
-  const std::int64_t patch_size = rd.Integer(rd.Key(j, "patch_size_px", ""), "patch_size_px");
-  if (patch_size < 3 || patch_size % 2 == 0 || patch_size > 255) {
-    rd.Fail("patch_size_px",
-            "must be odd and in [3, 255] (got " + std::to_string(patch_size) + ")");
-  }
-  map->patch_size_px = static_cast<int>(patch_size);
-}
-
-/// The teach images' times and odometry.
-void ReadImages(const Reader& rd, const Json& j, TeachMap* map) {
-  const Json& images = rd.Key(j, "images", "");
-  const std::int64_t image_count = rd.Integer(rd.Key(images, "count", "images"), "images.count");
-  if (image_count < 0) rd.Fail("images.count", "must be >= 0");
-  const Json& times = rd.Array(rd.Key(images, "t_s", "images"), "images.t_s",
-                               static_cast<std::size_t>(image_count));
-  const Json& odometry = rd.Array(rd.Key(images, "odometry", "images"), "images.odometry",
-                                  static_cast<std::size_t>(image_count));
-  map->images.resize(static_cast<std::size_t>(image_count));
+/// The teach images' times and odometry, checked against images.count.
+void ImagesFromFile(const ImagesFile& images, TeachMap* map) {
+  if (images.count < 0) throw archive::Error("images.count", "must be >= 0");
+  const auto check_size = [&](const char* key, std::size_t size) {
+    if (size != static_cast<std::size_t>(images.count)) {
+      throw archive::Error(
+          archive::JoinKey("images", key),
+          "expected " + std::to_string(images.count) + " entries, found " + std::to_string(size));
+    }
+  };
+  check_size("t_s", images.t_s.size());
+  check_size("odometry", images.odometry.size());
+  map->images.resize(images.t_s.size());
   for (std::size_t i = 0; i < map->images.size(); ++i) {
-    map->images[i].t_s = rd.Number(times[i], Reader::Index("images.t_s", i));
-    map->images[i].odometry = rd.Odometry(odometry[i], Reader::Index("images.odometry", i));
-  }
-}
-
-/// Milestone `mj`'s (at `path`) images, times, cut and reconstruction; `previous` is the
-/// milestone before it (nullptr for the first), `image_count` the map's teach images.
-void ReadMilestoneFields(const Reader& rd, const Json& mj, const std::string& path,
-                         const Milestone* previous, std::int64_t image_count, Milestone* m) {
-  m->first_image =
-      static_cast<int>(rd.Integer(rd.Key(mj, "first_image", path), path + ".first_image"));
-  m->last_image =
-      static_cast<int>(rd.Integer(rd.Key(mj, "last_image", path), path + ".last_image"));
-  if (m->first_image < 0 || m->first_image >= m->last_image || m->last_image >= image_count) {
-    rd.Fail(path, "needs 0 <= first_image < last_image < images.count (got " +
-                      std::to_string(m->first_image) + ", " + std::to_string(m->last_image) + ")");
-  }
-  if (previous != nullptr && m->first_image < previous->last_image) {
-    rd.Fail(path + ".first_image", "starts before the previous milestone ends");
-  }
-  m->first_t_s = rd.Number(rd.Key(mj, "first_t_s", path), path + ".first_t_s");
-  m->last_t_s = rd.Number(rd.Key(mj, "last_t_s", path), path + ".last_t_s");
-  try {
-    m->cut = ParseMilestoneCut(rd.String(rd.Key(mj, "cut", path), path + ".cut"));
-  } catch (const std::invalid_argument& e) {
-    rd.Fail(path + ".cut", e.what());
-  }
-  m->reconstructed = rd.Boolean(rd.Key(mj, "reconstructed", path), path + ".reconstructed");
-  const Json& T = rd.Array(rd.Key(mj, "T_first_last", path), path + ".T_first_last", 12);
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 4; ++c) {
-      m->T_first_last.matrix()(r, c) =
-          rd.Number(T[static_cast<std::size_t>(4 * r + c)],
-                    Reader::Index(path + ".T_first_last", static_cast<std::size_t>(4 * r + c)));
+    map->images[i].t_s = images.t_s[i];
+    if (const std::optional<Eigen::Vector3d>& p = images.odometry[i]) {
+      map->images[i].odometry = estimation::Pose2{p->x(), p->y(), p->z()};
     }
   }
-  m->reprojection_error_px =
-      rd.Number(rd.Key(mj, "reprojection_error_px", path), path + ".reprojection_error_px");
-  m->baseline_m = rd.Number(rd.Key(mj, "baseline_m", path), path + ".baseline_m");
 }
 
-/// Milestone `mj`'s (at `path`) features: positions and 3-D points (patches come from
-/// the patch file).
-void ReadMilestoneFeatures(const Reader& rd, const Json& mj, const std::string& path,
-                           Milestone* m) {
-  const std::int64_t count = rd.Integer(rd.Key(mj, "feature_count", path), path + ".feature_count");
-  const Json& features = rd.Array(rd.Key(mj, "features", path), path + ".features");
-  if (count < 0 || static_cast<std::size_t>(count) != features.size()) {
-    rd.Fail(path, "inconsistent counts: feature_count is " + std::to_string(count) + " but " +
-                      std::to_string(features.size()) + " features are listed");
+/// Milestone `f` (at `path`), checked against the milestone before it (nullptr for the
+/// first) and the map's number of teach images. Its key image and patches come later.
+Milestone MilestoneFromFile(const MilestoneFile& f, const std::string& path,
+                            const Milestone* previous, std::size_t image_count) {
+  if (f.first_image < 0 || f.first_image >= f.last_image ||
+      static_cast<std::size_t>(f.last_image) >= image_count) {
+    throw archive::Error(path, "needs 0 <= first_image < last_image < images.count (got " +
+                                   std::to_string(f.first_image) + ", " +
+                                   std::to_string(f.last_image) + ")");
   }
-  m->features.resize(features.size());
-  for (std::size_t i = 0; i < features.size(); ++i) {
-    const std::string fpath = Reader::Index(path + ".features", i);
-    const Json& f = rd.Array(features[i], fpath, 7);
-    double v[7];
-    for (std::size_t c = 0; c < 7; ++c) v[c] = rd.Number(f[c], Reader::Index(fpath, c));
-    m->features[i].first_px = {static_cast<float>(v[0]), static_cast<float>(v[1])};
-    m->features[i].last_px = {static_cast<float>(v[2]), static_cast<float>(v[3])};
-    m->features[i].p_first = {v[4], v[5], v[6]};
+  if (previous != nullptr && f.first_image < previous->last_image) {
+    throw archive::Error(path + ".first_image", "starts before the previous milestone ends");
   }
+  if (f.feature_count < 0 || static_cast<std::size_t>(f.feature_count) != f.features.size()) {
+    throw archive::Error(path, "inconsistent counts: feature_count is " +
+                                   std::to_string(f.feature_count) + " but " +
+                                   std::to_string(f.features.size()) + " features are listed");
+  }
+  Milestone m;
+  m.first_image = f.first_image;
+  m.last_image = f.last_image;
+  m.first_t_s = f.first_t_s;
+  m.last_t_s = f.last_t_s;
+  m.cut = f.cut;
+  m.reconstructed = f.reconstructed;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 4; ++c) m.T_first_last.matrix()(r, c) = f.T_first_last[4 * r + c];
+  }
+  m.reprojection_error_px = f.reprojection_error_px;
+  m.baseline_m = f.baseline_m;
+  m.features.resize(f.features.size());
+  for (std::size_t i = 0; i < f.features.size(); ++i) {
+    const FeatureRow& row = f.features[i];
+    m.features[i].first_px = {static_cast<float>(row[0]), static_cast<float>(row[1])};
+    m.features[i].last_px = {static_cast<float>(row[2]), static_cast<float>(row[3])};
+    m.features[i].p_first = row.tail<3>();
+  }
+  return m;
 }
 
-/// Milestone `mj`'s (at `path`) key image, from the file map.json names below `root`: an
-/// 8-bit grey PNG of the camera's size.
-cv::Mat ReadKeyImage(const Reader& rd, const Json& mj, const std::string& path,
-                     const fs::path& root, const CameraIntrinsics& camera) {
-  const std::string key_name = rd.String(rd.Key(mj, "key_image", path), path + ".key_image");
-  const fs::path key_path = root / key_name;
+/// The map map.json describes, without key images and patches. Throws archive::Error
+/// for what the file form cannot check key by key: the camera, the patch size, counts
+/// that disagree with their lists, image indices out of order or range.
+TeachMap MapFromFile(const MapFile& f) {
+  TeachMap map;
+  map.mode = f.mode;
+  map.camera.fx = f.camera.fx;
+  map.camera.fy = f.camera.fy;
+  map.camera.cx = f.camera.cx;
+  map.camera.cy = f.camera.cy;
+  map.camera.width = f.camera.width;
+  map.camera.height = f.camera.height;
+  archive::ValidateAt(map.camera, "camera");
+  if (f.patch_size_px < 3 || f.patch_size_px % 2 == 0 || f.patch_size_px > 255) {
+    throw archive::Error("patch_size_px", "must be odd and in [3, 255] (got " +
+                                              std::to_string(f.patch_size_px) + ")");
+  }
+  map.patch_size_px = f.patch_size_px;
+  ImagesFromFile(f.images, &map);
+  for (std::size_t k = 0; k < f.milestones.size(); ++k) {
+    map.milestones.push_back(MilestoneFromFile(f.milestones[k], archive::JoinIndex("milestones", k),
+                                               k > 0 ? &map.milestones[k - 1] : nullptr,
+                                               map.images.size()));
+  }
+  const std::size_t features = map.feature_count();
+  if (f.patch_count < 0 || static_cast<std::size_t>(f.patch_count) != features) {
+    throw archive::Error("patch_count", "inconsistent counts: " + std::to_string(f.patch_count) +
+                                            " patches for " + std::to_string(features) +
+                                            " features");
+  }
+  return map;
+}
+
+/// Milestone `path`'s key image, file `key_path`: an 8-bit grey PNG of the camera's size.
+cv::Mat ReadKeyImage(const fs::path& key_path, const std::string& path,
+                     const CameraIntrinsics& camera) {
   const std::optional<std::string> png = ReadFile(key_path);
   if (!png) {
     throw std::runtime_error("LoadTeachMap: " + key_path.string() + ": key image of " + path +
@@ -533,36 +556,10 @@ cv::Mat ReadKeyImage(const Reader& rd, const Json& mj, const std::string& path,
   return image;
 }
 
-/// Every milestone, its features and key image (images below `root`). Returns the number
-/// of features over all milestones.
-std::size_t ReadMilestones(const Reader& rd, const Json& j, const fs::path& root, TeachMap* map) {
-  const Json& milestones = rd.Array(rd.Key(j, "milestones", ""), "milestones");
-  map->milestones.resize(milestones.size());
-  const std::int64_t image_count = static_cast<std::int64_t>(map->images.size());
-  std::size_t total_features = 0;
-  for (std::size_t k = 0; k < milestones.size(); ++k) {
-    const Json& mj = milestones[k];
-    const std::string path = Reader::Index("milestones", k);
-    Milestone& m = map->milestones[k];
-    ReadMilestoneFields(rd, mj, path, k > 0 ? &map->milestones[k - 1] : nullptr, image_count, &m);
-    ReadMilestoneFeatures(rd, mj, path, &m);
-    total_features += m.features.size();
-    m.key_image = ReadKeyImage(rd, mj, path, root, map->camera);
-  }
-  return total_features;
-}
-
-/// The patch file map.json names (below `root`), checked against map.json's patch count
-/// and patch size and against `total_features`. Returns its bytes.
-std::string ReadPatchFile(const Reader& rd, const Json& j, const fs::path& root,
-                          std::size_t total_features, int patch_size_px) {
-  const std::string patch_name = rd.String(rd.Key(j, "patches_file", ""), "patches_file");
-  const std::int64_t patch_count = rd.Integer(rd.Key(j, "patch_count", ""), "patch_count");
-  if (patch_count < 0 || static_cast<std::size_t>(patch_count) != total_features) {
-    rd.Fail("patch_count", "inconsistent counts: " + std::to_string(patch_count) + " patches for " +
-                               std::to_string(total_features) + " features");
-  }
-  const fs::path patch_path = root / patch_name;
+/// The patch file map.json names (`patch_path`), checked against the map's patch size
+/// and its `total_features`. Returns its bytes.
+std::string ReadPatchFile(const fs::path& patch_path, std::size_t total_features,
+                          int patch_size_px) {
   std::optional<std::string> blob = ReadFile(patch_path);
   const std::string pfile = "LoadTeachMap: " + patch_path.string() + ": ";
   if (!blob) throw std::runtime_error(pfile + "missing or unreadable");
@@ -616,18 +613,28 @@ TeachMap LoadTeachMap(const std::string& dir) {
     throw std::runtime_error("LoadTeachMap: " + dir + ": no such directory");
   }
   const fs::path map_path = root / kMapFile;
-  const Reader rd(map_path.string());
-  const Json j = ReadMapJson(map_path, rd);
-  CheckFormat(rd, j);
+  const std::optional<std::string> text = ReadFile(map_path);
+  if (!text) {
+    throw std::runtime_error("LoadTeachMap: " + map_path.string() + ": missing or unreadable");
+  }
+  MapFile file;
   TeachMap map;
-  ReadModeCameraAndPatchSize(rd, j, &map);
-  ReadImages(rd, j, &map);
-  const std::size_t total_features = ReadMilestones(rd, j, root, &map);
-  AssignPatches(ReadPatchFile(rd, j, root, total_features, map.patch_size_px), &map);
+  try {
+    file = ReadMapFile(*text);
+    map = MapFromFile(file);
+  } catch (const archive::Error& e) {
+    throw std::runtime_error("LoadTeachMap: " + map_path.string() + ": " + e.what());
+  }
+  for (std::size_t k = 0; k < map.milestones.size(); ++k) {
+    map.milestones[k].key_image = ReadKeyImage(root / file.milestones[k].key_image,
+                                               archive::JoinIndex("milestones", k), map.camera);
+  }
+  AssignPatches(ReadPatchFile(root / file.patches_file, map.feature_count(), map.patch_size_px),
+                &map);
   try {
     map.Validate();
   } catch (const std::invalid_argument& e) {
-    rd.Fail("", e.what());
+    throw std::runtime_error("LoadTeachMap: " + map_path.string() + ": " + e.what());
   }
   return map;
 }

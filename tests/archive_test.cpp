@@ -1,7 +1,7 @@
 // The config archive on its own (common/trackbed/common/archive.h): round trips of
 // nested structs, lists, optionals, maps and enums in YAML and JSON, the same struct
 // from both formats, and dotted-path errors for wrong types, unknown keys and
-// missing required keys.
+// missing required keys (at Finish, or at once).
 #include "trackbed/common/archive.h"
 
 #include <optional>
@@ -205,6 +205,38 @@ TEST(ArchiveTest, UnknownAndMissingKeysAreRejected) {
             "max_speed_mps, tags)");
   EXPECT_EQ(ErrorOf("robot: {name: a, name: b}"), "robot.name: duplicate key");
   EXPECT_EQ(ErrorOf("robot: {name: a}\nextra: 1\n"), "extra: unknown key (allowed: robot)");
+}
+
+// Keys whose absence is reported at once, as a reader going key by key would.
+struct KeyByKey {
+  int first = 0;
+  int second = 0;
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("first", &first, kRequiredAtOnce);
+    a->Visit("second", &second, kRequiredAtOnce);
+  }
+};
+
+std::string KeyByKeyErrorOf(const std::string& json) {
+  try {
+    KeyByKey k;
+    Read(ParseJson(json), "file", Wording::kDetailed, &k);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ArchiveTest, MissingAtOnceComesBeforeLaterKeysAndUnknownKeys) {
+  EXPECT_EQ(KeyByKeyErrorOf(R"({"first": 1, "second": 2})"), "");
+  EXPECT_EQ(KeyByKeyErrorOf(R"({"second": "x"})"), "file.first: missing");
+  // A renamed key reads as the missing one, not as the unknown one.
+  EXPECT_EQ(KeyByKeyErrorOf(R"({"first": 1, "secnd": 2})"), "file.second: missing");
+  EXPECT_EQ(KeyByKeyErrorOf(R"({"first": 1, "second": 2, "third": 3})"),
+            "file.third: unknown key (allowed: first, second)");
+  EXPECT_EQ(KeyByKeyErrorOf(R"({"first": "x"})"),
+            "file.first: expected an integer, got the quoted string \"x\"");
 }
 
 TEST(ArchiveTest, BriefWordingForSweepFiles) {

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "trackbed/experiments/slurm_backend.h"
 #include "trackbed/experiments/sweep.h"
 #include "trackbed/experiments/sweep_report.h"
 
@@ -370,6 +371,76 @@ TEST(SweepCellTest, FolderJsonIsReadAsStrictlyAsSweepFiles) {
     EXPECT_EQ(std::string(e.what()),
               "cell.json: exit_code: expected an integer, got the quoted string \"0\"");
   }
+}
+
+std::vector<SlurmSubmission> TwoSubmissions() {
+  return {{"4711", {0, 1, 2}, "slurm/submit-1.cells", "2024-05-01T12:00:00Z"},
+          {"4712_3", {18446744073709551615u}, "slurm/dir \"q\"\\x\t/submit-2.cells", ""}};
+}
+
+TEST(SlurmJobsTest, JobsJsonKeepsItsLayoutAndRoundTrips) {
+  // The layout jobs.json has always had: keys sorted, two spaces per level.
+  EXPECT_EQ(SlurmJobsJson(TwoSubmissions()), R"({
+  "jobs": [
+    {
+      "cells": [
+        0,
+        1,
+        2
+      ],
+      "job_id": "4711",
+      "list": "slurm/submit-1.cells",
+      "submitted_utc": "2024-05-01T12:00:00Z"
+    },
+    {
+      "cells": [
+        18446744073709551615
+      ],
+      "job_id": "4712_3",
+      "list": "slurm/dir \"q\"\\x\t/submit-2.cells",
+      "submitted_utc": ""
+    }
+  ]
+}
+)");
+  EXPECT_EQ(SlurmJobsJson({}), "{\n  \"jobs\": []\n}\n");
+  const std::vector<SlurmSubmission> read =
+      ParseSlurmJobs(SlurmJobsJson(TwoSubmissions()), "jobs.json");
+  ASSERT_EQ(read.size(), 2u);
+  for (std::size_t i = 0; i < read.size(); ++i) {
+    EXPECT_EQ(read[i].job_id, TwoSubmissions()[i].job_id);
+    EXPECT_EQ(read[i].cells, TwoSubmissions()[i].cells);
+    EXPECT_EQ(read[i].list, TwoSubmissions()[i].list);
+    EXPECT_EQ(read[i].submitted_utc, TwoSubmissions()[i].submitted_utc);
+  }
+}
+
+// The message ParseSlurmJobs gives for `json` (empty when it reads).
+std::string JobsErrorOf(const std::string& json) {
+  try {
+    ParseSlurmJobs(json, "slurm/jobs.json");
+  } catch (const SweepError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SlurmJobsTest, JobsJsonIsReadAsStrictlyAsTheOtherFolderFiles) {
+  const std::string job = R"("job_id": "7", "list": "l", "submitted_utc": "t")";
+  EXPECT_EQ(JobsErrorOf(R"({"jobs": [{"cells": [1], )" + job + "}]}"), "");
+  EXPECT_EQ(JobsErrorOf(R"({"jobs": [{"cells": [1], "node": "a", )" + job + "}]}"),
+            "slurm/jobs.json: jobs[0].node: unknown key (expected one of: cells, job_id, list, "
+            "submitted_utc)");
+  EXPECT_EQ(JobsErrorOf(R"({"jobs": [{"cells": [1, "2"], )" + job + "}]}"),
+            "slurm/jobs.json: jobs[0].cells[1]: expected a non-negative integer, got the quoted "
+            "string \"2\"");
+  EXPECT_EQ(JobsErrorOf(R"({"jobs": [{"cells": [-1], )" + job + "}]}"),
+            "slurm/jobs.json: jobs[0].cells[0]: expected a non-negative integer, got '-1'");
+  EXPECT_EQ(JobsErrorOf(R"({"jobs": [{"cells": [1], "job_id": 7, "list": "l"}]})"),
+            "slurm/jobs.json: jobs[0].submitted_utc: missing");
+  EXPECT_EQ(JobsErrorOf(R"({"jobs": {}})"), "slurm/jobs.json: jobs: expected a list, got a map");
+  EXPECT_EQ(JobsErrorOf("{}"), "slurm/jobs.json: jobs: missing");
+  EXPECT_EQ(JobsErrorOf(R"({"jobs": [)").rfind("slurm/jobs.json: not valid JSON: ", 0), 0u);
 }
 
 // A sweep folder of three seeds of one cell, the last failed, built by hand.

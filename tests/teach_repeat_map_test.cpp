@@ -1,6 +1,6 @@
 // The teach map's on-disk format: an exact, byte-identical round trip, and clear errors
 // (naming the file and what is wrong) for missing, corrupt, truncated, inconsistent and
-// wrong-version maps.
+// wrong-version maps, and for unknown keys and wrong types in map.json (by dotted path).
 #include "trackbed/teach_repeat/teach_map.h"
 
 #include <filesystem>
@@ -8,6 +8,7 @@
 #include <iterator>
 #include <random>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
@@ -292,6 +293,49 @@ TEST(TeachMapTest, InconsistentCountsAndBadValuesAreNamed) {
   cv::imencode(".png", cv::Mat(10, 10, CV_8UC1, cv::Scalar(3)), small);
   WriteBytes(dir / "key_images" / "000000.png", std::string(small.begin(), small.end()));
   ExpectLoadError(dir, {"000000.png", "640x480"});
+  fs::remove_all(dir);
+}
+
+/// An edit of a saved map.json and what loading it must say.
+struct JsonEdit {
+  std::string from, to;
+  std::vector<std::string> message_parts;
+};
+
+TEST(TeachMapTest, UnknownKeysAndWrongTypesNameTheirPath) {
+  const fs::path dir = Scratch("strict");
+  const std::vector<JsonEdit> edits = {
+      {"\"patch_size_px\": 11",
+       "\"patch_size_px\": 11, \"colour\": 1",
+       {"map.json: colour: unknown key (allowed: format, version, mode, camera,"}},
+      {"\"cut\": \"end_of_teach\"",
+       "\"cut\": \"end_of_teach\", \"note\": 1",
+       {"map.json: milestones[1].note: unknown key (allowed: first_image,"}},
+      {"\"width\": 640",
+       "\"width\": \"640\"",
+       {"map.json: camera.width: expected an integer, got the quoted string \"640\""}},
+      {"\"reconstructed\": true",
+       "\"reconstructed\": 1",
+       {"map.json: milestones[0].reconstructed: expected true or false, got '1'"}},
+      {"\"cut\": \"end_of_teach\"",
+       "\"cut\": \"sideways\"",
+       {"map.json: milestones[1].cut: must be one of interval,", "(got 'sideways')"}},
+      {"\"T_first_last\": [",
+       "\"T_first_last\": [0, ",
+       {"map.json: milestones[0].T_first_last: expected a list of 12 numbers, got a list of 13"}},
+      {"\"odometry\": [\n   null",
+       "\"odometry\": [\n   [1, 2, \"x\"]",
+       {"map.json: images.odometry[0][2]: expected a number, got the quoted string \"x\""}},
+      {"\"features\": [\n    [",
+       "\"features\": [\n    [1, 2], [",
+       {"map.json: milestones[0].features[0]: expected a list of 7 numbers, got a list of 2"}},
+      {"\"images\": {", "\"images\": {\"count\": 1, ", {"map.json: images.count: duplicate key"}},
+  };
+  for (const JsonEdit& edit : edits) {
+    SaveTeachMap(RandomMap(8), dir.string());
+    Replace(dir / "map.json", edit.from, edit.to);
+    ExpectLoadError(dir, edit.message_parts);
+  }
   fs::remove_all(dir);
 }
 

@@ -1,6 +1,6 @@
 // The config archive: one strict reader and writer for every options file trackbed
-// reads (scenarios, sweep files, a sweep folder's cells.json and cell.json), in YAML
-// and in JSON.
+// reads (scenarios, sweep files, a sweep folder's cells.json, cell.json and
+// slurm/jobs.json) and for the teach map's map.json, in YAML and in JSON.
 //
 // After Drake's yaml_read_archive: each options struct lists its keys once, beside its
 // fields, in a template member
@@ -179,7 +179,7 @@ Node& Reach(Node& root, const Path& path, std::string* where);
 
 /// How a reader words what it found. The scenario and sweep formats had readers of
 /// their own before the archive, whose messages are part of their contract.
-/// kDetailed (scenario files): `'5'`, `the quoted string "5"`, `a list of 2`,
+/// kDetailed (scenario files, the teach map): `'5'`, `the quoted string "5"`, `a list of 2`,
 /// `nothing`; unknown keys `(allowed: …)`; unsigned integers `an integer in [0, 2^64)`.
 /// kBrief (sweep files, sweep folders): scalars as in kDetailed where a scalar was
 /// expected, else `a scalar`; `a list`, `null`; unknown keys `(expected one of: …)`;
@@ -204,11 +204,18 @@ struct Field {
   /// Writing: the key is left out when the value is empty (nothing, an empty list or
   /// string, false).
   bool omit_empty = false;
+  /// Reading: a missing required key is reported at its Visit, before the keys visited
+  /// after it and before unknown keys. For formats whose readers went key by key before
+  /// the archive (the teach map's map.json), so that a renamed key reads as missing.
+  bool missing_at_once = false;
 };
 /// Field{true}: the key must be there.
 inline constexpr Field kRequired{true, nullptr, false};
 /// Field{false, nullptr, true}: written only when not empty.
 inline constexpr Field kOmitEmpty{false, nullptr, true};
+/// Field{true, nullptr, false, true}: the key must be there, and its absence is the first
+/// error.
+inline constexpr Field kRequiredAtOnce{true, nullptr, false, true};
 
 /// How a type is read from a Node and written to one. Specialized below for scalars,
 /// lists, optionals, raw Nodes and Entries; the primary template handles structs with
@@ -331,7 +338,7 @@ class Reader {
   bool Has(const char* key) const;
 
   /// Rejects the keys no Visit asked for, listing those it did; then reports the first
-  /// required key that was missing.
+  /// required key that was missing (but see Field::missing_at_once).
   void Finish() const;
 
   /// Throws Error at `path.key` (at this map for an empty key).

@@ -6,7 +6,8 @@
 //
 // The folder gets DIR/slurm/: `submit-N.cells` (the cell indices of submission N, one
 // per line: array task i runs line i), `submit-N.sbatch` (the batch script, which
-// `sbatch` can take again by hand), `jobs.json` (every submission: job id and cells)
+// `sbatch` can take again by hand), `jobs.json` (every submission: job id and cells;
+// SlurmJobsJson)
 // and `logs/JOB_TASK.out|err` (the array tasks' own output, Slurm's messages among it).
 //
 // Slurm's view of a task comes from `squeue -t all` (finished tasks stay there for the
@@ -22,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "trackbed/common/archive.h"
 #include "trackbed/experiments/sweep.h"
 #include "trackbed/experiments/sweep_support.h"
 
@@ -37,6 +39,33 @@ struct SlurmOptions {
   bool wait = false;       ///< follow the job(s) until every submitted cell has ended
   double poll_s = 2.0;     ///< how often `wait` asks squeue [s], > 0
 };
+
+/// One `sbatch` of a sweep: an array job and the cell each of its tasks runs. The sweep
+/// folder's slurm/jobs.json lists every submission (SlurmJobsJson).
+struct SlurmSubmission {
+  std::string job_id;              ///< Slurm's array job id
+  std::vector<std::size_t> cells;  ///< task i runs cell cells[i]
+  std::string list;                ///< the list file, relative to the sweep folder
+  std::string submitted_utc;       ///< ISO 8601 time of the submission
+
+  /// jobs.json's keys for these fields, read and written by the config archive
+  /// (trackbed/common/archive.h). In alphabetical order: the file's layout since its
+  /// first version, which wrote its keys sorted.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("cells", &cells, archive::kRequired);
+    a->Visit("job_id", &job_id, archive::kRequired);
+    a->Visit("list", &list, archive::kRequired);
+    a->Visit("submitted_utc", &submitted_utc, archive::kRequired);
+  }
+};
+
+/// DIR/slurm/jobs.json: `{"jobs": [...]}`, one entry per submission, in order.
+std::string SlurmJobsJson(const std::vector<SlurmSubmission>& submissions);
+/// Reads jobs.json as strictly as cells.json (unknown keys, wrong types and missing
+/// keys by dotted path). Throws SweepError (source: `source_name`) on malformed text.
+std::vector<SlurmSubmission> ParseSlurmJobs(const std::string& json_text,
+                                            const std::string& source_name);
 
 /// Throws std::runtime_error, saying what is missing, unless sbatch, squeue and
 /// scontrol are on PATH. Called before anything is written.

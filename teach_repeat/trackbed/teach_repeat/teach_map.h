@@ -19,9 +19,10 @@
 //                       magic "TBPATCH1", uint32 side, uint32 0, uint64 count (little
 //                       endian), then count·side² bytes (row-major, 8-bit grey);
 //   key_images/NNNNNN.png — milestone NNNNNN's key image (8-bit grey, lossless).
-// Numbers in map.json are written with the shortest representation that reads back to
-// the same double, so Load(Save(map)) equals map exactly and saving it again gives the
-// same bytes.
+// map.json goes through the config archive (trackbed/common/archive.h; its keys are
+// listed beside its file form in teach_map.cpp). Numbers in it are written with the
+// shortest representation that reads back to the same double, so Load(Save(map))
+// equals map exactly and saving it again gives the same bytes.
 //
 // Frames: cameras follow OpenCV (x right, y down, z forward); T_a_b maps b coordinates to
 // a (p_a = T_a_b · p_b). Pixel coordinates: the centre of the top-left pixel is (0, 0).
@@ -149,8 +150,8 @@ void SaveTeachMap(const TeachMap& map, const std::string& dir);
 
 /// Reads a map written by SaveTeachMap. Throws std::runtime_error whose message names
 /// the file and what is wrong: a missing directory or file, JSON that does not parse, a
-/// wrong format name or version, a missing or mistyped key (named by its path, e.g.
-/// `milestones[3].features[7]`), counts that disagree (features vs patches), a
+/// wrong format name or version, a missing, unknown or mistyped key (named by its dotted
+/// path, e.g. `milestones[3].features[7]`), counts that disagree (features vs patches), a
 /// truncated or oversized patch file, a key image that is missing, unreadable or of the
 /// wrong size.
 TeachMap LoadTeachMap(const std::string& dir);
