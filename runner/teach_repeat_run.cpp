@@ -39,8 +39,7 @@ teach_repeat::TeachMap Teach(const scenario::Scenario& scenario, const fs::path&
   teach.teach_repeat.enabled = false;
   const scenario::RobotSpec& rs = scenario.robot;
   const robot::StereoRig rig(rs.stereo);
-  const teach_repeat::CameraIntrinsics camera = teach_repeat::CameraIntrinsics::FromCalibration(
-      rig.stereo_camera(), cv::Size(rs.stereo.width_px, rs.stereo.height_px));
+  const geometry::PinholeCamera& camera = rig.intrinsics();
   teach_repeat::MilestoneBuilderOptions options;
   options.mode = scenario.teach_repeat.method == "3d" ? teach_repeat::TeachMode::k3d
                                                       : teach_repeat::TeachMode::k2d;

@@ -11,6 +11,7 @@
 
 #include "trackbed/common/option_error.h"
 #include "trackbed/estimation/stereo_visual_odometry.h"
+#include "trackbed/perception/opencv_views.h"
 
 namespace trackbed::teach_repeat {
 namespace {
@@ -50,7 +51,7 @@ void MilestoneBuilderOptions::Validate() const {
   }
 }
 
-MilestoneBuilder::MilestoneBuilder(const CameraIntrinsics& camera,
+MilestoneBuilder::MilestoneBuilder(const geometry::PinholeCamera& camera,
                                    const MilestoneBuilderOptions& options)
     : camera_(camera), options_(options), tracker_(options.tracker) {
   option_check::Nested("camera", camera_);
@@ -122,10 +123,10 @@ void MilestoneBuilder::CloseMilestone(const Snapshot& end, MilestoneCut cut) {
 
 void MilestoneBuilder::CheckImage(const cv::Mat& gray, double t_s,
                                   const std::optional<estimation::Pose2>& odometry) const {
-  if (gray.empty() || gray.type() != CV_8UC1 || gray.size() != camera_.size()) {
+  if (gray.empty() || gray.type() != CV_8UC1 || gray.size() != perception::CvImageSize(camera_)) {
     throw std::invalid_argument("MilestoneBuilder::AddImage: needs a CV_8UC1 image of " +
-                                std::to_string(camera_.width) + "x" +
-                                std::to_string(camera_.height) + " px");
+                                std::to_string(camera_.width_px) + "x" +
+                                std::to_string(camera_.height_px) + " px");
   }
   if (!std::isfinite(t_s) || (!map_.images.empty() && t_s < map_.images.back().t_s)) {
     throw std::invalid_argument(
@@ -146,8 +147,8 @@ void MilestoneBuilder::CheckImage(const cv::Mat& gray, double t_s,
 
 bool MilestoneBuilder::InsidePatchBorder(const cv::Point2f& p) const {
   const float half = static_cast<float>(options_.patch_size_px / 2);
-  const float max_x = static_cast<float>(camera_.width - 1) - half;
-  const float max_y = static_cast<float>(camera_.height - 1) - half;
+  const float max_x = static_cast<float>(camera_.width_px - 1) - half;
+  const float max_y = static_cast<float>(camera_.height_px - 1) - half;
   return !(p.x < half || p.y < half || p.x > max_x || p.y > max_y);
 }
 

@@ -13,6 +13,7 @@
 
 #include "teach_repeat_tracks.h"
 #include "trackbed/common/option_error.h"
+#include "trackbed/perception/opencv_views.h"
 #include "trackbed/teach_repeat/funnel_lane_vote.h"
 
 namespace trackbed::teach_repeat {
@@ -43,15 +44,16 @@ Eigen::Isometry3d FromRvecTvec(const cv::Mat& rvec, const cv::Mat& tvec) {
 
 /// Pixel distance between the reprojection of p_first by T_cam_first and `z`; +inf when the
 /// point is behind the camera.
-double ReprojectionError(const CameraIntrinsics& camera, const Eigen::Isometry3d& T_cam_first,
-                         const Eigen::Vector3d& p_first, const cv::Point2f& z) {
+double ReprojectionError(const geometry::PinholeCamera& camera,
+                         const Eigen::Isometry3d& T_cam_first, const Eigen::Vector3d& p_first,
+                         const cv::Point2f& z) {
   const std::optional<cv::Point2d> q = ProjectPoint(camera, T_cam_first * p_first);
   if (!q) return std::numeric_limits<double>::infinity();
   return std::hypot(q->x - z.x, q->y - z.y);
 }
 
 /// Levenberg–Marquardt refinement of T_cam_first on the selected features.
-bool RefinePnP(const CameraIntrinsics& camera, const Milestone& m,
+bool RefinePnP(const geometry::PinholeCamera& camera, const Milestone& m,
                const std::vector<detail::FeatureTrack>& tracks, const std::vector<std::size_t>& sel,
                Eigen::Isometry3d* T_cam_first) {
   std::vector<cv::Point3d> object;
@@ -62,7 +64,8 @@ bool RefinePnP(const CameraIntrinsics& camera, const Milestone& m,
   }
   cv::Mat rvec, tvec;
   ToRvecTvec(*T_cam_first, &rvec, &tvec);
-  if (!cv::solvePnP(object, image, cv::Mat(camera.K()), cv::noArray(), rvec, tvec,
+  if (!cv::solvePnP(object, image, cv::Mat(perception::CvCameraMatrix(camera)), cv::noArray(), rvec,
+                    tvec,
                     /*useExtrinsicGuess=*/true, cv::SOLVEPNP_ITERATIVE)) {
     return false;
   }
@@ -91,7 +94,8 @@ MilestoneRepeaterSettings SettingsOf(const Localizer3dOptions& options) {
 /// Guesses for the features of milestone `next` in the current image: the reprojections
 /// of their 3-D points from the camera pose T_next_cam (their key-image positions where
 /// a point lies behind the camera).
-std::vector<cv::Point2f> ReprojectedGuesses(const CameraIntrinsics& camera, const Milestone& next,
+std::vector<cv::Point2f> ReprojectedGuesses(const geometry::PinholeCamera& camera,
+                                            const Milestone& next,
                                             const Eigen::Isometry3d& T_next_cam) {
   const Eigen::Isometry3d T_cam_next = T_next_cam.inverse();
   std::vector<cv::Point2f> guesses;
@@ -223,9 +227,10 @@ bool MilestoneLocalizer3d::EstimatePose(RepeatCommand* cmd) {
       image.emplace_back(tracks[i].position.x, tracks[i].position.y);
     }
     cv::Mat rvec, tvec, inliers;
-    if (!cv::solvePnPRansac(object, image, cv::Mat(map_.camera.K()), cv::noArray(), rvec, tvec,
-                            false, 200, static_cast<float>(options_.max_reprojection_px), 0.99,
-                            inliers, cv::SOLVEPNP_EPNP)) {
+    if (!cv::solvePnPRansac(object, image, cv::Mat(perception::CvCameraMatrix(map_.camera)),
+                            cv::noArray(), rvec, tvec, false, 200,
+                            static_cast<float>(options_.max_reprojection_px), 0.99, inliers,
+                            cv::SOLVEPNP_EPNP)) {
       return false;
     }
     T_cam_first = FromRvecTvec(rvec, tvec);

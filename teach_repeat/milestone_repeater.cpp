@@ -1,5 +1,6 @@
 // The common part of the two repeaters (see milestone_repeater.h).
 #include "trackbed/teach_repeat/milestone_repeater.h"
+#include "trackbed/perception/opencv_views.h"
 
 #include <cmath>
 #include <stdexcept>
@@ -36,10 +37,11 @@ MilestoneRepeater::MilestoneRepeater(TeachMap map, const MilestoneRepeaterSettin
 MilestoneRepeater::~MilestoneRepeater() = default;
 
 void MilestoneRepeater::CheckInput(const cv::Mat& gray, double t_s) const {
-  if (gray.empty() || gray.type() != CV_8UC1 || gray.size() != map_.camera.size()) {
+  if (gray.empty() || gray.type() != CV_8UC1 ||
+      gray.size() != perception::CvImageSize(map_.camera)) {
     throw std::invalid_argument(
         std::string(settings_.name) + "::Update: needs a CV_8UC1 image of " +
-        std::to_string(map_.camera.width) + "x" + std::to_string(map_.camera.height) + " px");
+        std::to_string(map_.camera.width_px) + "x" + std::to_string(map_.camera.height_px) + " px");
   }
   if (!std::isfinite(t_s) || (started_ && t_s < last_t_s_)) {
     throw std::invalid_argument(std::string(settings_.name) +

@@ -86,7 +86,8 @@ double Residual(const FlowSample& s, const MilestoneProgress& p) {
 
 }  // namespace
 
-MilestoneProgress EstimateMilestoneProgress(const CameraIntrinsics& camera, const Milestone& m,
+MilestoneProgress EstimateMilestoneProgress(const geometry::PinholeCamera& camera,
+                                            const Milestone& m,
                                             const std::vector<cv::Point2f>& current_px,
                                             const std::vector<bool>& tracked,
                                             const MilestoneProgressOptions& options) {

@@ -21,6 +21,7 @@
 #include "trackbed/common/archive.h"
 #include "trackbed/common/archive_eigen.h"
 #include "trackbed/common/option_error.h"
+#include "trackbed/perception/opencv_views.h"
 
 namespace trackbed::teach_repeat {
 namespace {
@@ -87,10 +88,32 @@ std::optional<std::string> ReadFile(const fs::path& path) {
 /// map.json's `format`.
 constexpr char kFormatName[] = "trackbed.teach_map";
 
-/// `camera`: the pinhole intrinsics (teach_map.h's CameraIntrinsics, field for field).
+/// `camera`: the pinhole intrinsics of geometry::PinholeCamera, its image size as
+/// `width` and `height` (the map has no lens: teach & repeat take rectified images).
 struct CameraFile {
   double fx = 0.0, fy = 0.0, cx = 0.0, cy = 0.0;
   int width = 0, height = 0;
+
+  geometry::PinholeCamera ToCamera() const {
+    geometry::PinholeCamera c;
+    c.fx = fx;
+    c.fy = fy;
+    c.cx = cx;
+    c.cy = cy;
+    c.width_px = width;
+    c.height_px = height;
+    return c;
+  }
+  /// The camera's checks, naming this file's keys.
+  void Validate() const {
+    try {
+      ToCamera().Validate();
+    } catch (const OptionError& e) {
+      if (e.field() == "width_px") throw OptionError("width", e.reason());
+      if (e.field() == "height_px") throw OptionError("height", e.reason());
+      throw;
+    }
+  }
 
   template <class Archive>
   void Serialize(Archive* a) {
@@ -225,8 +248,8 @@ MilestoneFile MilestoneToFile(const Milestone& m, std::size_t index) {
 MapFile MapToFile(const TeachMap& map) {
   MapFile f;
   f.mode = map.mode;
-  const CameraIntrinsics& c = map.camera;
-  f.camera = {c.fx, c.fy, c.cx, c.cy, c.width, c.height};
+  const geometry::PinholeCamera& c = map.camera;
+  f.camera = {c.fx, c.fy, c.cx, c.cy, c.width_px, c.height_px};
   f.patch_size_px = map.patch_size_px;
   f.patches_file = kPatchFile;
   f.patch_count = static_cast<std::int64_t>(map.feature_count());
@@ -245,31 +268,7 @@ MapFile MapToFile(const TeachMap& map) {
 
 }  // namespace
 
-// --- CameraIntrinsics, enums. -------------------------------------------------------------
-
-CameraIntrinsics CameraIntrinsics::FromCalibration(const geometry::StereoCamera& calibration,
-                                                   cv::Size image_size) {
-  CameraIntrinsics c;
-  c.fx = calibration.left.fx;
-  c.fy = calibration.left.fy;
-  c.cx = calibration.left.cx;
-  c.cy = calibration.left.cy;
-  c.width = image_size.width;
-  c.height = image_size.height;
-  c.Validate();
-  return c;
-}
-
-cv::Matx33d CameraIntrinsics::K() const { return {fx, 0.0, cx, 0.0, fy, cy, 0.0, 0.0, 1.0}; }
-
-void CameraIntrinsics::Validate() const {
-  option_check::Positive("fx", fx);
-  option_check::Positive("fy", fy);
-  option_check::Finite("cx", cx);
-  option_check::Finite("cy", cy);
-  if (width <= 0) throw OptionError("width", "must be > 0 (got " + std::to_string(width) + ")");
-  if (height <= 0) throw OptionError("height", "must be > 0 (got " + std::to_string(height) + ")");
-}
+// --- Enums. ------------------------------------------------------------------------------
 
 const char* ToString(TeachMode mode) { return mode == TeachMode::k3d ? "3d" : "2d"; }
 
@@ -345,10 +344,10 @@ void TeachMap::Validate() const {
         !m.T_first_last.matrix().allFinite()) {
       throw std::invalid_argument(where + "non-finite number");
     }
-    if (m.key_image.type() != CV_8UC1 || m.key_image.size() != camera.size()) {
+    if (m.key_image.type() != CV_8UC1 || m.key_image.size() != perception::CvImageSize(camera)) {
       throw std::invalid_argument(where + "key image must be CV_8UC1 of the camera's size " +
-                                  std::to_string(camera.width) + "x" +
-                                  std::to_string(camera.height));
+                                  std::to_string(camera.width_px) + "x" +
+                                  std::to_string(camera.height_px));
     }
     for (std::size_t i = 0; i < m.features.size(); ++i) {
       const MilestoneFeature& f = m.features[i];
@@ -498,13 +497,8 @@ Milestone MilestoneFromFile(const MilestoneFile& f, const std::string& path,
 TeachMap MapFromFile(const MapFile& f) {
   TeachMap map;
   map.mode = f.mode;
-  map.camera.fx = f.camera.fx;
-  map.camera.fy = f.camera.fy;
-  map.camera.cx = f.camera.cx;
-  map.camera.cy = f.camera.cy;
-  map.camera.width = f.camera.width;
-  map.camera.height = f.camera.height;
-  archive::ValidateAt(map.camera, "camera");
+  archive::ValidateAt(f.camera, "camera");
+  map.camera = f.camera.ToCamera();
   if (f.patch_size_px < 3 || f.patch_size_px % 2 == 0 || f.patch_size_px > 255) {
     throw archive::Error("patch_size_px", "must be odd and in [3, 255] (got " +
                                               std::to_string(f.patch_size_px) + ")");
@@ -527,7 +521,7 @@ TeachMap MapFromFile(const MapFile& f) {
 
 /// Milestone `path`'s key image, file `key_path`: an 8-bit grey PNG of the camera's size.
 cv::Mat ReadKeyImage(const fs::path& key_path, const std::string& path,
-                     const CameraIntrinsics& camera) {
+                     const geometry::PinholeCamera& camera) {
   const std::optional<std::string> png = ReadFile(key_path);
   if (!png) {
     throw std::runtime_error("LoadTeachMap: " + key_path.string() + ": key image of " + path +
@@ -548,10 +542,11 @@ cv::Mat ReadKeyImage(const fs::path& key_path, const std::string& path,
     throw std::runtime_error("LoadTeachMap: " + key_path.string() +
                              ": not a decodable image (truncated?)");
   }
-  if (image.type() != CV_8UC1 || image.size() != camera.size()) {
+  if (image.type() != CV_8UC1 || image.size() != perception::CvImageSize(camera)) {
     throw std::runtime_error("LoadTeachMap: " + key_path.string() +
-                             ": expected an 8-bit grey image of " + std::to_string(camera.width) +
-                             "x" + std::to_string(camera.height) + " px (the camera's size)");
+                             ": expected an 8-bit grey image of " +
+                             std::to_string(camera.width_px) + "x" +
+                             std::to_string(camera.height_px) + " px (the camera's size)");
   }
   return image;
 }

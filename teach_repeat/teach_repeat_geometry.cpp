@@ -14,6 +14,7 @@
 #include "trackbed/common/option_error.h"
 #include "trackbed/common/se3.h"
 #include "trackbed/estimation/pose2.h"
+#include "trackbed/perception/opencv_views.h"
 
 namespace trackbed::teach_repeat {
 namespace {
@@ -30,11 +31,11 @@ double Median(std::vector<double> values) {
   return m;
 }
 
-Eigen::Vector2d Normalised(const CameraIntrinsics& c, const cv::Point2f& p) {
+Eigen::Vector2d Normalised(const geometry::PinholeCamera& c, const cv::Point2f& p) {
   return {(p.x - c.cx) / c.fx, (p.y - c.cy) / c.fy};
 }
 
-double PixelDistance(const CameraIntrinsics& c, const Eigen::Vector3d& p_cam,
+double PixelDistance(const geometry::PinholeCamera& c, const Eigen::Vector3d& p_cam,
                      const cv::Point2f& z) {
   const double u = c.fx * p_cam.x() / p_cam.z() + c.cx;
   const double v = c.fy * p_cam.y() / p_cam.z() + c.cy;
@@ -175,7 +176,7 @@ Eigen::Vector3d TriangulateLinear(const Eigen::Vector2d& x_a, const Eigen::Vecto
   return X.head<3>() / X.w();
 }
 
-TwoViewGeometry ReconstructTwoView(const CameraIntrinsics& camera,
+TwoViewGeometry ReconstructTwoView(const geometry::PinholeCamera& camera,
                                    const std::vector<cv::Point2f>& a,
                                    const std::vector<cv::Point2f>& b, double scale_m,
                                    const TwoViewOptions& options) {
@@ -197,7 +198,7 @@ TwoViewGeometry ReconstructTwoView(const CameraIntrinsics& camera,
     return g;
   }
 
-  const cv::Mat K(camera.K());
+  const cv::Mat K(perception::CvCameraMatrix(camera));
   cv::Mat mask;
   cv::Mat E = cv::findEssentialMat(a, b, K, cv::RANSAC, options.confidence,
                                    options.ransac_threshold_px, options.max_iterations, mask);
@@ -277,7 +278,7 @@ std::optional<double> ScaleRatio(const std::vector<Eigen::Vector3d>& reference,
   return Median(std::move(ratios));
 }
 
-std::optional<cv::Point2d> ProjectPoint(const CameraIntrinsics& camera,
+std::optional<cv::Point2d> ProjectPoint(const geometry::PinholeCamera& camera,
                                         const Eigen::Vector3d& p_cam, double min_depth_m) {
   if (!(p_cam.z() > min_depth_m)) return std::nullopt;
   return cv::Point2d(camera.fx * p_cam.x() / p_cam.z() + camera.cx,

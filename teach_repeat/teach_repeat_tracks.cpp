@@ -15,7 +15,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 }  // namespace
 
-FunnelFrame EvaluateFunnel(const CameraIntrinsics& camera, const Milestone& m,
+FunnelFrame EvaluateFunnel(const geometry::PinholeCamera& camera, const Milestone& m,
                            const std::vector<FeatureTrack>& tracks, bool bearing) {
   FunnelFrame f;
   f.error_px.assign(tracks.size(), kNaN);
@@ -42,7 +42,7 @@ FunnelFrame EvaluateFunnel(const CameraIntrinsics& camera, const Milestone& m,
   return f;
 }
 
-MilestoneProgress ProgressOf(const CameraIntrinsics& camera, const Milestone& m,
+MilestoneProgress ProgressOf(const geometry::PinholeCamera& camera, const Milestone& m,
                              const std::vector<FeatureTrack>& tracks,
                              const MilestoneProgressOptions& options) {
   std::vector<cv::Point2f> positions;

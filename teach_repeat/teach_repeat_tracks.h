@@ -182,11 +182,11 @@ class MilestoneTracks {
 
 /// Votes and x-errors of the tracked features of `m`. `bearing`: errors as bearing
 /// differences.
-FunnelFrame EvaluateFunnel(const CameraIntrinsics& camera, const Milestone& m,
+FunnelFrame EvaluateFunnel(const geometry::PinholeCamera& camera, const Milestone& m,
                            const std::vector<FeatureTrack>& tracks, bool bearing);
 
 /// EstimateMilestoneProgress over the tracked features of `m`.
-MilestoneProgress ProgressOf(const CameraIntrinsics& camera, const Milestone& m,
+MilestoneProgress ProgressOf(const geometry::PinholeCamera& camera, const Milestone& m,
                              const std::vector<FeatureTrack>& tracks,
                              const MilestoneProgressOptions& options);
 

@@ -58,7 +58,7 @@ struct Correspondences {
 /// with Gaussian pixel noise σ.
 Correspondences MakeCorrespondences(const Eigen::Isometry3d& T_a_b, int n, double sigma,
                                     std::mt19937_64& rng) {
-  const CameraIntrinsics c = TestCamera();
+  const geometry::PinholeCamera c = TestCamera();
   std::uniform_real_distribution<double> u(20.0, 620.0), v(20.0, 460.0), z(1.5, 8.0);
   std::normal_distribution<double> noise(0.0, sigma);
   Correspondences s;

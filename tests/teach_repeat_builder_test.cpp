@@ -101,7 +101,7 @@ TEST(MilestoneBuilderTest, TrackedLastPositionsMatchTheSceneToASubPixel) {
   const Milestone& m = map.milestones[0];
   const Eigen::Isometry3d T_world_first = CameraPose(TeachPose(m.first_image));
   const Eigen::Isometry3d T_world_last = CameraPose(TeachPose(m.last_image));
-  const CameraIntrinsics c = TestCamera();
+  const geometry::PinholeCamera c = TestCamera();
   std::vector<double> errors;
   for (const MilestoneFeature& f : m.features) {
     const std::optional<Eigen::Vector3d> p = scene.RayCast(T_world_first, f.first_px);
@@ -259,7 +259,7 @@ TEST(MilestoneBuilderTest, OptionErrorsNameTheField) {
   o = {};
   o.two_view.min_inliers = 4;
   EXPECT_EQ(field_of(o), "two_view.min_inliers");
-  CameraIntrinsics bad = TestCamera();
+  geometry::PinholeCamera bad = TestCamera();
   bad.fx = -1.0;
   try {
     MilestoneBuilder builder(bad);

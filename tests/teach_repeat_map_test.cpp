@@ -98,8 +98,8 @@ void ExpectEqual(const TeachMap& a, const TeachMap& b) {
   EXPECT_EQ(a.camera.fy, b.camera.fy);
   EXPECT_EQ(a.camera.cx, b.camera.cx);
   EXPECT_EQ(a.camera.cy, b.camera.cy);
-  EXPECT_EQ(a.camera.width, b.camera.width);
-  EXPECT_EQ(a.camera.height, b.camera.height);
+  EXPECT_EQ(a.camera.width_px, b.camera.width_px);
+  EXPECT_EQ(a.camera.height_px, b.camera.height_px);
   EXPECT_EQ(a.patch_size_px, b.patch_size_px);
   ASSERT_EQ(a.images.size(), b.images.size());
   for (std::size_t i = 0; i < a.images.size(); ++i) {
@@ -314,6 +314,7 @@ TEST(TeachMapTest, UnknownKeysAndWrongTypesNameTheirPath) {
       {"\"width\": 640",
        "\"width\": \"640\"",
        {"map.json: camera.width: expected an integer, got the quoted string \"640\""}},
+      {"\"height\": 480", "\"height\": 0", {"map.json: camera.height: must be > 0 (got 0)"}},
       {"\"reconstructed\": true",
        "\"reconstructed\": 1",
        {"map.json: milestones[0].reconstructed: expected true or false, got '1'"}},

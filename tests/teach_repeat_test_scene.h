@@ -32,14 +32,14 @@ constexpr double kCameraForward = 0.2;  // [m] ahead of the body origin
 constexpr double kCameraHeight = 0.4;   // [m] above the floor
 
 /// The project's camera: 640×480, fx = fy = 381.4 px (docs/rendering.md, the robot's stereo rig).
-inline CameraIntrinsics TestCamera() {
-  CameraIntrinsics c;
+inline geometry::PinholeCamera TestCamera() {
+  geometry::PinholeCamera c;
   c.fx = 381.4;
   c.fy = 381.4;
   c.cx = 319.5;
   c.cy = 239.5;
-  c.width = 640;
-  c.height = 480;
+  c.width_px = 640;
+  c.height_px = 480;
   return c;
 }
 
@@ -98,8 +98,8 @@ class CorridorScene {
 
   /// The image seen by a camera at T_world_cam (CV_8UC1 of the camera's size).
   cv::Mat Render(const Eigen::Isometry3d& T_world_cam,
-                 const CameraIntrinsics& camera = TestCamera()) const {
-    cv::Mat image(camera.height, camera.width, CV_8UC1, cv::Scalar(128));
+                 const geometry::PinholeCamera& camera = TestCamera()) const {
+    cv::Mat image(camera.height_px, camera.width_px, CV_8UC1, cv::Scalar(128));
     const Eigen::Isometry3d T_cam_world = T_world_cam.inverse();
     struct Visible {
       double depth;
@@ -142,9 +142,9 @@ class CorridorScene {
 
   /// The scene point seen at pixel `px` by a camera at T_world_cam: the nearest wall hit
   /// within the walls' extent.
-  std::optional<Eigen::Vector3d> RayCast(const Eigen::Isometry3d& T_world_cam,
-                                         const cv::Point2f& px,
-                                         const CameraIntrinsics& camera = TestCamera()) const {
+  std::optional<Eigen::Vector3d> RayCast(
+      const Eigen::Isometry3d& T_world_cam, const cv::Point2f& px,
+      const geometry::PinholeCamera& camera = TestCamera()) const {
     const Eigen::Vector3d o = T_world_cam.translation();
     const Eigen::Vector3d d =
         T_world_cam.linear() *

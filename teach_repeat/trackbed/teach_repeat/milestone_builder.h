@@ -117,7 +117,8 @@ struct TeachStep {
 class MilestoneBuilder {
  public:
   /// Throws OptionError for invalid options or intrinsics.
-  MilestoneBuilder(const CameraIntrinsics& camera, const MilestoneBuilderOptions& options = {});
+  MilestoneBuilder(const geometry::PinholeCamera& camera,
+                   const MilestoneBuilderOptions& options = {});
   MilestoneBuilder(const MilestoneBuilder&) = delete;
   MilestoneBuilder& operator=(const MilestoneBuilder&) = delete;
 
@@ -169,7 +170,7 @@ class MilestoneBuilder {
   double OdometryDistance(int from, int to) const;
   double PathLength(int from, int to) const;
 
-  CameraIntrinsics camera_;
+  geometry::PinholeCamera camera_;
   MilestoneBuilderOptions options_;
   perception::FeatureTracker tracker_;
   TeachMap map_;

@@ -63,7 +63,8 @@ struct MilestoneProgress {
 /// Fits D_i = p·F_i + (c, b) (funnel_lane_controller.h, "Progress") over the features of
 /// `m` whose position in the current image `current_px` is valid (`tracked`; both one
 /// per feature).
-MilestoneProgress EstimateMilestoneProgress(const CameraIntrinsics& camera, const Milestone& m,
+MilestoneProgress EstimateMilestoneProgress(const geometry::PinholeCamera& camera,
+                                            const Milestone& m,
                                             const std::vector<cv::Point2f>& current_px,
                                             const std::vector<bool>& tracked,
                                             const MilestoneProgressOptions& options = {});

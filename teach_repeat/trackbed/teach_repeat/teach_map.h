@@ -36,30 +36,10 @@
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
-#include "trackbed/common/stereo_camera.h"
+#include "trackbed/common/pinhole_camera.h"
 #include "trackbed/estimation/pose2.h"
 
 namespace trackbed::teach_repeat {
-
-/// Pinhole intrinsics of the (left) camera whose images are taught and repeated.
-struct CameraIntrinsics {
-  double fx = 0.0;  ///< focal length along x [px], > 0
-  double fy = 0.0;  ///< focal length along y [px], > 0
-  double cx = 0.0;  ///< principal point x [px], finite
-  double cy = 0.0;  ///< principal point y [px], finite
-  int width = 0;    ///< image width [px], > 0
-  int height = 0;   ///< image height [px], > 0
-
-  /// The left camera of a calibration, for images of `image_size`. Throws OptionError
-  /// for a calibration without positive focal lengths or an empty size.
-  static CameraIntrinsics FromCalibration(const geometry::StereoCamera& calibration,
-                                          cv::Size image_size);
-  /// K as a 3×3 matrix.
-  cv::Matx33d K() const;
-  cv::Size size() const { return {width, height}; }
-  /// Throws OptionError naming the first invalid field.
-  void Validate() const;
-};
 
 /// How the milestones were cut.
 enum class TeachMode {
@@ -127,7 +107,7 @@ struct TeachImageRecord {
 /// A taught route.
 struct TeachMap {
   TeachMode mode = TeachMode::k2d;
-  CameraIntrinsics camera;
+  geometry::PinholeCamera camera;
   int patch_size_px = 11;                ///< side of the stored patches [px], odd, >= 3
   std::vector<TeachImageRecord> images;  ///< every teach image, in order
   std::vector<Milestone> milestones;

@@ -81,7 +81,7 @@ struct TwoViewGeometry {
 /// one camera. `scale_m` > 0 sets |translation| (and the points' scale); <= 0 leaves it
 /// 1. Deterministic (OpenCV's RANSAC uses a fixed seed). Throws std::invalid_argument if
 /// a and b differ in size; OptionError for bad options or intrinsics.
-TwoViewGeometry ReconstructTwoView(const CameraIntrinsics& camera,
+TwoViewGeometry ReconstructTwoView(const geometry::PinholeCamera& camera,
                                    const std::vector<cv::Point2f>& a,
                                    const std::vector<cv::Point2f>& b, double scale_m,
                                    const TwoViewOptions& options);
@@ -100,7 +100,7 @@ std::optional<double> ScaleRatio(const std::vector<Eigen::Vector3d>& reference,
                                  const std::vector<unsigned char>& mask = {});
 
 /// The pixel of a point in the camera frame [m]; std::nullopt unless Z > min_depth_m.
-std::optional<cv::Point2d> ProjectPoint(const CameraIntrinsics& camera,
+std::optional<cv::Point2d> ProjectPoint(const geometry::PinholeCamera& camera,
                                         const Eigen::Vector3d& p_cam, double min_depth_m = 1e-3);
 
 /// ZNCC of `patch` (odd square CV_8UC1) with the equally sized window of `image`
