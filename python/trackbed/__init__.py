@@ -166,12 +166,6 @@ class Simulation:
         metrics.json as a dict."""
         return json.loads(self._sim.finish("" if out is None else str(out)))
 
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        return False
-
 
 def read_image(path):
     """An 8-bit grayscale image file (the KITTI export's PNGs) as a uint8 array, H x W."""
