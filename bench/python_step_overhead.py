@@ -9,12 +9,15 @@ those speeds and an empty callback on each observation. Their ground_truth.tum m
 be identical (the same simulation, so the same work); the program checks it. Each
 configuration runs --repeats times, interleaved; the fastest run of each counts, by wall
 time and by CPU time (user + system, all threads: less disturbed by other load on the
-machine).
+machine), end to end (the process or the Simulation, start to finish) and in the loop
+(metrics.json's wall_time_s, from ClosedLoop::Start to the metrics: the stepping itself,
+without the program's start or the plots).
 
-    PYTHONPATH=build/python /usr/bin/python3 bench/python_step_overhead.py [--duration 30]
+    PYTHONPATH=build/python python3 bench/python_step_overhead.py [--duration 30]
 """
 import argparse
 import filecmp
+import json
 import pathlib
 import resource
 import shutil
@@ -39,7 +42,8 @@ def run_cli(trackbed_bin, scene, duration, out):
                "--set", f"drive.script={script}"]
     start, cpu = time.perf_counter(), cpu_s(resource.RUSAGE_CHILDREN)
     subprocess.run(command, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    return time.perf_counter() - start, cpu_s(resource.RUSAGE_CHILDREN) - cpu
+    wall, cpu = time.perf_counter() - start, cpu_s(resource.RUSAGE_CHILDREN) - cpu
+    return wall, cpu, json.loads((out / "metrics.json").read_text())["wall_time_s"]
 
 
 def run_python(trackbed, scene, duration, out, images):
@@ -50,8 +54,8 @@ def run_python(trackbed, scene, duration, out, images):
     sim = trackbed.Simulation(scene, overrides={"duration_s": duration}, images=images)
     while not sim.done:
         callback(sim.step(left_mps=LEFT_MPS, right_mps=RIGHT_MPS))
-    sim.finish(out=out)
-    return time.perf_counter() - start, cpu_s(resource.RUSAGE_SELF) - cpu
+    loop_s = sim.finish(out=out)["wall_time_s"]
+    return time.perf_counter() - start, cpu_s(resource.RUSAGE_SELF) - cpu, loop_s
 
 
 def main():
@@ -78,14 +82,15 @@ def main():
             if not filecmp.cmp(work / "cli0/ground_truth.tum", work / name / "ground_truth.tum",
                                shallow=False):
                 sys.exit(f"python_step_overhead: {name} simulated another run than trackbed run")
-        cli_wall = min(t[0] for t in times["trackbed run"])
-        cli_cpu = min(t[1] for t in times["trackbed run"])
+        cli = [min(t[k] for t in times["trackbed run"]) for k in range(3)]
         print(f"outdoor scene, {args.duration:g} s simulated, best of {args.repeats}; "
               "ratio: time / trackbed run's time")
         for name, runs in times.items():
-            wall, cpu = min(t[0] for t in runs), min(t[1] for t in runs)
-            print(f"  {name:18s} wall {wall:6.2f} s ({args.duration / wall:5.2f}x real time, "
-                  f"ratio {wall / cli_wall:.3f}); CPU {cpu:6.2f} s (ratio {cpu / cli_cpu:.3f})")
+            wall, cpu, loop = (min(t[k] for t in runs) for k in range(3))
+            print(f"  {name:18s} end to end: wall {wall:6.2f} s (ratio {wall / cli[0]:.3f}), "
+                  f"CPU {cpu:6.2f} s (ratio {cpu / cli[1]:.3f}); in the loop: wall "
+                  f"{loop:6.2f} s ({args.duration / loop:5.2f}x real time, ratio "
+                  f"{loop / cli[2]:.3f})")
     finally:
         shutil.rmtree(work, ignore_errors=True)
 
