@@ -8,6 +8,13 @@ function(trackbed_settings target)
     return()
   endif()
   target_compile_features(${target} PUBLIC cxx_std_17)
+  # The libraries are linked into the Python module (a shared object) as well as into
+  # the programs: position-independent, without semantic interposition (nothing
+  # replaces their functions at load time), so that the compiler still inlines them.
+  if(_type STREQUAL "STATIC_LIBRARY")
+    set_target_properties(${target} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+    target_compile_options(${target} PRIVATE -fno-semantic-interposition)
+  endif()
   set_target_properties(${target} PROPERTIES CXX_EXTENSIONS OFF)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow
                          -Wnon-virtual-dtor -Wold-style-cast)

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -139,6 +140,42 @@ estimation::LocalizationOptions LocalizationOptionsOf(const scenario::Scenario& 
   return lo;
 }
 
+// The estimators' names a reported estimate may not take: the stack's, and the TUM
+// file of ground truth.
+constexpr const char* kTakenNames[] = {"wheel_odometry", "wheel_odometry_noslip", "ekf",
+                                       "fused",          "visual_odometry",       "ground_truth"};
+
+// Throws std::invalid_argument unless `name` may name a reported estimator.
+void CheckEstimatorName(const std::string& name) {
+  const auto fail = [&name](const std::string& why) {
+    throw std::invalid_argument("estimate \"" + name + "\": " + why);
+  };
+  if (name.empty()) fail("the name must not be empty");
+  for (const char c : name) {
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                    c == '_' || c == '-';
+    if (!ok) fail("the name may hold only letters, digits, '_' and '-'");
+  }
+  for (const char* taken : kTakenNames) {
+    if (name == taken) fail("the name is taken (the built-in estimators' and ground_truth)");
+  }
+}
+
+// Throws std::invalid_argument unless `T` is a rigid transform: finite, the last row
+// 0 0 0 1, the rotation orthonormal (to 1e-6) with determinant +1.
+void CheckRigid(const std::string& name, const Eigen::Matrix4d& T) {
+  const auto fail = [&name](const std::string& why) {
+    throw std::invalid_argument("estimate \"" + name + "\": not a rigid transform: " + why);
+  };
+  if (!T.allFinite()) fail("it has non-finite entries");
+  if (T.row(3) != Eigen::RowVector4d(0, 0, 0, 1)) fail("the last row is not 0 0 0 1");
+  const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();
+  const double off = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+  if (off > 1e-6)
+    fail("the rotation is not orthonormal (|R^T R - I| = " + std::to_string(off) + ")");
+  if (R.determinant() < 0) fail("the rotation is a reflection (determinant -1)");
+}
+
 }  // namespace
 
 // The run's state: what RunClosedLoop's locals were, kept between Steps.
@@ -146,13 +183,20 @@ class ClosedLoop::Impl {
  public:
   Impl(const scenario::Scenario& scenario, ClosedLoopOptions options)
       : scenario_(scenario), options_(std::move(options)) {
-    scenario_.Validate();
+    scenario_.Validate(options_.commander ? scenario::DriveSource::kExternal
+                                          : scenario::DriveSource::kScenario);
+    if (options_.commander && scenario_.navigation.enabled) {
+      throw std::invalid_argument(
+          "navigation.enabled: a run driven by a given commander does not navigate; set it false");
+    }
   }
 
   void Start();
   const StepResult& Step();
   RunMetrics Finish();
   bool done() const { return done_; }
+  const estimation::LocalizationStack* localization();
+  void ReportEstimate(const std::string& name, const Eigen::Matrix4d& T_world_body);
   // Writes metrics.json saying why the run failed (when there is a folder).
   void RecordFailure(const std::exception& e);
 
@@ -225,6 +269,7 @@ class ClosedLoop::Impl {
   std::int64_t encoder_period_ = 1, imu_period_ = 1, camera_period_ = 1, scan_period_ = 1;
   std::int64_t control_period_ = 1, end_step_ = 0;
   Eigen::Vector3d v_at_last_imu_ = Eigen::Vector3d::Zero();
+  std::map<std::string, double> reported_t_;  // reported estimator → time of its last estimate
 };
 
 void ClosedLoop::Impl::Start() {
@@ -534,6 +579,36 @@ bool ClosedLoop::Impl::Control(const robot::ChassisState& truth, const cv::Mat* 
   return true;
 }
 
+const estimation::LocalizationStack* ClosedLoop::Impl::localization() {
+  if (!started_) throw std::logic_error("ClosedLoop::localization: Start() first");
+  if (finished_) throw std::logic_error("ClosedLoop::localization: the run is finished");
+  if (worker_) worker_->Drain();  // the stack has then seen every sample taken
+  return stack_.get();
+}
+
+void ClosedLoop::Impl::ReportEstimate(const std::string& name, const Eigen::Matrix4d& T) {
+  if (!started_) throw std::logic_error("ClosedLoop::ReportEstimate: Start() first");
+  if (finished_) throw std::logic_error("ClosedLoop::ReportEstimate: the run is finished");
+  CheckEstimatorName(name);
+  CheckRigid(name, T);
+  const double t_s = clock_->now_s();
+  const auto [it, first] = reported_t_.try_emplace(name, t_s);
+  if (!first) {
+    if (!(t_s > it->second)) {
+      throw std::invalid_argument("estimate \"" + name + "\": already reported at t = " +
+                                  std::to_string(t_s) + " s (one estimate per name and time)");
+    }
+    it->second = t_s;
+  }
+  ExternalEstimate e;
+  e.name = &it->first;
+  e.t_s = t_s;
+  e.T_world_body.matrix() = T;
+  e.T_world_body_true = vehicle_->chassis().T_world_body;
+  estimates_.AddExternal(e);
+  if (observers_.on_external_estimate) observers_.on_external_estimate(e);
+}
+
 RunMetrics ClosedLoop::Impl::Metrics() {
   if (worker_) {
     worker_->Drain();
@@ -621,6 +696,12 @@ const StepResult& ClosedLoop::Step() {
 }
 
 bool ClosedLoop::done() const { return impl_->done(); }
+
+const estimation::LocalizationStack* ClosedLoop::localization() { return impl_->localization(); }
+
+void ClosedLoop::ReportEstimate(const std::string& name, const Eigen::Matrix4d& T_world_body) {
+  impl_->ReportEstimate(name, T_world_body);
+}
 
 RunMetrics ClosedLoop::Finish() {
   try {

@@ -38,6 +38,12 @@ void EstimatorScoring::AddFrame(const Eigen::Isometry3d& T_world_body_true,
   w_sum_ += frame.report.w;
 }
 
+void EstimatorScoring::AddExternal(const ExternalEstimate& e) {
+  Track& track = external_[*e.name];
+  track.truth.push_back({e.t_s, e.T_world_body_true});
+  track.estimate.push_back({e.t_s, e.T_world_body});
+}
+
 namespace {
 
 EstimatorMetrics Score(const estimation::Trajectory& gt, const estimation::Trajectory& est,
@@ -59,6 +65,8 @@ EstimatorMetrics Score(const estimation::Trajectory& gt, const estimation::Traje
 
 std::map<std::string, EstimatorMetrics> EstimatorScoring::Metrics(double distance_m) const {
   std::map<std::string, EstimatorMetrics> m;
+  for (const auto& [name, track] : external_)
+    m[name] = Score(track.truth, track.estimate, distance_m);
   if (truth_.empty()) return m;
   m["wheel_odometry"] = Score(truth_, wheel_, distance_m);
   m["wheel_odometry_noslip"] = Score(truth_, wheel_noslip_, distance_m);

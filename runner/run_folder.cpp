@@ -150,16 +150,24 @@ class RunLogs {
   void Sample(const RunSample& s);
   void Frame(const LocalizationFrame& f);
   void Imu(const robot::ImuSample& s);
+  // An estimate reported from outside the loop: a line of `<name>.tum`.
+  void External(const fs::path& dir, const ExternalEstimate& e) {
+    std::unique_ptr<LogFile>& tum = external_tum_[*e.name];
+    if (!tum) tum = std::make_unique<LogFile>(dir / (*e.name + ".tum"), "");
+    tum->Line(estimation::FormatTumLine({e.t_s, e.T_world_body}).c_str());
+  }
   void Close() {
     for (LogFile* f : {&truth_, &twist_, &encoders_, &slip_, &tracks_, &imu_}) f->Close();
     for (auto* f : {&wheel_tum_, &noslip_tum_, &ekf_tum_, &fused_tum_, &vo_tum_, &fusion_csv_}) {
       if (*f) (*f)->Close();
     }
+    for (auto& [name, f] : external_tum_) f->Close();
   }
 
  private:
   LogFile truth_, encoders_, slip_, tracks_, imu_, twist_;
   std::unique_ptr<LogFile> wheel_tum_, noslip_tum_, ekf_tum_, fused_tum_, vo_tum_, fusion_csv_;
+  std::map<std::string, std::unique_ptr<LogFile>> external_tum_;  // reported estimators
   char line_[512];
 };
 
@@ -386,6 +394,10 @@ RunObservers RunFolderWriter::observers() {
     f.logs.Frame(l);
   };
   o.on_imu = [&f](const robot::ImuSample& s) { f.logs.Imu(s); };
+  o.on_external_estimate = [&f, dir = dir_](const ExternalEstimate& e) {
+    f.plots.estimates[*e.name].push_back({e.t_s, e.T_world_body});
+    f.logs.External(dir, e);
+  };
   if (f.navigation_csv) {
     o.on_navigation_step = [&f](const navigation::NavigationLogEntry& e) {
       f.navigation_csv->Line(NavigationCsvRow(e).c_str());

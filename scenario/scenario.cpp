@@ -192,15 +192,20 @@ void OutputsSpec::Validate() const {
   }
 }
 
-void Scenario::Validate() const {
+void Scenario::Validate(DriveSource drive_source) const {
   if (!(std::isfinite(duration_s) && duration_s > 0.0 && duration_s <= 1e6)) {
     throw OptionError("duration_s",
                       "must be in (0, 1e6] (got " + option_check::Describe(duration_s) + ")");
   }
   option_check::Nested("scene", scene);
   option_check::Nested("robot", robot);
-  // A navigation run drives itself: the `drive` section is not used then.
-  if (!navigation.enabled) option_check::Nested("drive", drive);
+  // A navigation run drives itself, and a commander from outside replaces the drive:
+  // the `drive` section is not used then.
+  if (drive_source == DriveSource::kExternal) {
+    option_check::Positive("drive.rate_hz", drive.rate_hz);
+  } else if (!navigation.enabled) {
+    option_check::Nested("drive", drive);
+  }
   option_check::Nested("estimation", estimation);
   option_check::Nested("navigation", navigation);
   option_check::Nested("teach_repeat", teach_repeat);

@@ -258,7 +258,7 @@ Override ParseOverride(const std::string& key_equals_value) {
 std::string OverrideText(const Override& o) { return o.key + "=" + o.value; }
 
 Scenario ParseScenario(const std::string& yaml_text, const std::string& source_name,
-                       const std::vector<Override>& overrides) {
+                       const std::vector<Override>& overrides, DriveSource drive_source) {
   Sources sources(source_name);
   Node root;
   try {
@@ -281,14 +281,15 @@ Scenario ParseScenario(const std::string& yaml_text, const std::string& source_n
     sources.Fail(e.path(), e.reason());
   }
   try {
-    archive::ValidateAt(scenario, "");
-  } catch (const archive::Error& e) {
-    sources.Fail(KeyOfField(e.path()), e.reason());
+    scenario.Validate(drive_source);
+  } catch (const OptionError& e) {
+    sources.Fail(KeyOfField(e.field()), e.reason());
   }
   return scenario;
 }
 
-Scenario LoadScenario(const std::string& path, const std::vector<Override>& overrides) {
+Scenario LoadScenario(const std::string& path, const std::vector<Override>& overrides,
+                      DriveSource drive_source) {
   const auto cannot_read = [&path](int error) {
     return ScenarioError(path, "", "cannot read file: " + std::generic_category().message(error));
   };
@@ -300,7 +301,7 @@ Scenario LoadScenario(const std::string& path, const std::vector<Override>& over
   std::size_t n = 0;
   while ((n = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) text.append(buffer, n);
   if (std::ferror(file.get())) throw cannot_read(errno);
-  Scenario scenario = ParseScenario(text, path, overrides);
+  Scenario scenario = ParseScenario(text, path, overrides, drive_source);
   // Files a scenario names are relative to the scenario file, and stored
   // absolute, so that the resolved scenario.yaml in a run folder still finds them.
   const auto resolve = [&path](const char* key, std::string* value, bool folder) {

@@ -9,6 +9,7 @@ packages=(
   g++ cmake ninja-build ccache pkg-config python3
   libbullet-dev libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libopencv-dev libosmesa6-dev libfuzzylite-dev libboost-math-dev
+  pybind11-dev python3-dev python3-numpy
 )
 missing=()
 for p in "${packages[@]}"; do

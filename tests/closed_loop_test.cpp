@@ -131,6 +131,47 @@ TEST(ClosedLoopTest, AUsersCommanderReplaysRecordedTrackSpeeds) {
   EXPECT_EQ(Read(scripted / "encoders.csv"), Read(replayed / "encoders.csv"));
 }
 
+TEST(ClosedLoopTest, AnEstimateReportedFromOutsideIsScoredBesideTheStack) {
+  scenario::Scenario s = testing::FlatTrackSpeedRun("grass", 0.3, 0.25, 2.0);
+  s.robot.stereo.enabled = false;
+  s.drive = scenario::DriveSpec();  // a commander from outside needs no drive section
+  EXPECT_THROW(s.Validate(), std::invalid_argument);
+  s.Validate(scenario::DriveSource::kExternal);
+  // The estimate: the truth 0.1 m to the side, a horizontal error of 0.1 m all along.
+  const fs::path dir = FreshDir("reported"), csv = FreshDir("reported_speeds");
+  fs::create_directories(csv);
+  std::ofstream(csv / "speeds.csv") << "t,left_mps,right_mps\n0,0.3,0.25\n";
+  ClosedLoopOptions options;
+  options.dir = dir;
+  options.commander =
+      std::make_unique<testing::ReplayCommander>((csv / "speeds.csv").string(), 0.05);
+  ClosedLoop loop(s, std::move(options));
+  loop.Start();
+  int steps = 0;
+  while (!loop.done()) {
+    const StepResult& r = loop.Step();
+    Eigen::Isometry3d estimate = r.T_world_body;
+    estimate.translation() += r.T_world_body.linear() * Eigen::Vector3d(0, 0.1, 0);
+    loop.ReportEstimate("mine", estimate.matrix());
+    ++steps;
+  }
+  EXPECT_THROW(loop.ReportEstimate("mine", Eigen::Matrix4d::Identity()), std::invalid_argument);
+  EXPECT_THROW(loop.ReportEstimate("fused", Eigen::Matrix4d::Identity()), std::invalid_argument);
+  Eigen::Matrix4d scaled = Eigen::Matrix4d::Identity();
+  scaled(0, 0) = 1.1;
+  EXPECT_THROW(loop.ReportEstimate("other", scaled), std::invalid_argument);
+  const RunMetrics m = loop.Finish();
+  ASSERT_EQ(m.estimators.count("mine"), 1u);
+  const EstimatorMetrics& mine = m.estimators.at("mine");
+  EXPECT_EQ(mine.samples, steps);
+  EXPECT_NEAR(mine.ate_rmse_m, 0.1, 1e-6);
+  EXPECT_NEAR(mine.final_error_m, 0.1, 1e-6);
+  EXPECT_EQ(m.estimators.count("wheel_odometry"), 1u);
+  EXPECT_TRUE(fs::exists(dir / "mine.tum"));
+  const nlohmann::json j = nlohmann::json::parse(Read(dir / "metrics.json"));
+  EXPECT_EQ(j["estimators"]["mine"]["samples"], steps);
+}
+
 TEST(ClosedLoopTest, StepOutsideStartAndFinishIsAnError) {
   ClosedLoop loop(testing::FlatTrackSpeedRun("hard_floor", 0.2, 0.2, 0.1));
   EXPECT_THROW(loop.Step(), std::logic_error);

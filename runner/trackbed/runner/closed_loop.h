@@ -8,10 +8,12 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <Eigen/Geometry>
 
+#include "trackbed/estimation/localization.h"
 #include "trackbed/robot/imu.h"
 #include "trackbed/robot/range_sensor.h"
 #include "trackbed/runner/commander.h"
@@ -27,7 +29,9 @@ struct ClosedLoopOptions {
   /// Empty: no files are written, Finish() only returns the metrics.
   std::filesystem::path dir;
   /// What drives the run; null: the scenario's own — closed-loop navigation when
-  /// `navigation.enabled`, else the `drive` section.
+  /// `navigation.enabled`, else the `drive` section. A commander given here replaces
+  /// the `drive` section (which then needs only a valid `rate_hz`) and excludes
+  /// `navigation.enabled`.
   std::unique_ptr<Commander> commander;
   /// Called after the run folder's own observers.
   RunObservers observers;
@@ -81,6 +85,17 @@ class ClosedLoop {
   const StepResult& Step();
   /// The run has ended (duration reached, the commander stopped it, a stall, a failure).
   bool done() const;
+  /// The robot's localization stack, up to date with every sample taken so far; null
+  /// when estimation is off. Valid until the next Step() or Finish().
+  const estimation::LocalizationStack* localization();
+  /// Scores `T_world_body` as estimator `name`'s estimate at the loop's current time
+  /// (the end of the last Step(), or t = 0 after Start()) against ground truth then,
+  /// beside the stack's estimators: metrics.json `estimators.<name>`, `<name>.tum` and
+  /// the plots. Throws std::invalid_argument (one line) for a name that is empty, not
+  /// made of letters, digits, '_' and '-', or taken (a built-in estimator, ground_truth);
+  /// for a matrix that is not a rigid transform; for a second estimate of the name at
+  /// the same time. Throws std::logic_error before Start() or after Finish().
+  void ReportEstimate(const std::string& name, const Eigen::Matrix4d& T_world_body);
   /// Writes the rest of the run folder (plots, metrics.json) and returns the metrics.
   RunMetrics Finish();
   /// Start(), Step() until done(), Finish().

@@ -1,6 +1,6 @@
-// Scores the localization stack's estimators against ground truth as a run
-// goes (definitions: docs/run_folder.md): every estimate is paired with the true
-// pose at the same simulation time.
+// Scores the localization stack's estimators, and estimators reported from outside
+// the loop, against ground truth as a run goes (definitions: docs/run_folder.md):
+// every estimate is paired with the true pose at the same simulation time.
 #pragma once
 
 #include <map>
@@ -14,6 +14,7 @@
 namespace trackbed::runner {
 
 struct EstimateSample;
+struct ExternalEstimate;
 struct LocalizationFrame;
 struct RunSample;
 
@@ -48,8 +49,11 @@ class EstimatorScoring {
  public:
   void Add(const RunSample& truth, const EstimateSample& estimate);
   void AddFrame(const Eigen::Isometry3d& T_world_body_true, const LocalizationFrame& frame);
+  /// An estimate from outside the loop, scored as its name's own track.
+  void AddExternal(const ExternalEstimate& estimate);
 
-  /// Metrics per estimator name; `distance_m` is the run's true path length.
+  /// Metrics per estimator name (the stack's and those from outside); `distance_m` is
+  /// the run's true path length.
   std::map<std::string, EstimatorMetrics> Metrics(double distance_m) const;
   LocalizationSummary Summary() const;
   bool empty() const { return truth_.empty(); }
@@ -57,6 +61,10 @@ class EstimatorScoring {
  private:
   estimation::Trajectory truth_, wheel_, wheel_noslip_, fused_, ekf_;
   estimation::Trajectory vo_truth_, vo_;
+  struct Track {
+    estimation::Trajectory truth, estimate;
+  };
+  std::map<std::string, Track> external_;  // name → its estimates and the truth then
   bool has_camera_ = false;
   long long vo_failures_ = 0, vo_constrained_ = 0, vo_coasted_ = 0, blackout_frames_ = 0;
   double inliers_sum_ = 0.0, w_sum_ = 0.0;

@@ -1,5 +1,6 @@
 // Observers of a closed-loop run: one handler per rate (encoder samples, stereo
-// pairs, the localization stack's frames, IMU samples, navigation control steps).
+// pairs, the localization stack's frames, IMU samples, navigation control steps,
+// estimates reported from outside).
 // Whatever consumes sensor data or results while a run goes — the run folder's
 // logs, an image export, a teach pass, a test — is a set of these.
 #pragma once
@@ -26,6 +27,8 @@ struct RunObservers {
   std::function<void(const robot::ImuSample&)> on_imu;
   /// Every control step of closed-loop navigation (ground-truth pose, command, target).
   std::function<void(const navigation::NavigationLogEntry&)> on_navigation_step;
+  /// Every estimate reported from outside the loop (ClosedLoop::ReportEstimate).
+  std::function<void(const ExternalEstimate&)> on_external_estimate;
 };
 
 /// Builds observers member by member: out.X = f(a.X, b.X) for every observer X. The
@@ -38,6 +41,7 @@ RunObservers CombineObservers(const RunObservers& a, const RunObservers& b, F&& 
   out.on_sample = f(a.on_sample, b.on_sample);
   out.on_imu = f(a.on_imu, b.on_imu);
   out.on_navigation_step = f(a.on_navigation_step, b.on_navigation_step);
+  out.on_external_estimate = f(a.on_external_estimate, b.on_external_estimate);
   return out;
 }
 

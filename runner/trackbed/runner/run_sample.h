@@ -48,6 +48,15 @@ struct StereoFrame {
   std::int64_t ticks[2] = {0, 0};
 };
 
+/// An estimate of the body's pose handed to the loop from outside it (a user's own
+/// estimator, ClosedLoop::ReportEstimate), with ground truth at the same time.
+struct ExternalEstimate {
+  const std::string* name = nullptr;  ///< the estimator's name (metrics.json `estimators`)
+  double t_s = 0.0;
+  Eigen::Isometry3d T_world_body = Eigen::Isometry3d::Identity();       ///< the estimate
+  Eigen::Isometry3d T_world_body_true = Eigen::Isometry3d::Identity();  ///< ground truth
+};
+
 /// The stack's work on one stereo frame.
 struct LocalizationFrame {
   double t_s = 0.0;

@@ -422,6 +422,11 @@ struct OutputsSpec {
   }
 };
 
+/// What drives a closed-loop run: the scenario itself (its `drive` section, or
+/// navigation), or a commander given from outside (a user's own, from C++ or the Python
+/// module), which makes the `drive` section unused.
+enum class DriveSource { kScenario, kExternal };
+
 struct Scenario {
   std::uint64_t seed = 1;
   /// Simulated time limit [s], > 0. A path drive may end sooner.
@@ -434,7 +439,10 @@ struct Scenario {
   TeachRepeatSpec teach_repeat;
   OutputsSpec outputs;
 
-  void Validate() const;
+  void Validate() const { Validate(DriveSource::kScenario); }
+  /// With DriveSource::kExternal the `drive` section is not checked but for
+  /// `drive.rate_hz` (> 0), the control rate a commander from outside may take.
+  void Validate(DriveSource drive_source) const;
 
   /// The scenario file's keys for these fields (docs/scenario_format.md), read and
   /// written by the config archive (trackbed/common/archive.h).

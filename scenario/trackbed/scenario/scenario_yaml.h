@@ -52,12 +52,14 @@ class ScenarioError : public std::runtime_error {
 };
 
 /// Reads a scenario file, applies `overrides` in order and validates the
-/// result. Throws ScenarioError.
-Scenario LoadScenario(const std::string& path, const std::vector<Override>& overrides = {});
+/// result (for a run driven as `drive_source` says). Throws ScenarioError.
+Scenario LoadScenario(const std::string& path, const std::vector<Override>& overrides = {},
+                      DriveSource drive_source = DriveSource::kScenario);
 
 /// As LoadScenario, from YAML text; `source_name` names it in error messages.
 Scenario ParseScenario(const std::string& yaml_text, const std::string& source_name,
-                       const std::vector<Override>& overrides = {});
+                       const std::vector<Override>& overrides = {},
+                       DriveSource drive_source = DriveSource::kScenario);
 
 /// The scenario as YAML with every key written (defaults included), in the
 /// format ParseScenario reads. Doubles use their shortest exact decimal form, so
