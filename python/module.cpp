@@ -21,7 +21,7 @@ namespace py = pybind11;
 namespace trackbed::python {
 namespace {
 
-py::array_t<std::uint8_t> ToArray(const sim::GrayImage& image) {
+py::array_t<std::uint8_t> ToArray(const GrayImage& image) {
   py::array_t<std::uint8_t> a({image.height, image.width});
   std::memcpy(a.mutable_data(), image.pixels.data(), image.pixels.size());
   return a;
