@@ -20,6 +20,57 @@ std::string Indexed(const std::string& name, std::size_t k) {
 
 void Finite(const std::string& field, double value) { option_check::Finite(field.c_str(), value); }
 
+// The robot's start must be on the terrain: beyond its extent the chassis has no ground
+// under it and falls. (A kinematic navigation run has no terrain and is not checked.)
+void CheckStartOnTerrain(const Scenario& s) {
+  const Eigen::Vector4d& e = s.scene.terrain.extent_m;
+  const double x = s.robot.start.x_m, y = s.robot.start.y_m;
+  if (x >= e[0] && x <= e[2] && y >= e[1] && y <= e[3]) return;
+  throw OptionError("robot.start",
+                    "(" + option_check::Describe(x) + ", " + option_check::Describe(y) +
+                        ") is outside scene.terrain.extent_m [" + option_check::Describe(e[0]) +
+                        ", " + option_check::Describe(e[1]) + ", " + option_check::Describe(e[2]) +
+                        ", " + option_check::Describe(e[3]) + "]: no ground there");
+}
+
+// A commanded speed beyond the sprocket motors' top track speed (motor.max_speed_radps
+// × sprocket_radius_m) can never be reached: refused rather than silently saturated.
+// `track_mps` is the fastest track speed the command asks for.
+void CheckTrackSpeed(const std::string& field, double track_mps, double top_mps) {
+  if (std::abs(track_mps) <= top_mps) return;
+  throw OptionError(field, "asks a track for " + option_check::Describe(std::abs(track_mps)) +
+                               " m/s, beyond the motors' top track speed " +
+                               option_check::Describe(top_mps) +
+                               " m/s (robot.vehicle.motor.max_speed_radps × sprocket_radius_m)");
+}
+
+// Every speed the drive or the closed-loop navigator is told to reach.
+void CheckCommandedSpeeds(const Scenario& s) {
+  const robot::TrackedVehicleOptions& v = s.robot.vehicle;
+  const double top = v.motor.max_speed_radps * v.sprocket_radius_m;
+  if (s.navigation.enabled) {
+    if (s.navigation.mode == NavigationSpec::Mode::kClosedLoop) {
+      CheckTrackSpeed("navigation.max_speed_mps", s.navigation.max_speed_mps, top);
+    }
+    return;
+  }
+  if (s.drive.mode == DriveSpec::Mode::kPath) {
+    CheckTrackSpeed("drive.speed_mps", s.drive.speed_mps, top);
+    return;
+  }
+  for (std::size_t k = 0; k < s.drive.script.size(); ++k) {
+    const DriveCommand& c = s.drive.script[k];
+    const std::string at = "drive." + Indexed("script", k);
+    if (c.track_speeds) {
+      CheckTrackSpeed(at + ".left_mps", c.left_mps, top);
+      CheckTrackSpeed(at + ".right_mps", c.right_mps, top);
+    } else {  // converted with the nominal gauge: the faster track runs |v| + |ω|·W/2
+      CheckTrackSpeed(at + ".v_mps",
+                      std::abs(c.v_mps) + std::abs(c.yaw_rate_radps) * v.track_gauge_m / 2.0, top);
+    }
+  }
+}
+
 // Throws unless `value` is one of `accepted`, listing them.
 void OneOf(const std::string& field, const std::string& value,
            const std::vector<std::string>& accepted) {
@@ -205,6 +256,10 @@ void Scenario::Validate(DriveSource drive_source) const {
     option_check::Positive("drive.rate_hz", drive.rate_hz);
   } else if (!navigation.enabled) {
     option_check::Nested("drive", drive);
+  }
+  if (drive_source != DriveSource::kExternal) CheckCommandedSpeeds(*this);
+  if (!(navigation.enabled && navigation.mode == NavigationSpec::Mode::kKinematic)) {
+    CheckStartOnTerrain(*this);
   }
   option_check::Nested("estimation", estimation);
   option_check::Nested("navigation", navigation);

@@ -3,4 +3,5 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
-ctest --test-dir build --output-on-failure -j2 "$@"
+# Tests carry their own per-label time limits; --timeout bounds any test without one.
+ctest --test-dir build --output-on-failure -j2 --timeout 1800 "$@"

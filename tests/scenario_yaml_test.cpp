@@ -405,6 +405,34 @@ TEST(ScenarioYamlTest, BadOverrideIsAttributedToSet) {
             "test.yaml: robot.vehicle.mass_kg: must be > 0 (got -1)");
 }
 
+// A robot started beyond the terrain would fall with no ground under it; a command the
+// sprocket motors cannot reach (15 rad/s × 0.10 m = 1.5 m/s by default) is refused, not
+// saturated — in every form a speed can be given.
+TEST(ScenarioYamlTest, StartOffTheTerrainAndUnreachableSpeedsAreRefused) {
+  EXPECT_EQ(ErrorOf(kMinimal, {{"robot.start.x_m", "7"}}),
+            "--set robot.start.x_m=7: robot.start: (7, 0) is outside scene.terrain.extent_m "
+            "[-5, -5, 5, 5]: "
+            "no ground there");
+  EXPECT_EQ(ErrorOf(kMinimal, {{"robot.start.x_m", "5"}, {"robot.start.y_m", "-5"}}), "");
+  const std::string top =
+      " m/s, beyond the motors' top track speed 1.5 m/s (robot.vehicle.motor.max_speed_radps "
+      "× sprocket_radius_m)";
+  EXPECT_EQ(ErrorOf(kMinimal, {{"drive.speed_mps", "1e300"}}),
+            "--set drive.speed_mps=1e300: drive.speed_mps: asks a track for 1e+300" + top);
+  EXPECT_EQ(ErrorOf("drive:\n  mode: script\n  script:\n    - {t_s: 0, left_mps: 0.2, "
+                    "right_mps: -2}\n"),
+            "test.yaml: drive.script[0].right_mps: asks a track for 2" + top);
+  // A twist: the faster track runs |v| + |ω|·W/2 = 1.2 + 1.5 · 0.25 = 1.575 m/s.
+  EXPECT_EQ(ErrorOf("drive:\n  mode: script\n  script:\n    - {t_s: 0, v_mps: 0.2, "
+                    "yaw_rate_radps: 0}\n    - {t_s: 1, v_mps: -1.2, yaw_rate_radps: 1.5}\n"),
+            "test.yaml: drive.script[1].v_mps: asks a track for 1.575" + top);
+  EXPECT_EQ(ErrorOf(kMinimal, {{"drive.speed_mps", "1.5"}}), "");
+  // Faster motors raise the bound.
+  EXPECT_EQ(
+      ErrorOf(kMinimal, {{"drive.speed_mps", "2"}, {"robot.vehicle.motor.max_speed_radps", "25"}}),
+      "");
+}
+
 TEST(ScenarioYamlTest, WallFromToBecomesRotatedBox) {
   const Scenario s = ParseScenario(
       std::string(kMinimal) + "scene:\n  objects:\n    - {type: wall, from: [1, 1], to: [4, 5]}\n",

@@ -260,14 +260,16 @@ pid_t Spawn(const std::vector<std::string>& args, const fs::path& io,
   return pid;
 }
 
-// Polls for `file` while `pid` runs; false if the process ended first.
+// Polls for `file` while `pid` runs; false if the process ended first or the file has
+// not appeared after 10 minutes of polling (a hang, not a timing judgement).
 bool WaitForFile(const fs::path& file, pid_t pid) {
-  while (!fs::exists(file)) {
+  for (int polls = 0; polls < 120000; ++polls) {
+    if (fs::exists(file)) return true;
     int status = 0;
     if (waitpid(pid, &status, WNOHANG) == pid) return false;
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
-  return true;
+  return false;
 }
 
 // A sweep's cells run the binary the sweep started with, even when the file is
