@@ -124,6 +124,36 @@ TEST(FuzzyFusionTest, TableOneCornersAndMonotonicity) {
   }
 }
 
+// Every rule of Table 1 (Ham et al. 2012), one at a time: at the peaks of one slip
+// term and one feature term no other set of either input is active, so exactly one
+// rule fires with strength 1 and w is the centroid of its output term, (a + b + c)/3
+// of the triangle. The table below is the paper's, restated here independently of
+// the rule file: rows are the features terms, columns the slip terms.
+TEST(FuzzyFusionTest, EachOfTheTwentyFiveRulesGivesItsOutputTermAtThePeaks) {
+  enum Term { kPoor, kFair, kGood, kVeryGood, kExcellent };
+  const double centroid[] = {(0.0 + 0.1 + 0.3) / 3.0, (0.1 + 0.3 + 0.5) / 3.0,
+                             (0.3 + 0.5 + 0.7) / 3.0, (0.5 + 0.7 + 0.9) / 3.0,
+                             (0.7 + 0.9 + 1.0) / 3.0};
+  // Peaks (plateau centres for the trapezoids) of the rule file's sets.
+  const double slip_peak[] = {0.005, 0.025, 0.045, 0.070, 0.200};  // very_small … very_large
+  const double feature_peak[] = {4.0, 20.0, 40.0, 80.0, 500.0};    // very_less … very_plenty
+  // Table 1: w for [features][slip], slip from very_small to very_large.
+  const Term table[5][5] = {
+      {kExcellent, kVeryGood, kGood, kGood, kFair},  // very less features
+      {kVeryGood, kGood, kGood, kFair, kPoor},       // less
+      {kGood, kGood, kFair, kPoor, kPoor},           // medium
+      {kGood, kFair, kPoor, kPoor, kPoor},           // plenty
+      {kFair, kPoor, kPoor, kPoor, kPoor},           // very plenty
+  };
+  FuzzyFusionWeight fuzzy;
+  for (int f = 0; f < 5; ++f) {
+    for (int v = 0; v < 5; ++v) {
+      EXPECT_NEAR(fuzzy.Weight(slip_peak[v], feature_peak[f]), centroid[table[f][v]], 5e-3)
+          << "features term " << f << ", slip term " << v;
+    }
+  }
+}
+
 TEST(FuzzyFusionTest, BadRuleFilesAreRejectedWithTheirName) {
   EXPECT_THROW(FuzzyFusionWeight("Engine: x\nInputVariable: a\n  range: 0 1\n", "mine.fll"),
                std::invalid_argument);
