@@ -3,6 +3,7 @@
 // status, the scene generators and the run metrics. Thresholds on ground truth.
 #include <cmath>
 #include <memory>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -81,6 +82,30 @@ TEST(RandomFieldsTest, GaussNewtonSubgoalSucceedsInAtLeast95Of100WithoutCollisio
   }
   EXPECT_GE(successes, 95);
   EXPECT_EQ(collisions, 0);
+}
+
+// The potential-field traps (docs/navigation.md): Gauss–Newton with sub-goals escapes
+// all four; the potential field stalls in the local minima of the U, the narrow gap and
+// the narrow corridor, and reaches the goal beside the wall (build/bench/navigation_study
+// prints the same table).
+TEST(TrapScenesTest, GaussNewtonSubgoalEscapesAllFourThePotentialFieldOnlyTheWall) {
+  const std::vector<NavigationScene> traps = TrapScenes();
+  ASSERT_EQ(traps.size(), 4u);
+  for (const NavigationScene& scene : traps) {
+    SCOPED_TRACE(scene.name);
+    const NavigationMetrics gn = Simulate(scene, "gauss_newton_subgoal").metrics;
+    EXPECT_TRUE(gn.success) << gn.status;
+    EXPECT_EQ(gn.collisions, 0);
+    const NavigationMetrics pf = Simulate(scene, "potential_field").metrics;
+    EXPECT_EQ(pf.collisions, 0);
+    if (scene.name == "goal_beside_wall") {
+      EXPECT_TRUE(pf.success) << pf.status;
+    } else {  // a real trap: sub-goals lead out where the field's minimum holds
+      EXPECT_GE(gn.subgoals, 1);
+      EXPECT_FALSE(pf.success);
+      EXPECT_EQ(pf.status, "stalled");
+    }
+  }
 }
 
 TEST(BadInputTest, GoalInsideAnObstacleEndsAtOnce) {
