@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "trackbed/robot/encoder.h"
 #include "trackbed/robot/stereo_rig.h"
 
 namespace trackbed::robot {
@@ -115,6 +116,30 @@ TEST(SensorModelTest, ClampsToTheEightBitRange) {
   int zeros = 0;
   for (std::uint8_t p : dark.pixels) zeros += p == 0;
   EXPECT_GT(zeros, 64 * 64 * 4 / 10);  // negative noise clamps to 0: about half
+}
+
+// The encoder counts as an incremental encoder does: floor(angle / 2π · ticks), so a
+// count never runs ahead of the shaft, backward motion counts down through zero without
+// a dead band (truncation toward zero would show 0 for the whole first tick backward),
+// and one tick is the quantum either way.
+TEST(EncoderTest, QuantisesByFloorInBothDirections) {
+  constexpr int kTicks = 4096;
+  const double tick = 2.0 * M_PI / kTicks;
+  EXPECT_EQ(EncoderTicks(0.0, kTicks), 0);
+  EXPECT_EQ(EncoderTicks(0.5 * tick, kTicks), 0);
+  EXPECT_EQ(EncoderTicks(-0.5 * tick, kTicks), -1);
+  EXPECT_EQ(EncoderTicks(-1e-9, kTicks), -1);
+  EXPECT_EQ(EncoderTicks(2.0 * M_PI + 0.5 * tick, kTicks), kTicks);
+  EXPECT_EQ(EncoderTicks(-2.0 * M_PI - 0.5 * tick, kTicks), -kTicks - 1);
+  for (int i = -3000; i <= 3000; ++i) {
+    const double angle = i * 0.00731;  // ±21.9 rad, off the tick grid
+    const std::int64_t t = EncoderTicks(angle, kTicks);
+    EXPECT_LE(TicksToAngle(t, kTicks), angle + 1e-12) << angle;
+    EXPECT_GT(TicksToAngle(t + 1, kTicks), angle - 1e-12) << angle;
+    // Forward and backward by the same angle: counts mirror up to the floor's tick.
+    const std::int64_t back = EncoderTicks(-angle, kTicks);
+    EXPECT_TRUE(t + back == 0 || t + back == -1) << angle;
+  }
 }
 
 }  // namespace
