@@ -8,23 +8,35 @@
 
 namespace trackbed::geometry {
 
-Eigen::Vector2d RadialTangential::Distort(const Eigen::Vector2d& xy) const {
+namespace {
+
+/// The model's two parts at undistorted (x, y): the radial factor and the tangential
+/// offset, x_d = x·radial + tangential.
+struct LensTerms {
+  double radial;
+  Eigen::Vector2d tangential;
+};
+
+LensTerms TermsAt(const RadialTangential& d, const Eigen::Vector2d& xy) {
   const double x = xy.x(), y = xy.y();
   const double r2 = x * x + y * y;
-  const double radial = 1.0 + r2 * (k1 + r2 * (k2 + r2 * k3));
-  return {x * radial + 2.0 * p1 * x * y + p2 * (r2 + 2.0 * x * x),
-          y * radial + p1 * (r2 + 2.0 * y * y) + 2.0 * p2 * x * y};
+  return {1.0 + r2 * (d.k1 + r2 * (d.k2 + r2 * d.k3)),
+          {2.0 * d.p1 * x * y + d.p2 * (r2 + 2.0 * x * x),
+           d.p1 * (r2 + 2.0 * y * y) + 2.0 * d.p2 * x * y}};
+}
+
+}  // namespace
+
+Eigen::Vector2d RadialTangential::Distort(const Eigen::Vector2d& xy) const {
+  const LensTerms t = TermsAt(*this, xy);
+  return xy * t.radial + t.tangential;
 }
 
 Eigen::Vector2d RadialTangential::Undistort(const Eigen::Vector2d& xy_d) const {
   Eigen::Vector2d xy = xy_d;
   for (int i = 0; i < 50; ++i) {
-    const double x = xy.x(), y = xy.y();
-    const double r2 = x * x + y * y;
-    const double radial = 1.0 + r2 * (k1 + r2 * (k2 + r2 * k3));
-    const Eigen::Vector2d tangential(2.0 * p1 * x * y + p2 * (r2 + 2.0 * x * x),
-                                     p1 * (r2 + 2.0 * y * y) + 2.0 * p2 * x * y);
-    const Eigen::Vector2d next = (xy_d - tangential) / radial;
+    const LensTerms t = TermsAt(*this, xy);
+    const Eigen::Vector2d next = (xy_d - t.tangential) / t.radial;
     const double step = (next - xy).norm();
     xy = next;
     if (step < 1e-12) break;

@@ -2,8 +2,8 @@
 #include "trackbed/common/stereo_camera.h"
 
 #include <cmath>
-#include <stdexcept>
-#include <string>
+
+#include "trackbed/common/option_error.h"
 
 namespace trackbed::geometry {
 
@@ -33,14 +33,9 @@ Eigen::Matrix<double, 3, 4> StereoCamera::RightProjection() const {
   return P;
 }
 
-void StereoCamera::CheckIntrinsics(const char* what) const {
-  const PinholeCamera& c = left;
-  if (!(std::isfinite(c.fx) && c.fx > 0.0 && std::isfinite(c.fy) && c.fy > 0.0 &&
-        std::isfinite(baseline_m) && baseline_m > 0.0 && std::isfinite(c.cx) &&
-        std::isfinite(c.cy))) {
-    throw std::invalid_argument(std::string(what) +
-                                ": needs fx, fy, baseline > 0 and finite cx, cy");
-  }
+void StereoCamera::Validate() const {
+  option_check::Nested("left", left);
+  option_check::Positive("baseline_m", baseline_m);
 }
 
 StereoCamera StereoCamera::FromProjections(const Eigen::Matrix<double, 3, 4>& P0,

@@ -92,7 +92,7 @@ StereoMotionOptions MotionOptionsOf(const StereoVisualOdometryOptions& options) 
 namespace {
 
 geometry::StereoCamera Checked(const geometry::StereoCamera& camera) {
-  camera.CheckIntrinsics("StereoVisualOdometry");
+  camera.Validate();
   return camera;
 }
 

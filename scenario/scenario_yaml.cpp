@@ -40,26 +40,24 @@ using sim::StaticObject;
 
 constexpr archive::Wording kWording = archive::Wording::kDetailed;
 constexpr double kInf = std::numeric_limits<double>::infinity();
-double DegToRad(double deg) { return units::Radians(deg); }
-
 // The degrees to write for a yaw of `rad` radians. Reading converts with
-// DegToRad, which not every double is the image of; so take r = `rad` when some
-// double d has DegToRad(d) == rad, else the nearest value that does, and write
-// the shortest decimal among the doubles d with DegToRad(d) == r. Reading it
+// units::Radians, which not every double is the image of; so take r = `rad` when some
+// double d has units::Radians(d) == rad, else the nearest value that does, and write
+// the shortest decimal among the doubles d with units::Radians(d) == r. Reading it
 // gives r, whose degrees are again this text: the round trip is exact.
 double YawDegreesFor(double rad) {
   if (!std::isfinite(rad) || rad == 0.0) return units::Degrees(rad);
   const auto up = [](double d) { return std::nextafter(d, kInf); };
   const auto down = [](double d) { return std::nextafter(d, -kInf); };
   double lo = units::Degrees(rad);  // within a few ulps of the answer
-  for (int i = 0; i < 16 && DegToRad(lo) > rad; ++i) lo = down(lo);
-  for (int i = 0; i < 16 && DegToRad(up(lo)) <= rad; ++i) lo = up(lo);
-  const double below = DegToRad(lo), above = DegToRad(up(lo));
+  for (int i = 0; i < 16 && units::Radians(lo) > rad; ++i) lo = down(lo);
+  for (int i = 0; i < 16 && units::Radians(up(lo)) <= rad; ++i) lo = up(lo);
+  const double below = units::Radians(lo), above = units::Radians(up(lo));
   const double target = rad - below <= above - rad ? below : above;
   double d = target == below ? lo : up(lo);
-  for (int i = 0; i < 16 && DegToRad(down(d)) == target; ++i) d = down(d);
+  for (int i = 0; i < 16 && units::Radians(down(d)) == target; ++i) d = down(d);
   double best = d;
-  for (int i = 0; i < 16 && DegToRad(d) == target; ++i, d = up(d)) {
+  for (int i = 0; i < 16 && units::Radians(d) == target; ++i, d = up(d)) {
     if (archive::FormatDouble(d).size() < archive::FormatDouble(best).size()) best = d;
   }
   return best;
@@ -138,7 +136,7 @@ void ReadObject(const Node& node, const std::string& path, archive::Wording word
     map.Visit("center", &out->center_m);
     map.Visit("size_m", &out->size_m);
     map.Visit("yaw_deg", &yaw_deg);
-    out->yaw_rad = DegToRad(yaw_deg);
+    out->yaw_rad = units::Radians(yaw_deg);
   } else {
     map.Visit("center", &out->center_m);
     map.Visit("radius_m", &out->radius_m);

@@ -106,9 +106,17 @@ TEST(StereoCameraTest, TriangulateInvertsProjectAndKittiFormRoundTrips) {
   EXPECT_EQ(back.left.fx, s.left.fx);
   EXPECT_EQ(back.left.cy, s.left.cy);
   EXPECT_NEAR(back.baseline_m, 0.537, 1e-15);
-  EXPECT_NO_THROW(s.CheckIntrinsics("test"));
+  EXPECT_NO_THROW(s.Validate());
   s.baseline_m = 0.0;
-  EXPECT_THROW(s.CheckIntrinsics("test"), std::invalid_argument);
+  EXPECT_THROW(s.Validate(), OptionError);
+  s.baseline_m = 0.537;
+  s.left.fx = -1.0;
+  try {
+    s.Validate();
+    FAIL() << "no error";
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.field(), "left.fx");
+  }
 }
 
 TEST(Se3Test, SkewExpAndIncrement) {

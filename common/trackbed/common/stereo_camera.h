@@ -24,10 +24,9 @@ struct StereoCamera {
   Eigen::Matrix<double, 3, 4> LeftProjection() const;
   Eigen::Matrix<double, 3, 4> RightProjection() const;
 
-  /// Throws std::invalid_argument naming `what` unless fx, fy, baseline_m > 0 and
-  /// finite and cx, cy finite (the image size is not checked: a calibration file may
-  /// come without one).
-  void CheckIntrinsics(const char* what) const;
+  /// Throws OptionError naming the first invalid field: the left camera's
+  /// (PinholeCamera::Validate, as `left.<field>`), then baseline_m > 0.
+  void Validate() const;
 
   /// From KITTI-form projections: intrinsics from P0, baseline −P1(0,3) / P1(0,0); the
   /// image size is left 0 for the caller. Does not check the form (the KITTI reader

@@ -168,9 +168,8 @@ struct VoFrameResult {
 /// copyable.
 class StereoVisualOdometry {
  public:
-  /// `camera`: the calibrated, rectified pair the images come from (its image size is
-  /// not used). Throws OptionError for invalid options, std::invalid_argument for a
-  /// camera without positive fx, fy, baseline.
+  /// `camera`: the calibrated, rectified pair the images come from. Throws OptionError
+  /// for invalid options or an invalid camera (geometry::StereoCamera::Validate).
   StereoVisualOdometry(const geometry::StereoCamera& camera,
                        const StereoVisualOdometryOptions& options = {});
   StereoVisualOdometry(const StereoVisualOdometry&) = delete;
