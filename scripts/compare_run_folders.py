@@ -5,6 +5,13 @@ real_time_factor, timing.*, memory.*, host and start time in JSON files, the sam
 columns and metrics in the sweep summaries) and the logs that quote them. Exit 0 when everything else is identical.
 
     python3 scripts/compare_run_folders.py runs/golden_before runs/golden_after
+
+With --new-keys-allowed, the second folder may add files and, in JSON and YAML files
+and in a sweep's `set` lists, keys and overrides the first has not (a feature that
+leaves every earlier value as it was; the sweep files then differ only in the overrides
+added): the values the first folder has must be identical.
+
+    python3 scripts/compare_run_folders.py --new-keys-allowed runs/before runs/ideal
 """
 import csv
 import io
@@ -12,6 +19,8 @@ import json
 import pathlib
 import re
 import sys
+
+import yaml
 
 MACHINE_KEYS = {"wall_time_s", "real_time_factor", "timing", "memory",
                 "stderr_tail", "started_utc", "host"}
@@ -37,7 +46,30 @@ def strip_csv(text):
             if metric is None or not MACHINE_COLUMN.match(row[metric])]
 
 
+def contained(a, b):
+    """Whether b holds every key, item and value of a (maps may add keys; lists of
+    strings, such as a sweep's overrides, may add items)."""
+    if isinstance(a, dict) and isinstance(b, dict):
+        return all(k in b and contained(v, b[k]) for k, v in a.items())
+    if isinstance(a, list) and isinstance(b, list):
+        if len(a) == len(b) and all(contained(x, y) for x, y in zip(a, b)):
+            return True
+        return all(isinstance(x, str) for x in a + b) and all(x in b for x in a)
+    return a == b
+
+
+NEW_KEYS = False
+
+
 def same(a, b):
+    if a.suffix in (".log", ".md") or a.name in ("stdout.txt", "stderr.txt", "summary.json"):
+        return True  # these quote wall times and paths; their data is in the files above
+    if NEW_KEYS and a.suffix in (".json", ".yaml"):
+        try:
+            load = json.loads if a.suffix == ".json" else yaml.safe_load
+            return contained(strip_json(load(a.read_text())), strip_json(load(b.read_text())))
+        except (json.JSONDecodeError, yaml.YAMLError, UnicodeDecodeError):
+            pass
     if a.suffix in (".log", ".md") or a.name in ("stdout.txt", "stderr.txt", "summary.json"):
         return True  # these quote wall times and paths; their data is in the files above
     if a.suffix == ".json":
@@ -51,11 +83,18 @@ def same(a, b):
 
 
 def main():
-    left, right = map(pathlib.Path, sys.argv[1:3])
+    global NEW_KEYS
+    args = sys.argv[1:]
+    if args and args[0] == "--new-keys-allowed":
+        NEW_KEYS = True
+        args = args[1:]
+    left, right = map(pathlib.Path, args[:2])
     files_l = {p.relative_to(left) for p in left.rglob("*") if p.is_file()}
     files_r = {p.relative_to(right) for p in right.rglob("*") if p.is_file()}
     bad = 0
     for rel in sorted(files_l ^ files_r):
+        if NEW_KEYS and rel in files_r:
+            continue  # a file the feature adds
         print(f"only in one: {rel}")
         bad += 1
     for rel in sorted(files_l & files_r):
