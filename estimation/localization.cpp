@@ -26,6 +26,7 @@ void LocalizationOptions::Validate() const {
   option_check::Nested("wheel", wheel);
   option_check::Nested("vo", vo);
   option_check::Nested("ekf", ekf);
+  option_check::Nested("imu", imu);
   if (min_inliers_for_slip < 0) throw OptionError("min_inliers_for_slip", "must be >= 0");
   option_check::NonNegative("fusion_weight_rise_time_s", fusion_weight_rise_time_s);
   option_check::NonNegative("vo_coast_time_s", vo_coast_time_s);
@@ -49,7 +50,29 @@ LocalizationStack::LocalizationStack(const LocalizationOptions& options,
   options_.Validate();
 }
 
+LocalizationStack::LocalizationStack(const LocalizationOptions& options,
+                                     const calibration::StereoCalibration* stereo,
+                                     const Eigen::Isometry3d& T_world_body0)
+    : LocalizationStack(
+          options, stereo ? std::make_shared<const perception::StereoRectifier>(*stereo) : nullptr,
+          T_world_body0) {}
+
+LocalizationStack::LocalizationStack(const LocalizationOptions& options,
+                                     std::shared_ptr<const perception::StereoRectifier> rectifier,
+                                     const Eigen::Isometry3d& T_world_body0)
+    : LocalizationStack(options, rectifier ? &rectifier->camera() : nullptr,
+                        rectifier ? rectifier->T_body_left() : Eigen::Isometry3d::Identity(),
+                        T_world_body0) {
+  if (rectifier && !rectifier->identity()) rectifier_ = std::move(rectifier);
+}
+
 LocalizationStack::~LocalizationStack() = default;
+
+void LocalizationStack::AddImuSample(double t_s, const Eigen::Vector3d& gyro_radps,
+                                     const Eigen::Vector3d& accel_mps2) {
+  AddGyroSample(
+      t_s, options_.imu.IsIdentity() ? gyro_radps : options_.imu.BodyRate(gyro_radps, accel_mps2));
+}
 
 void LocalizationStack::AddEncoderSample(double t_s, std::int64_t left_ticks,
                                          std::int64_t right_ticks) {
@@ -75,8 +98,17 @@ void LocalizationStack::AddGyroSample(double t_s, const Eigen::Vector3d& rate_ra
 
 LocalizationFrameReport LocalizationStack::AddStereoFrame(double t_s, const cv::Mat& left,
                                                           const cv::Mat& right) {
-  LocalizationFrameReport report;
   if (!vo_) throw std::logic_error("LocalizationStack: stereo frame without a camera calibration");
+  if (rectifier_) {
+    rectifier_->Rectify(left, right, &rectified_left_, &rectified_right_);
+    return ProcessStereoFrame(t_s, rectified_left_, rectified_right_);
+  }
+  return ProcessStereoFrame(t_s, left, right);
+}
+
+LocalizationFrameReport LocalizationStack::ProcessStereoFrame(double t_s, const cv::Mat& left,
+                                                              const cv::Mat& right) {
+  LocalizationFrameReport report;
   // The gyro's rotation since the last frame, in the left camera's frame.
   const Eigen::Matrix3d& R_bc = T_body_left_.linear();
   const Eigen::Matrix3d R_prior = R_bc.transpose() * R_gyro_since_frame_ * R_bc;

@@ -10,6 +10,9 @@ namespace trackbed::estimation {
 
 void WheelOdometryOptions::Validate() const {
   option_check::Positive("sprocket_radius_m", sprocket_radius_m);
+  if (right_sprocket_radius_m) {
+    option_check::Positive("right_sprocket_radius_m", *right_sprocket_radius_m);
+  }
   option_check::Positive("track_gauge_m", track_gauge_m);
   option_check::InRange("icr_expansion", icr_expansion, 0.2, 5.0);
   if (ticks_per_rev < 1) throw OptionError("ticks_per_rev", "must be >= 1");
@@ -46,7 +49,8 @@ void WheelOdometry::AddEncoderSample(double t_s, std::int64_t left_ticks,
     return;
   }
   const double dt = t_s - last_t_;
-  const double r = options_.sprocket_radius_m;
+  const double r_l = options_.sprocket_radius_m;
+  const double r_r = options_.right_sprocket_radius_m.value_or(r_l);
   const double gauge = options_.icr_expansion * options_.track_gauge_m;  // B_eff
   const double w_l = (left - last_left_) / dt, w_r = (right - last_right_) / dt;
   if (options_.estimate_slip && t_s - last_measurement_t_ > options_.slip_hold_s) {
@@ -57,7 +61,7 @@ void WheelOdometry::AddEncoderSample(double t_s, std::int64_t left_ticks,
   }
   // Ham et al. eqs. 3–5 in the body frame: forward speed, yaw rate, and the
   // lateral speed −d·ω from the ICR's longitudinal offset d.
-  const double v_l = r * w_l + slip_.left_mps, v_r = r * w_r + slip_.right_mps;
+  const double v_l = r_l * w_l + slip_.left_mps, v_r = r_r * w_r + slip_.right_mps;
   forward_mps_ = 0.5 * (v_r + v_l);
   yaw_rate_radps_ = (v_r - v_l) / gauge;
   const double lateral = -options_.icr_offset_m * yaw_rate_radps_;
@@ -99,12 +103,13 @@ void WheelOdometry::AddMeasuredVelocity(double t0_s, double t1_s, double forward
   if (!options_.estimate_slip || !(t1_s > t0_s)) return;
   double l0, r0, l1, r1;
   if (!AnglesAt(t0_s, &l0, &r0) || !AnglesAt(t1_s, &l1, &r1)) return;
-  const double dt = t1_s - t0_s, r = options_.sprocket_radius_m;
+  const double dt = t1_s - t0_s, r_l = options_.sprocket_radius_m;
+  const double r_r = options_.right_sprocket_radius_m.value_or(r_l);
   const double gauge = options_.icr_expansion * options_.track_gauge_m;
   // Ham et al. eqs. 1–2 with the body-frame forward speed cosθ·v_x + sinθ·v_y
   // measured by visual odometry, low-pass filtered over the measurement interval.
-  const double left = forward_mps - gauge * yaw_rate_radps / 2.0 - r * (l1 - l0) / dt;
-  const double right = forward_mps + gauge * yaw_rate_radps / 2.0 - r * (r1 - r0) / dt;
+  const double left = forward_mps - gauge * yaw_rate_radps / 2.0 - r_l * (l1 - l0) / dt;
+  const double right = forward_mps + gauge * yaw_rate_radps / 2.0 - r_r * (r1 - r0) / dt;
   const double gain =
       options_.slip_filter_time_s > 0.0 ? 1.0 - std::exp(-dt / options_.slip_filter_time_s) : 1.0;
   slip_.left_mps += gain * (left - slip_.left_mps);

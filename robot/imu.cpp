@@ -18,9 +18,13 @@ void ImuOptions::Validate() const {
   option_check::NonNegative("accel_initial_bias_std", accel_initial_bias_std);
 }
 
-Imu::Imu(const ImuOptions& options, double gravity_mps2, std::uint64_t seed)
+Imu::Imu(const ImuOptions& options, double gravity_mps2, std::uint64_t seed,
+         const calibration::ImuCalibration* as_built)
     : options_(options), gravity_mps2_(gravity_mps2), rng_(seed) {
   options_.Validate();
+  if (as_built && !(as_built->IsIdentity() && as_built->accel_axes.isIdentity(0.0))) {
+    as_built_ = *as_built;
+  }
   gyro_bias_ = options_.gyro_initial_bias_std * Gaussian3();
   accel_bias_ = options_.accel_initial_bias_std * Gaussian3();
 }
@@ -38,10 +42,17 @@ ImuSample Imu::Sample(double t_s, const Eigen::Matrix3d& R_world_body,
   ImuSample s;
   s.t_s = t_s;
   const Eigen::Matrix3d R_body_world = R_world_body.transpose();
-  s.gyro_radps = R_body_world * omega_world + gyro_bias_ +
-                 options_.gyro_noise_density / std::sqrt(dt) * Gaussian3();
-  const Eigen::Vector3d specific_force =
+  Eigen::Vector3d rate = R_body_world * omega_world;
+  Eigen::Vector3d specific_force =
       R_body_world * (accel_world + Eigen::Vector3d(0, 0, gravity_mps2_));
+  if (as_built_) {
+    // The sensor's axes as built (calibration::ImuCalibration's model).
+    const Eigen::Matrix3d R_imu_body = as_built_->R_body_imu.transpose();
+    const Eigen::Vector3d f_imu = R_imu_body * specific_force;
+    rate = as_built_->gyro_axes * (R_imu_body * rate) + as_built_->gyro_g_sensitivity * f_imu;
+    specific_force = as_built_->accel_axes * f_imu;
+  }
+  s.gyro_radps = rate + gyro_bias_ + options_.gyro_noise_density / std::sqrt(dt) * Gaussian3();
   s.accel_mps2 =
       specific_force + accel_bias_ + options_.accel_noise_density / std::sqrt(dt) * Gaussian3();
   s.gyro_bias = gyro_bias_;

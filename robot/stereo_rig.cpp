@@ -64,6 +64,20 @@ StereoRig::StereoRig(const StereoRigOptions& options) : options_(options) {
   T_body_left_.translation() = options_.mount_m - half_baseline;
   T_body_right_ = T_body_left_;
   T_body_right_.translation() = options_.mount_m + half_baseline;
+  right_intrinsics_ = intrinsics_;
+}
+
+StereoRig::StereoRig(const StereoRigOptions& options,
+                     const calibration::StereoCalibration& as_built)
+    : StereoRig(options) {
+  as_built.Validate();
+  if (as_built.width_px != options_.width_px || as_built.height_px != options_.height_px) {
+    throw OptionError("width_px", "the rig as built must have the design's image size");
+  }
+  intrinsics_ = as_built.LeftCamera();
+  right_intrinsics_ = as_built.RightCamera();
+  T_body_left_ = as_built.T_body_left;
+  T_body_right_ = as_built.T_body_right;
 }
 
 void ApplySensorModel(double exposure, double noise_std, std::uint64_t seed, std::uint64_t frame,

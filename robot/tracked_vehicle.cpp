@@ -106,15 +106,21 @@ void TrackedVehicleOptions::Validate() const {
 }
 
 TrackedVehicle::TrackedVehicle(const TrackedVehicleOptions& options, sim::World* world, double x,
-                               double y, double yaw_rad)
+                               double y, double yaw_rad,
+                               const calibration::VehicleCalibration* as_built)
     : options_(options), world_(world), tracks_{Track(options.motor), Track(options.motor)} {
   options_.Validate();
   const TrackedVehicleOptions& o = options_;
+  tracks_[kLeft].sprocket_radius_m =
+      as_built ? as_built->sprocket_radius_left_m : o.sprocket_radius_m;
+  tracks_[kRight].sprocket_radius_m =
+      as_built ? as_built->sprocket_radius_right_m : o.sprocket_radius_m;
+  const double gauge_m = as_built ? as_built->track_gauge_m : o.track_gauge_m;
   const double l = o.track_contact_length_m;
   const double contact_z = -(o.com_height_m + static_deflection_m());
   const bool wheels = o.contact == TrackedVehicleOptions::Contact::kWheels;
   for (int side = 0; side < 2; ++side) {
-    const double y_side = (side == kLeft ? 0.5 : -0.5) * o.track_gauge_m;
+    const double y_side = (side == kLeft ? 0.5 : -0.5) * gauge_m;
     for (double x_station : StationPositions(o)) {
       Station st;
       st.p_body = {x_station, y_side, contact_z};
@@ -290,7 +296,7 @@ void TrackedVehicle::ApplyTrackForces(const ChassisState& s, Track* track, doubl
   // A station's share of the shear area and the length of its side face.
   const double patch_length =
       wheels ? o.road_wheel_contact_length_m : o.track_contact_length_m / stations_per_side();
-  const double r = o.sprocket_radius_m;
+  const double r = track->sprocket_radius_m;
   const double u = r * track->motor.speed_radps();  // track surface speed
 
   // Ground speed of the track's centreline under the centre of mass, along body x.

@@ -24,6 +24,7 @@
 #include "trackbed/runner/ordered_worker.h"
 #include "trackbed/runner/path_driver.h"
 #include "trackbed/runner/run_folder.h"
+#include "trackbed/runner/wheel_calibration_run.h"
 #include "trackbed/sim/camera_exposure.h"
 #include "trackbed/sim/renderer.h"
 #include "trackbed/sim/sim_clock.h"
@@ -114,15 +115,18 @@ RunObservers TimedObservers(const RunObservers& o, double* io_s) {
   });
 }
 
-// The localization stack's options from the scenario: the robot as the software
-// knows it.
-estimation::LocalizationOptions LocalizationOptionsOf(const scenario::Scenario& scenario) {
+// The localization stack's options from the scenario and the given calibration: the
+// robot as the software knows it.
+estimation::LocalizationOptions LocalizationOptionsOf(const scenario::Scenario& scenario,
+                                                      const calibration::RobotCalibration& given) {
   const scenario::RobotSpec& rs = scenario.robot;
   const scenario::EstimationSpec& es = scenario.estimation;
   estimation::LocalizationOptions lo;
-  lo.wheel.sprocket_radius_m = rs.vehicle.sprocket_radius_m;
-  lo.wheel.track_gauge_m = rs.vehicle.track_gauge_m;
-  lo.wheel.icr_expansion = es.icr_expansion;
+  lo.wheel.sprocket_radius_m = given.vehicle.sprocket_radius_left_m;
+  lo.wheel.right_sprocket_radius_m = given.vehicle.sprocket_radius_right_m;
+  lo.wheel.track_gauge_m = given.vehicle.track_gauge_m;
+  lo.wheel.icr_expansion = given.vehicle.icr_expansion.value_or(es.icr_expansion);
+  lo.imu = given.imu;
   lo.wheel.icr_offset_m = es.icr_offset_m;
   lo.wheel.ticks_per_rev = rs.encoders.ticks_per_rev;
   lo.wheel.slip_decay_time_s = es.slip_decay_time_s;
@@ -138,6 +142,32 @@ estimation::LocalizationOptions LocalizationOptionsOf(const scenario::Scenario& 
   lo.vo.max_rotation_prior_error_deg = es.vo_max_gyro_rotation_error_deg;
   lo.ekf = es.ekf;
   return lo;
+}
+
+// The body's pose `dt_s` later at constant velocity (dt small: a camera's time offset).
+sim::BodyMotion Advanced(const sim::BodyMotion& m, double dt_s) {
+  if (dt_s == 0.0) return m;
+  sim::BodyMotion out = m;
+  out.T_world_body = m.PoseAfter(dt_s);
+  return out;
+}
+
+// The straight calibration run of `scenario`'s robot, in closed loop.
+calibration::VehicleCalibration CalibrateWheels(const scenario::Scenario& scenario) {
+  StraightRunFit fit(scenario.robot.encoders.ticks_per_rev, scenario.robot.vehicle.track_gauge_m,
+                     scenario.estimation.icr_expansion);
+  RunObservers observers;
+  observers.on_sample = [&fit](const RunSample& s) { fit.Add(s); };
+  const std::string what =
+      "the straight calibration run of the robot (robot.imperfections.wheel_calibration: "
+      "straight_run; scenes/calibration/straight_line.yaml)";
+  try {
+    const RunMetrics m = RunClosedLoop(StraightRunScenario(scenario), observers);
+    if (!m.completed) throw std::runtime_error("it stopped: " + m.stop_reason);
+    return fit.Result();
+  } catch (const std::exception& e) {
+    throw std::runtime_error(what + ": " + e.what());
+  }
 }
 
 // The estimators' names a reported estimate may not take: the stack's, and the TUM
@@ -195,6 +225,10 @@ class ClosedLoop::Impl {
   const StepResult& Step();
   RunMetrics Finish();
   bool done() const { return done_; }
+  const RobotBuild& robot() const {
+    if (!started_) throw std::logic_error("ClosedLoop::robot: Start() first");
+    return robot_;
+  }
   const estimation::LocalizationStack* localization();
   void ReportEstimate(const std::string& name, const Eigen::Matrix4d& T_world_body);
   // Writes metrics.json saying why the run failed (when there is a folder).
@@ -226,6 +260,7 @@ class ClosedLoop::Impl {
 
   scenario::Scenario scenario_;
   ClosedLoopOptions options_;
+  RobotBuild robot_;
   std::unique_ptr<RunFolderWriter> folder_;
   bool started_ = false, finished_ = false, done_ = false, failed_ = false, time_ran_out_ = false;
   std::string stop_reason_ = "duration reached";
@@ -277,8 +312,10 @@ void ClosedLoop::Impl::Start() {
   started_ = true;
   wall_start_ = std::chrono::steady_clock::now();
   RunObservers observers = options_.observers;
-  if (!options_.dir.empty()) {
-    folder_ = std::make_unique<RunFolderWriter>(scenario_, options_.dir);
+  if (!options_.dir.empty()) folder_ = std::make_unique<RunFolderWriter>(scenario_, options_.dir);
+  robot_ = options_.robot ? *options_.robot : BuildRunRobot(scenario_);
+  if (folder_) {
+    folder_->WriteCalibration(scenario_, robot_);
     observers = Chained(folder_->observers(), observers);
   }
   observers_ = TimedObservers(observers, &times_.io_s);
@@ -293,12 +330,13 @@ void ClosedLoop::Impl::BuildWorld() {
       scenario_.scene.world,
       sim::Terrain(scenario_.scene.terrain, split_mix::Stream(scenario_.seed, 0)),
       scenario_.scene.objects);
-  vehicle_ = std::make_unique<robot::TrackedVehicle>(
-      rs.vehicle, world_.get(), rs.start.x_m, rs.start.y_m, units::Radians(rs.start.yaw_deg));
+  vehicle_ = std::make_unique<robot::TrackedVehicle>(rs.vehicle, world_.get(), rs.start.x_m,
+                                                     rs.start.y_m, units::Radians(rs.start.yaw_deg),
+                                                     &robot_.truth.vehicle);
   imu_ = std::make_unique<robot::Imu>(rs.imu, scenario_.scene.world.gravity_mps2,
-                                      split_mix::Stream(scenario_.seed, 1));
+                                      split_mix::Stream(scenario_.seed, 1), &robot_.truth.imu);
   if (rs.stereo.enabled) {
-    rig_.emplace(rs.stereo);
+    rig_.emplace(rs.stereo, *robot_.truth.stereo);
     renderer_ = std::make_unique<sim::Renderer>(
         *world_, scenario_.scene.appearance, scenario_.scene.occluders,
         split_mix::Stream(scenario_.seed, 2), rs.stereo.width_px, rs.stereo.height_px,
@@ -320,11 +358,10 @@ void ClosedLoop::Impl::BuildWorld() {
 void ClosedLoop::Impl::BuildSoftware() {
   const scenario::RobotSpec& rs = scenario_.robot;
   if (scenario_.estimation.enabled) {
-    std::optional<geometry::StereoCamera> camera;
-    if (rig_) camera = rig_->stereo_camera();
+    const calibration::StereoCalibration* given_stereo =
+        rig_ && robot_.given.stereo ? &*robot_.given.stereo : nullptr;
     stack_ = std::make_unique<estimation::LocalizationStack>(
-        LocalizationOptionsOf(scenario_), camera ? &*camera : nullptr,
-        rig_ ? rig_->T_body_left() : Eigen::Isometry3d::Identity(),
+        LocalizationOptionsOf(scenario_, robot_.given), given_stereo,
         vehicle_->chassis().T_world_body);
   }
   if (stack_ && rig_) worker_ = std::make_unique<OrderedWorker>();
@@ -466,8 +503,12 @@ bool ClosedLoop::Impl::TakeStereoFrame(const robot::ChassisState& truth, StepRes
   StereoFrame frame;
   frame.index = stereo_index_++;
   frame.t_s = clock_->now_s();
-  frame.T_world_left = truth.T_world_body * rig_->T_body_left();
-  frame.T_world_right = truth.T_world_body * rig_->T_body_right();
+  // The pair stamped now was exposed `offset` later on the IMU's clock (as built).
+  const double offset = robot_.truth.imu.camera_time_offset_s;
+  const sim::BodyMotion motion =
+      Advanced({truth.T_world_body, truth.v_world, truth.omega_world}, offset);
+  frame.T_world_left = motion.T_world_body * rig_->T_body_left();
+  frame.T_world_right = motion.T_world_body * rig_->T_body_right();
   // Both cameras see the terrain at the detail of the rig's centre.
   const Eigen::Vector2d rig_xy =
       0.5 * (frame.T_world_left.translation() + frame.T_world_right.translation()).head<2>();
@@ -477,11 +518,10 @@ bool ClosedLoop::Impl::TakeStereoFrame(const robot::ChassisState& truth, StepRes
   GrayImage& left = pair ? pair->first : left_image_;
   GrayImage& right = pair ? pair->second : right_image_;
   // Each image is exposed around the frame's time (an instant by default).
-  const sim::BodyMotion motion{truth.T_world_body, truth.v_world, truth.omega_world};
-  exposure_->Render(*renderer_, rig_->intrinsics(), motion, rig_->T_body_left(), frame.t_s, &left,
-                    &rig_xy);
-  exposure_->Render(*renderer_, rig_->intrinsics(), motion, rig_->T_body_right(), frame.t_s, &right,
-                    &rig_xy);
+  exposure_->Render(*renderer_, rig_->intrinsics(), motion, rig_->T_body_left(), frame.t_s + offset,
+                    &left, &rig_xy);
+  exposure_->Render(*renderer_, rig_->right_intrinsics(), motion, rig_->T_body_right(),
+                    frame.t_s + offset, &right, &rig_xy);
   frame.blackout = rs.stereo.InBlackout(frame.t_s);
   const CameraPipeline finish{rs.stereo, noise_seed_, frame.index, frame.blackout};
   // The sensor model is the camera's last stage. When nothing on this thread looks at
@@ -547,9 +587,11 @@ void ClosedLoop::Impl::SampleImu(const robot::ChassisState& truth, StepResult* o
   out->imu.push_back(sample);
   if (observers_.on_imu) observers_.on_imu(sample);
   if (worker_) {
-    worker_->Submit([this, t = sample.t_s, w = sample.gyro_radps] { stack_->AddGyroSample(t, w); });
+    worker_->Submit([this, t = sample.t_s, w = sample.gyro_radps, a = sample.accel_mps2] {
+      stack_->AddImuSample(t, w, a);
+    });
   } else if (stack_) {
-    stack_->AddGyroSample(sample.t_s, sample.gyro_radps);
+    stack_->AddImuSample(sample.t_s, sample.gyro_radps, sample.accel_mps2);
   }
 }
 
@@ -696,6 +738,12 @@ const StepResult& ClosedLoop::Step() {
 }
 
 bool ClosedLoop::done() const { return impl_->done(); }
+
+const RobotBuild& ClosedLoop::robot() const { return impl_->robot(); }
+
+RobotBuild BuildRunRobot(const scenario::Scenario& scenario) {
+  return BuildRobot(scenario, CalibrateWheels);
+}
 
 const estimation::LocalizationStack* ClosedLoop::localization() { return impl_->localization(); }
 

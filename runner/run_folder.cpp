@@ -14,6 +14,7 @@
 #include "trackbed/estimation/trajectory_metrics.h"
 #include "trackbed/perception/kitti_sequence.h"
 #include "trackbed/perception/opencv_views.h"
+#include "trackbed/perception/stereo_rectifier.h"
 #include "trackbed/runner/log_file.h"
 #include "trackbed/runner/navigation_log.h"
 #include "trackbed/runner/navigation_scenario.h"
@@ -35,31 +36,6 @@ nlohmann::ordered_json SlipJson(const SlipStats& s) {
 }
 
 // Intrinsics and extrinsics of the stereo rig, as used for rendering.
-std::string StereoCalibrationJson(const robot::StereoRig& rig) {
-  const geometry::PinholeCamera& K = rig.intrinsics();
-  auto pose = [](const Eigen::Isometry3d& T) {
-    nlohmann::ordered_json rows = nlohmann::ordered_json::array();
-    for (int r = 0; r < 4; ++r) {
-      rows.push_back({T.matrix()(r, 0), T.matrix()(r, 1), T.matrix()(r, 2), T.matrix()(r, 3)});
-    }
-    return rows;
-  };
-  nlohmann::ordered_json j;
-  j["width_px"] = K.width_px;
-  j["height_px"] = K.height_px;
-  j["fx"] = K.fx;
-  j["fy"] = K.fy;
-  j["cx"] = K.cx;
-  j["cy"] = K.cy;
-  j["baseline_m"] = rig.options().baseline_m;
-  j["T_body_left"] = pose(rig.T_body_left());
-  j["T_body_right"] = pose(rig.T_body_right());
-  j["convention"] =
-      "OpenCV camera axes (x right, y down, z forward); pixel (0,0) is the centre of the top-left "
-      "pixel; T_body_cam maps camera coordinates to body coordinates";
-  return j.dump(2) + "\n";
-}
-
 // What the plots need, gathered at 10 Hz while the run goes.
 struct PlotData {
   estimation::Trajectory truth;
@@ -343,6 +319,8 @@ struct RunFolderWriter::Files {
   Files(const fs::path& dir, const scenario::Scenario& scenario) : logs(dir, scenario) {}
   RunLogs logs;
   PlotData plots;
+  std::unique_ptr<perception::StereoRectifier> rectifier;         // with kitti
+  Eigen::Isometry3d T_left_rect = Eigen::Isometry3d::Identity();  // its rotation
   std::unique_ptr<perception::KittiWriter> kitti;
   Eigen::Isometry3d T_world_cam0 = Eigen::Isometry3d::Identity();
   std::unique_ptr<LogFile> navigation_csv;
@@ -354,16 +332,9 @@ RunFolderWriter::RunFolderWriter(const scenario::Scenario& scenario, const fs::p
   fs::create_directories(dir);
   fs::remove(dir / "metrics.json");  // no stale result may pass for this run's
   WriteAtomically(dir / "scenario.yaml",
-                  scenario::ScenarioToYaml(scenario::WithBuiltinMaterialsResolved(scenario)));
+                  scenario::ScenarioToYaml(scenario::WithBuiltinMaterialsResolved(
+                      scenario::WithRealismResolved(scenario))));
   files_ = std::make_unique<Files>(dir, scenario);
-  if (scenario.robot.stereo.enabled) {
-    const robot::StereoRig rig(scenario.robot.stereo);
-    WriteAtomically(dir / "stereo_calibration.json", StereoCalibrationJson(rig));
-    if (scenario.outputs.save_images == "kitti") {
-      files_->kitti =
-          std::make_unique<perception::KittiWriter>(dir / "images", rig.stereo_camera());
-    }
-  }
   if (scenario.navigation.enabled) {
     files_->navigation_csv =
         std::make_unique<LogFile>(dir / "navigation.csv", kNavigationCsvHeader);
@@ -372,6 +343,29 @@ RunFolderWriter::RunFolderWriter(const scenario::Scenario& scenario, const fs::p
 
 RunFolderWriter::~RunFolderWriter() = default;
 
+void RunFolderWriter::WriteCalibration(const scenario::Scenario& scenario,
+                                       const RobotBuild& robot) {
+  namespace cal = calibration;
+  const cal::RobotCalibration& given = robot.given;
+  if (scenario.robot.stereo.enabled && given.stereo) {
+    WriteAtomically(dir_ / cal::kStereoFile,
+                    cal::StereoCalibrationJson(*given.stereo, given.stereo_source));
+    if (scenario.outputs.save_images == "kitti") {
+      // KITTI's images are rectified, with the rectified pair's projections.
+      files_->rectifier = std::make_unique<perception::StereoRectifier>(*given.stereo);
+      files_->T_left_rect = given.stereo->T_body_left.inverse() * files_->rectifier->T_body_left();
+      files_->kitti =
+          std::make_unique<perception::KittiWriter>(dir_ / "images", files_->rectifier->camera());
+    }
+  }
+  WriteAtomically(dir_ / cal::kImuFile, cal::ImuCalibrationJson(given.imu, given.imu_source));
+  WriteAtomically(dir_ / cal::kVehicleFile,
+                  cal::VehicleCalibrationJson(given.vehicle, given.vehicle_source));
+  cal::RobotCalibration truth = robot.truth;
+  if (!scenario.robot.stereo.enabled) truth.stereo.reset();
+  WriteAtomically(dir_ / cal::kGroundTruthFile, cal::GroundTruthCalibrationJson(truth));
+}
+
 RunObservers RunFolderWriter::observers() {
   Files& f = *files_;
   RunObservers o;
@@ -379,9 +373,14 @@ RunObservers RunFolderWriter::observers() {
   // the sensor model run on the localization thread (closed_loop.cpp).
   if (f.kitti) {
     o.on_stereo = [&f](const StereoFrame& s) {
-      if (s.index == 0) f.T_world_cam0 = s.T_world_left;
-      f.kitti->Add(s.t_s, perception::AsCvMat(*s.left), perception::AsCvMat(*s.right),
-                   f.T_world_cam0.inverse() * s.T_world_left);
+      // Ground truth of the rectified left camera.
+      const Eigen::Isometry3d T_world_cam =
+          f.rectifier->identity() ? s.T_world_left : s.T_world_left * f.T_left_rect;
+      if (s.index == 0) f.T_world_cam0 = T_world_cam;
+      cv::Mat left, right;
+      f.rectifier->Rectify(perception::AsCvMat(*s.left), perception::AsCvMat(*s.right), &left,
+                           &right);
+      f.kitti->Add(s.t_s, left, right, f.T_world_cam0.inverse() * T_world_cam);
     };
   }
   o.on_sample = [&f](const RunSample& s) {

@@ -23,7 +23,8 @@ RunMetrics RunKinematicToFolder(const scenario::Scenario& scenario, const fs::pa
   fs::create_directories(dir);
   fs::remove(dir / "metrics.json");  // no stale result may pass for this run's
   WriteAtomically(dir / "scenario.yaml",
-                  scenario::ScenarioToYaml(scenario::WithBuiltinMaterialsResolved(scenario)));
+                  scenario::ScenarioToYaml(scenario::WithBuiltinMaterialsResolved(
+                      scenario::WithRealismResolved(scenario))));
   RunMetrics metrics;
   try {
     metrics = RunKinematicNavigation(scenario, dir);

@@ -33,21 +33,22 @@ namespace {
 
 // The teach pass: the scenario's own drive, images into the builder with the no-slip
 // wheel odometry at each image (metadata; 3D teaching scales milestones by it).
-teach_repeat::TeachMap Teach(const scenario::Scenario& scenario, const fs::path& dir,
-                             std::vector<Eigen::Vector2d>* taught_path) {
+teach_repeat::TeachMap Teach(const scenario::Scenario& scenario, const RobotBuild& robot,
+                             const fs::path& dir, std::vector<Eigen::Vector2d>* taught_path) {
   scenario::Scenario teach = scenario;
   teach.teach_repeat.enabled = false;
   const scenario::RobotSpec& rs = scenario.robot;
-  const robot::StereoRig rig(rs.stereo);
-  const geometry::PinholeCamera& camera = rig.intrinsics();
+  // The robot software's own view: the left camera and the tracks as calibrated.
+  const geometry::PinholeCamera camera = robot.given.stereo->LeftCamera();
   teach_repeat::MilestoneBuilderOptions options;
   options.mode = scenario.teach_repeat.method == "3d" ? teach_repeat::TeachMode::k3d
                                                       : teach_repeat::TeachMode::k2d;
   teach_repeat::MilestoneBuilder builder(camera, options);
   estimation::WheelOdometryOptions wo;
-  wo.sprocket_radius_m = rs.vehicle.sprocket_radius_m;
-  wo.track_gauge_m = rs.vehicle.track_gauge_m;
-  wo.icr_expansion = scenario.estimation.icr_expansion;
+  wo.sprocket_radius_m = robot.given.vehicle.sprocket_radius_left_m;
+  wo.right_sprocket_radius_m = robot.given.vehicle.sprocket_radius_right_m;
+  wo.track_gauge_m = robot.given.vehicle.track_gauge_m;
+  wo.icr_expansion = robot.given.vehicle.icr_expansion.value_or(scenario.estimation.icr_expansion);
   wo.ticks_per_rev = rs.encoders.ticks_per_rev;
   wo.estimate_slip = false;
   estimation::WheelOdometry odometry(
@@ -63,6 +64,7 @@ teach_repeat::TeachMap Teach(const scenario::Scenario& scenario, const fs::path&
   ClosedLoopOptions loop;
   loop.dir = dir;
   loop.observers = extra;
+  loop.robot = robot;
   const RunMetrics m = ClosedLoop(teach, std::move(loop)).Run();
   if (!m.completed) throw std::runtime_error("teach pass stopped: " + m.stop_reason);
   return builder.Finish();
@@ -216,8 +218,10 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
   const scenario::TeachRepeatSpec& tr = scenario.teach_repeat;
   std::vector<Eigen::Vector2d> taught;
   teach_repeat::TeachMap map;
+  // One robot for both passes (the same as built, calibrated once).
+  const RobotBuild robot = BuildRunRobot(scenario);
   if (tr.map.empty()) {
-    map = Teach(scenario, dir / "teach", &taught);
+    map = Teach(scenario, robot, dir / "teach", &taught);
     teach_repeat::SaveTeachMap(map, (dir / "teach_map").string());
   } else {
     map = teach_repeat::LoadTeachMap(tr.map);
@@ -270,6 +274,7 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
   ClosedLoopOptions options;
   options.dir = dir;
   options.observers = extra;
+  options.robot = robot;
   options.commander = std::make_unique<RepeatCommander>(
       repeater.get(), repeat.estimation.icr_expansion * repeat.robot.vehicle.track_gauge_m,
       log_step);

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "trackbed/common/option_error.h"
+#include "trackbed/common/split_mix.h"
 #include "trackbed/navigation/navigator_factory.h"
 #include "trackbed/sim/terrain_material.h"
 
@@ -122,6 +123,11 @@ void RobotSpec::Validate() const {
   option_check::Nested("imu", imu);
   option_check::Nested("stereo", stereo);
   option_check::Nested("range_sensor", range_sensor);
+  option_check::Nested("imperfections", imperfections);
+}
+
+std::uint64_t RobotSpec::AsBuiltSeed(std::uint64_t run_seed) const {
+  return as_built_seed ? *as_built_seed : split_mix::Stream(run_seed, 5);
 }
 
 void DriveSpec::Validate() const {
@@ -294,6 +300,13 @@ void Scenario::Validate(DriveSource drive_source) const {
   if (outputs.save_images == "kitti" && !robot.stereo.enabled) {
     throw OptionError("outputs.save_images", "kitti needs robot.stereo.enabled: true");
   }
+}
+
+Scenario WithRealismResolved(Scenario scenario) {
+  RobotSpec& r = scenario.robot;
+  r.imperfections = r.imperfections.Resolve(r.realism);
+  r.as_built_seed = r.AsBuiltSeed(scenario.seed);
+  return scenario;
 }
 
 Scenario WithBuiltinMaterialsResolved(Scenario scenario) {

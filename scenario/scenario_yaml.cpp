@@ -315,6 +315,7 @@ Scenario LoadScenario(const std::string& path, const std::vector<Override>& over
   };
   resolve("estimation.fusion_rules", &scenario.estimation.fusion_rules, false);
   resolve("teach_repeat.map", &scenario.teach_repeat.map, true);
+  resolve("robot.calibration_dir", &scenario.robot.calibration_dir, true);
   return scenario;
 }
 

@@ -392,7 +392,8 @@ TEST(ScenarioYamlTest, BadOverrideIsAttributedToSet) {
   const std::string typo = ErrorOf(m, {ParseOverride("robot.vehicel.mass_kg=50")});
   EXPECT_EQ(typo,
             "--set robot.vehicel.mass_kg=50: robot.vehicel: unknown key (allowed: start, vehicle, "
-            "encoders, imu, stereo, range_sensor)");
+            "encoders, imu, stereo, range_sensor, realism, imperfections, as_built_seed, "
+            "calibration_dir)");
   EXPECT_EQ(ErrorOf(m, {ParseOverride("duration_s=soon")}),
             "--set duration_s=soon: duration_s: expected a number, got 'soon'");
   EXPECT_EQ(

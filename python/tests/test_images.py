@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""The images a Simulation returns are the ones the localization stack sees, byte for
+"""The images a Simulation returns are the cameras' own, as the robot gets them; with a
+rectified pair (robot.realism: ideal, where the export needs no rectification) byte for
 byte the run folder's KITTI export (outputs.save_images: kitti) of the same seed."""
 import os
 import pathlib
@@ -22,7 +23,8 @@ class ImagesTest(unittest.TestCase):
         # Sensor noise on, so that the seed shows in every pixel.
         sim = trackbed.Simulation(SOURCE_DIR / "scenes/outdoor.yaml", seed=5,
                                   overrides={"duration_s": 1.0, "robot.stereo.noise_std": 2.0,
-                                             "outputs.save_images": "kitti"})
+                                             "outputs.save_images": "kitti",
+                                             "robot.realism": "ideal"})
         pairs = []
         while not sim.done:
             pairs += sim.step(left_mps=0.3, right_mps=0.25).stereo_pairs

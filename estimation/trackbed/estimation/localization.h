@@ -12,12 +12,14 @@
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
+#include "trackbed/common/robot_calibration.h"
 #include "trackbed/common/stereo_camera.h"
 #include "trackbed/estimation/ekf_odometry.h"
 #include "trackbed/estimation/fuzzy_fusion.h"
 #include "trackbed/estimation/pose2.h"
 #include "trackbed/estimation/stereo_visual_odometry.h"
 #include "trackbed/estimation/wheel_odometry.h"
+#include "trackbed/perception/stereo_rectifier.h"
 
 namespace trackbed::estimation {
 
@@ -46,6 +48,9 @@ struct LocalizationOptions {
   double vo_coast_time_s = 1.0;
   /// The EKF baseline (wheel odometry + gyro + visual odometry).
   EkfOdometryOptions ekf;
+  /// The IMU's given calibration (imu_calibration.json): AddImuSample turns its
+  /// readings into body rates with it.
+  calibration::ImuCalibration imu;
 
   void Validate() const;
 };
@@ -70,6 +75,12 @@ class LocalizationStack {
   /// `camera` (the calibrated rectified pair) null: no camera, wheel odometry only.
   LocalizationStack(const LocalizationOptions& options, const geometry::StereoCamera* camera,
                     const Eigen::Isometry3d& T_body_left, const Eigen::Isometry3d& T_world_body0);
+  /// From the stereo camera's given calibration (stereo_calibration.json; null: no
+  /// camera): a pair that is not rectified as given is rectified from it
+  /// (perception::StereoRectifier) before visual odometry sees it.
+  LocalizationStack(const LocalizationOptions& options,
+                    const calibration::StereoCalibration* stereo,
+                    const Eigen::Isometry3d& T_world_body0);
   ~LocalizationStack();
   LocalizationStack(const LocalizationStack&) = delete;
   LocalizationStack& operator=(const LocalizationStack&) = delete;
@@ -81,6 +92,10 @@ class LocalizationStack {
   /// max_rotation_prior_error_deg). Only VO frames with gyro samples since the last
   /// frame get a prior.
   void AddGyroSample(double t_s, const Eigen::Vector3d& rate_radps);
+  /// An IMU reading in the IMU's own axes: turned into the body's rate with the given
+  /// calibration (LocalizationOptions::imu), then as AddGyroSample.
+  void AddImuSample(double t_s, const Eigen::Vector3d& gyro_radps,
+                    const Eigen::Vector3d& accel_mps2);
   LocalizationFrameReport AddStereoFrame(double t_s, const cv::Mat& left, const cv::Mat& right);
 
   /// Current estimates of T_world_body.
@@ -92,7 +107,16 @@ class LocalizationStack {
   const TrackSlip& slip() const { return wheel_.slip(); }
 
  private:
+  LocalizationStack(const LocalizationOptions& options,
+                    std::shared_ptr<const perception::StereoRectifier> rectifier,
+                    const Eigen::Isometry3d& T_world_body0);
+  // A rectified pair's frame.
+  LocalizationFrameReport ProcessStereoFrame(double t_s, const cv::Mat& left, const cv::Mat& right);
+
   LocalizationOptions options_;
+  // Rectifies each pair when the given one is not rectified; null otherwise.
+  std::shared_ptr<const perception::StereoRectifier> rectifier_;
+  cv::Mat rectified_left_, rectified_right_;
   Eigen::Isometry3d T_body_left_;
   double z0_;
   WheelOdometry wheel_, wheel_noslip_;

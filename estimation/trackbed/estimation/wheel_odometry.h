@@ -19,14 +19,17 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 
 #include "trackbed/estimation/pose2.h"
 
 namespace trackbed::estimation {
 
 struct WheelOdometryOptions {
-  /// Sprocket pitch radius r [m], > 0.
+  /// Effective sprocket radius r [m] of the left track, and of the right one unless
+  /// `right_sprocket_radius_m` is given (a calibration's per-track radii), > 0.
   double sprocket_radius_m = 0.10;
+  std::optional<double> right_sprocket_radius_m;
   /// Nominal track gauge B [m], > 0.
   double track_gauge_m = 0.50;
   /// ICR expansion factor χ (B_eff = χ·B), >= 1 in practice, > 0.

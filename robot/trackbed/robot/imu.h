@@ -9,7 +9,10 @@
 
 #include <Eigen/Geometry>
 
+#include <optional>
+
 #include "trackbed/common/random.h"
+#include "trackbed/common/robot_calibration.h"
 
 namespace trackbed::robot {
 
@@ -58,12 +61,17 @@ struct ImuSample {
 /// generator, seeded explicitly. Not copyable.
 class Imu {
  public:
-  Imu(const ImuOptions& options, double gravity_mps2, std::uint64_t seed);
+  /// `as_built` (robot/as_built.h): the IMU's scale factors, axes, g-sensitivity and
+  /// mounting as built (the model of calibration::ImuCalibration); null: a perfect IMU
+  /// aligned with the body. Its time offset is the camera's business, not the IMU's.
+  Imu(const ImuOptions& options, double gravity_mps2, std::uint64_t seed,
+      const calibration::ImuCalibration* as_built = nullptr);
   Imu(const Imu&) = delete;
   Imu& operator=(const Imu&) = delete;
 
   /// One sample at time `t_s` from the true orientation, angular velocity
-  /// (world) and the mean linear acceleration (world) over the last period.
+  /// (world) and the mean linear acceleration (world) over the last period, in the
+  /// IMU's own axes.
   ImuSample Sample(double t_s, const Eigen::Matrix3d& R_world_body,
                    const Eigen::Vector3d& omega_world, const Eigen::Vector3d& accel_world);
 
@@ -76,6 +84,7 @@ class Imu {
   double gravity_mps2_;
   random::Generator rng_;
   Eigen::Vector3d gyro_bias_, accel_bias_;
+  std::optional<calibration::ImuCalibration> as_built_;  // none: perfect and aligned
 };
 
 }  // namespace trackbed::robot

@@ -8,6 +8,7 @@
 
 #include <Eigen/Geometry>
 
+#include "trackbed/common/robot_calibration.h"
 #include "trackbed/common/stereo_camera.h"
 #include "trackbed/sim/image.h"
 #include "trackbed/sim/pinhole.h"
@@ -77,12 +78,17 @@ struct StereoRigOptions {
 /// Geometry of the rig; immutable.
 class StereoRig {
  public:
+  /// The rig as designed: a rectified pair.
   explicit StereoRig(const StereoRigOptions& options);
+  /// The rig as built (robot/as_built.h): each camera's intrinsics and pose on the body.
+  StereoRig(const StereoRigOptions& options, const calibration::StereoCalibration& as_built);
 
   const StereoRigOptions& options() const { return options_; }
-  /// Intrinsics of both cameras (rectified, identical).
+  /// Intrinsics of the left camera (of both, as designed).
   const geometry::PinholeCamera& intrinsics() const { return intrinsics_; }
-  /// The rectified pair: the intrinsics and `options().baseline_m`.
+  /// Intrinsics of the right camera.
+  const geometry::PinholeCamera& right_intrinsics() const { return right_intrinsics_; }
+  /// The rectified pair as designed: the intrinsics and `options().baseline_m`.
   geometry::StereoCamera stereo_camera() const { return {intrinsics_, options_.baseline_m}; }
   /// Left / right camera (OpenCV axes: x right, y down, z forward) in the body frame.
   const Eigen::Isometry3d& T_body_left() const { return T_body_left_; }
@@ -90,7 +96,7 @@ class StereoRig {
 
  private:
   StereoRigOptions options_;
-  geometry::PinholeCamera intrinsics_;
+  geometry::PinholeCamera intrinsics_, right_intrinsics_;
   Eigen::Isometry3d T_body_left_, T_body_right_;
 };
 

@@ -19,6 +19,7 @@
 
 #include <Eigen/Geometry>
 
+#include "trackbed/common/robot_calibration.h"
 #include "trackbed/robot/sprocket_motor.h"
 #include "trackbed/sim/world.h"
 
@@ -155,9 +156,12 @@ struct TrackState {
 class TrackedVehicle {
  public:
   /// Places the vehicle at rest on the terrain at (x, y) with heading `yaw_rad`,
-  /// aligned with the local ground slope.
+  /// aligned with the local ground slope. `as_built` (robot/as_built.h): each track's
+  /// effective sprocket radius and the gauge of this vehicle as built; null: the
+  /// design's. Track speed commands are turned into sprocket rates with the design's
+  /// radius, as the motor controller knows only that.
   TrackedVehicle(const TrackedVehicleOptions& options, sim::World* world, double x, double y,
-                 double yaw_rad);
+                 double yaw_rad, const calibration::VehicleCalibration* as_built = nullptr);
   ~TrackedVehicle();
   TrackedVehicle(const TrackedVehicle&) = delete;
   TrackedVehicle& operator=(const TrackedVehicle&) = delete;
@@ -192,6 +196,7 @@ class TrackedVehicle {
   struct Track {
     explicit Track(const SprocketMotorOptions& o) : motor(o) {}
     SprocketMotor motor;
+    double sprocket_radius_m = 0.0;  // as built
     std::vector<Station> stations;
     TrackState state;
   };

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,7 @@
 #include "trackbed/robot/imu.h"
 #include "trackbed/robot/range_sensor.h"
 #include "trackbed/runner/commander.h"
+#include "trackbed/runner/robot_build.h"
 #include "trackbed/runner/run_metrics.h"
 #include "trackbed/runner/run_observers.h"
 #include "trackbed/scenario/scenario.h"
@@ -37,6 +39,9 @@ struct ClosedLoopOptions {
   RunObservers observers;
   /// Step() returns copies of the stereo pairs taken in its period.
   bool step_images = false;
+  /// The robot as built and its given calibration, when already drawn for this
+  /// scenario (BuildRunRobot); none: drawn at Start().
+  std::optional<RobotBuild> robot;
 };
 
 /// One encoder reading: counts since the start, left and right.
@@ -96,6 +101,8 @@ class ClosedLoop {
   /// for a matrix that is not a rigid transform; for a second estimate of the name at
   /// the same time. Throws std::logic_error before Start() or after Finish().
   void ReportEstimate(const std::string& name, const Eigen::Matrix4d& T_world_body);
+  /// The robot as built and the calibration its software was given; valid after Start().
+  const RobotBuild& robot() const;
   /// Writes the rest of the run folder (plots, metrics.json) and returns the metrics.
   RunMetrics Finish();
   /// Start(), Step() until done(), Finish().
@@ -105,6 +112,10 @@ class ClosedLoop {
   class Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+/// `scenario`'s robot as built and its given calibration, with the straight calibration
+/// run (wheel_calibration_run.h) run in closed loop when the imperfections ask for it.
+RobotBuild BuildRunRobot(const scenario::Scenario& scenario);
 
 /// Runs `scenario` in closed loop without a run folder, with `observers`.
 RunMetrics RunClosedLoop(const scenario::Scenario& scenario, const RunObservers& observers = {});

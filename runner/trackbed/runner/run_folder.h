@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "trackbed/runner/robot_build.h"
 #include "trackbed/runner/run_metrics.h"
 #include "trackbed/runner/run_observers.h"
 #include "trackbed/scenario/scenario.h"
@@ -18,14 +19,18 @@ namespace trackbed::runner {
 class RunFolderWriter {
  public:
   /// Creates `dir` (files of an earlier run there are replaced), removes a stale
-  /// metrics.json, writes scenario.yaml (every key, built-in materials resolved) and
-  /// stereo_calibration.json, and opens the logs. Throws std::runtime_error when a file
+  /// metrics.json, writes scenario.yaml (every key, built-in materials and the
+  /// robot's realism resolved) and opens the logs. Throws std::runtime_error when a file
   /// cannot be written.
   RunFolderWriter(const scenario::Scenario& scenario, const std::filesystem::path& dir);
   RunFolderWriter(const RunFolderWriter&) = delete;
   RunFolderWriter& operator=(const RunFolderWriter&) = delete;
   ~RunFolderWriter();
 
+  /// Writes the calibration the software was given (stereo_calibration.json,
+  /// imu_calibration.json, vehicle_calibration.json) and the truth
+  /// (ground_truth_calibration.json), and opens the image export. Before observers().
+  void WriteCalibration(const scenario::Scenario& scenario, const RobotBuild& robot);
   /// The observers that write the logs; they refer to this writer.
   RunObservers observers();
   /// Closes the logs, draws the plots and writes metrics.json.

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "trackbed/common/archive.h"
 #include "trackbed/common/archive_eigen.h"
 #include "trackbed/estimation/ekf_odometry.h"
+#include "trackbed/robot/as_built.h"
 #include "trackbed/robot/encoder.h"
 #include "trackbed/robot/imu.h"
 #include "trackbed/robot/range_sensor.h"
@@ -92,8 +94,22 @@ struct RobotSpec {
   robot::ImuOptions imu;
   robot::StereoRigOptions stereo;
   robot::RangeSensorOptions range_sensor;
+  /// How far the robot as built departs from its design and how well its software
+  /// knows it (docs/calibration.md): ideal (the design, the truth given), typical or
+  /// harsh; `imperfections` overrides the profile key by key.
+  robot::Realism realism = robot::Realism::kTypical;
+  robot::Imperfections imperfections;
+  /// Seed of the robot as built and of its calibration's errors; none: derived from
+  /// the run's seed.
+  std::optional<std::uint64_t> as_built_seed;
+  /// A folder of calibration files (stereo_calibration.json, imu_calibration.json,
+  /// vehicle_calibration.json) given to the software instead of the profile's,
+  /// relative to the scenario file; empty: none.
+  std::string calibration_dir;
 
   void Validate() const;
+  /// The seed of the robot as built: as_built_seed, else one derived from `run_seed`.
+  std::uint64_t AsBuiltSeed(std::uint64_t run_seed) const;
 
   /// The scenario file's keys for these fields (docs/scenario_format.md), read and
   /// written by the config archive (trackbed/common/archive.h).
@@ -105,6 +121,13 @@ struct RobotSpec {
     a->Visit("imu", &imu);
     a->Visit("stereo", &stereo);
     a->Visit("range_sensor", &range_sensor);
+    a->VisitEnum("realism", &realism,
+                 {{"ideal", robot::Realism::kIdeal},
+                  {"typical", robot::Realism::kTypical},
+                  {"harsh", robot::Realism::kHarsh}});
+    a->Visit("imperfections", &imperfections);
+    a->Visit("as_built_seed", &as_built_seed, archive::kOmitEmpty);
+    a->Visit("calibration_dir", &calibration_dir, archive::kOmitEmpty);
   }
 };
 
@@ -465,5 +488,10 @@ struct Scenario {
 /// the scenario defines it already: the run folder's scenario.yaml then
 /// reproduces the run after the built-in table changes.
 Scenario WithBuiltinMaterialsResolved(Scenario scenario);
+
+/// `scenario` with its robot's realism resolved: every imperfection key set (the
+/// profile's where the file left it out) and as_built_seed set, so that the run
+/// folder's scenario.yaml reproduces the robot after the profiles change.
+Scenario WithRealismResolved(Scenario scenario);
 
 }  // namespace trackbed::scenario

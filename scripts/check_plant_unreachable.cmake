@@ -1,0 +1,33 @@
+# Builds each plant probe of tests/CMakeLists.txt and checks that a probe built against
+# the estimation or the navigation library fails for want of the plant's header, and
+# that one built against the robot library (the control) compiles.
+#   cmake -DBUILD_DIR=build "-DPROBES=lib:header:target;..." -P scripts/check_plant_unreachable.cmake
+set(failures 0)
+foreach(probe ${PROBES})
+  string(REPLACE ":" ";" parts "${probe}")
+  list(GET parts 0 lib)
+  list(GET parts 1 header)
+  list(GET parts 2 target)
+  execute_process(COMMAND ${CMAKE_COMMAND} --build ${BUILD_DIR} --target ${target}
+                  RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  set(log "${out}${err}")
+  if(lib STREQUAL "robot")
+    if(NOT status EQUAL 0)
+      message("FAIL ${lib} includes trackbed/${header}: the control does not compile:\n${log}")
+      math(EXPR failures "${failures} + 1")
+    else()
+      message("ok   ${lib} reaches trackbed/${header} (control)")
+    endif()
+  elseif(status EQUAL 0)
+    message("FAIL ${lib} reaches trackbed/${header}")
+    math(EXPR failures "${failures} + 1")
+  elseif(NOT log MATCHES "trackbed/${header}: No such file")
+    message("FAIL ${lib} probe of trackbed/${header} failed for another reason:\n${log}")
+    math(EXPR failures "${failures} + 1")
+  else()
+    message("ok   ${lib} cannot reach trackbed/${header}")
+  endif()
+endforeach()
+if(failures GREATER 0)
+  message(FATAL_ERROR "${failures} plant probe(s) failed")
+endif()
