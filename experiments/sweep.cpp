@@ -474,39 +474,6 @@ CellOutcome OutcomeFromMetrics(const std::string& metrics_json_text) {
   return o;
 }
 
-void WriteFileAtomically(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.string() + ".tmp";
-  const auto fail = [&](const char* what) {
-    throw std::runtime_error(tmp.string() + ": cannot " + what + ": " + std::strerror(errno));
-  };
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) fail("create");
-  std::size_t done = 0;
-  while (done < text.size()) {
-    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) {
-      ::close(fd);
-      fail("write");
-    }
-    done += static_cast<std::size_t>(n);
-  }
-  // On disk before the rename makes it visible: a power loss leaves the old file or
-  // the whole new one.
-  if (::fsync(fd) != 0) {
-    ::close(fd);
-    fail("sync");
-  }
-  if (::close(fd) != 0) fail("close");
-  fs::rename(tmp, path);
-  const int dir = ::open(path.parent_path().empty() ? "." : path.parent_path().c_str(),
-                         O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (dir >= 0) {
-    ::fsync(dir);
-    ::close(dir);
-  }
-}
-
 std::string ReadTextFile(const fs::path& path) {
   std::ifstream f(path, std::ios::binary);
   if (!f) throw std::runtime_error(path.string() + ": cannot read");

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 
+#include "trackbed/common/durable_file.h"
 #include "trackbed/estimation/trajectory.h"
 #include "trackbed/estimation/trajectory_metrics.h"
 #include "trackbed/perception/kitti_sequence.h"
@@ -311,7 +312,9 @@ std::string MetricsJson(const RunMetrics& m) {
 }
 
 void WriteMetricsJson(const RunMetrics& metrics, const fs::path& dir) {
-  WriteAtomically(dir / "metrics.json", MetricsJson(metrics));
+  // Everything the run wrote is on disk before metrics.json says it finished.
+  SyncFolder(dir);
+  WriteFileAtomically(dir / "metrics.json", MetricsJson(metrics));
 }
 
 // Everything the folder holds besides metrics.json, opened at the start.
@@ -331,9 +334,9 @@ RunFolderWriter::RunFolderWriter(const scenario::Scenario& scenario, const fs::p
     : dir_(dir) {
   fs::create_directories(dir);
   fs::remove(dir / "metrics.json");  // no stale result may pass for this run's
-  WriteAtomically(dir / "scenario.yaml",
-                  scenario::ScenarioToYaml(scenario::WithBuiltinMaterialsResolved(
-                      scenario::WithRealismResolved(scenario))));
+  WriteFileAtomically(dir / "scenario.yaml",
+                      scenario::ScenarioToYaml(scenario::WithBuiltinMaterialsResolved(
+                          scenario::WithRealismResolved(scenario))));
   files_ = std::make_unique<Files>(dir, scenario);
   if (scenario.navigation.enabled) {
     files_->navigation_csv =
@@ -348,8 +351,8 @@ void RunFolderWriter::WriteCalibration(const scenario::Scenario& scenario,
   namespace cal = calibration;
   const cal::RobotCalibration& given = robot.given;
   if (scenario.robot.stereo.enabled && given.stereo) {
-    WriteAtomically(dir_ / cal::kStereoFile,
-                    cal::StereoCalibrationJson(*given.stereo, given.stereo_source));
+    WriteFileAtomically(dir_ / cal::kStereoFile,
+                        cal::StereoCalibrationJson(*given.stereo, given.stereo_source));
     if (scenario.outputs.save_images == "kitti") {
       // KITTI's images are rectified, with the rectified pair's projections.
       files_->rectifier = std::make_unique<perception::StereoRectifier>(*given.stereo);
@@ -358,12 +361,12 @@ void RunFolderWriter::WriteCalibration(const scenario::Scenario& scenario,
           std::make_unique<perception::KittiWriter>(dir_ / "images", files_->rectifier->camera());
     }
   }
-  WriteAtomically(dir_ / cal::kImuFile, cal::ImuCalibrationJson(given.imu, given.imu_source));
-  WriteAtomically(dir_ / cal::kVehicleFile,
-                  cal::VehicleCalibrationJson(given.vehicle, given.vehicle_source));
+  WriteFileAtomically(dir_ / cal::kImuFile, cal::ImuCalibrationJson(given.imu, given.imu_source));
+  WriteFileAtomically(dir_ / cal::kVehicleFile,
+                      cal::VehicleCalibrationJson(given.vehicle, given.vehicle_source));
   cal::RobotCalibration truth = robot.truth;
   if (!scenario.robot.stereo.enabled) truth.stereo.reset();
-  WriteAtomically(dir_ / cal::kGroundTruthFile, cal::GroundTruthCalibrationJson(truth));
+  WriteFileAtomically(dir_ / cal::kGroundTruthFile, cal::GroundTruthCalibrationJson(truth));
 }
 
 RunObservers RunFolderWriter::observers() {

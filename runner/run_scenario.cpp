@@ -4,6 +4,7 @@
 #include <exception>
 #include <string>
 
+#include "trackbed/common/durable_file.h"
 #include "trackbed/runner/closed_loop.h"
 #include "trackbed/runner/kinematic_navigation_run.h"
 #include "trackbed/runner/log_file.h"
@@ -22,9 +23,9 @@ RunMetrics RunKinematicToFolder(const scenario::Scenario& scenario, const fs::pa
   scenario.Validate();
   fs::create_directories(dir);
   fs::remove(dir / "metrics.json");  // no stale result may pass for this run's
-  WriteAtomically(dir / "scenario.yaml",
-                  scenario::ScenarioToYaml(scenario::WithBuiltinMaterialsResolved(
-                      scenario::WithRealismResolved(scenario))));
+  WriteFileAtomically(dir / "scenario.yaml",
+                      scenario::ScenarioToYaml(scenario::WithBuiltinMaterialsResolved(
+                          scenario::WithRealismResolved(scenario))));
   RunMetrics metrics;
   try {
     metrics = RunKinematicNavigation(scenario, dir);

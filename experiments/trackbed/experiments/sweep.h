@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "trackbed/common/durable_file.h"
 #include "trackbed/scenario/scenario_yaml.h"
 
 namespace trackbed::experiments {
@@ -180,9 +181,9 @@ CellOutcome ReadCellOutcome(const std::filesystem::path& sweep_dir, const SweepC
 /// recovery of a cell whose cell.json was never written use it, so they agree.
 CellOutcome OutcomeFromMetrics(const std::string& metrics_json_text);
 
-/// Writes `text` to `path` through a temporary file and a rename, so that readers
-/// see the old file or the new one, never a part.
-void WriteFileAtomically(const std::filesystem::path& path, const std::string& text);
+/// Writes `text` to `path` whole and on disk before it is visible
+/// (trackbed/common/durable_file.h).
+using ::trackbed::WriteFileAtomically;
 
 /// The file's contents. Throws std::runtime_error when it cannot be read.
 std::string ReadTextFile(const std::filesystem::path& path);

@@ -1,6 +1,6 @@
 // Run-folder files as they are written: a buffered text file that checks every
-// write (a full disk is an error, not a short log), and whole files written
-// atomically (a temporary file renamed over the old one).
+// write (a full disk is an error, not a short log). Whole files are written with
+// trackbed/common/durable_file.h.
 #pragma once
 
 #include <cerrno>
@@ -42,8 +42,5 @@ class LogFile {
   char buffer_[1 << 16];
   std::ofstream file_;
 };
-
-/// Writes `text` to `path` through a temporary file renamed over it.
-void WriteAtomically(const std::filesystem::path& path, const std::string& text);
 
 }  // namespace trackbed::runner

@@ -1,0 +1,63 @@
+// Durable files: written whole through a temporary file, synced, errors naming the file.
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "trackbed/common/durable_file.h"
+
+namespace trackbed {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path FreshDir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("trackbed_durable_file_test_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string Read(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+TEST(DurableFileTest, ReplacesTheFileWholeAndLeavesNoTemporary) {
+  const fs::path dir = FreshDir("replace");
+  WriteFileAtomically(dir / "a.json", "old\n");
+  WriteFileAtomically(dir / "a.json", std::string(1 << 20, 'x'));  // more than one write
+  EXPECT_EQ(Read(dir / "a.json"), std::string(1 << 20, 'x'));
+  EXPECT_FALSE(fs::exists(dir / "a.json.tmp"));
+  int files = 0;
+  for (const auto& e : fs::directory_iterator(dir)) files += e.is_regular_file();
+  EXPECT_EQ(files, 1);
+}
+
+TEST(DurableFileTest, AFileThatCannotBeWrittenIsNamed) {
+  const fs::path dir = FreshDir("missing");
+  try {
+    WriteFileAtomically(dir / "no_such_folder" / "metrics.json", "{}\n");
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("no_such_folder/metrics.json.tmp: cannot create"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(DurableFileTest, SyncsAFolderTreeAndNamesAMissingOne) {
+  const fs::path dir = FreshDir("tree");
+  fs::create_directories(dir / "teach" / "images");
+  std::ofstream(dir / "teach" / "images" / "000000.png") << "png";
+  std::ofstream(dir / "ground_truth.tum") << "0 0 0 0 0 0 0 1\n";
+  EXPECT_NO_THROW(SyncFolder(dir));
+  EXPECT_EQ(Read(dir / "ground_truth.tum"), "0 0 0 0 0 0 0 1\n");
+  EXPECT_THROW(SyncFolder(dir / "gone"), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace trackbed
