@@ -14,6 +14,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
+DurableStepHook step_hook = nullptr;
+
+void Step(const char* step, const fs::path& path) {
+  if (step_hook) step_hook(step, path);
+}
+
 [[noreturn]] void Fail(const fs::path& path, const char* what) {
   throw std::runtime_error(path.string() + ": cannot " + what + ": " + std::strerror(errno));
 }
@@ -33,6 +39,7 @@ void Sync(const fs::path& path, bool folder) {
     errno = error;
     Fail(path, "sync");
   }
+  Step("sync", path);
 }
 
 }  // namespace
@@ -57,8 +64,10 @@ void WriteFileAtomically(const fs::path& path, const std::string& text) {
     ::close(fd);
     Fail(tmp, "sync");
   }
+  Step("sync", tmp);
   if (::close(fd) != 0) Fail(tmp, "close");
   fs::rename(tmp, path);
+  Step("rename", path);
   Sync(path.parent_path().empty() ? fs::path(".") : path.parent_path(), true);
 }
 
@@ -78,5 +87,7 @@ void SyncFolder(const fs::path& dir) {
   }
   Sync(dir, true);
 }
+
+void SetDurableStepHookForTesting(DurableStepHook hook) { step_hook = hook; }
 
 }  // namespace trackbed

@@ -4,10 +4,13 @@
 #include <iterator>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "trackbed/common/durable_file.h"
+#include "trackbed/runner/run_folder.h"
 
 namespace trackbed {
 namespace {
@@ -57,6 +60,54 @@ TEST(DurableFileTest, SyncsAFolderTreeAndNamesAMissingOne) {
   EXPECT_NO_THROW(SyncFolder(dir));
   EXPECT_EQ(Read(dir / "ground_truth.tum"), "0 0 0 0 0 0 0 1\n");
   EXPECT_THROW(SyncFolder(dir / "gone"), std::runtime_error);
+}
+
+// The durable steps taken while the hook is set.
+std::vector<std::pair<std::string, fs::path>> steps;
+
+void Record(const char* step, const fs::path& path) { steps.emplace_back(step, path); }
+
+class DurableStepsTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    steps.clear();
+    SetDurableStepHookForTesting(&Record);
+  }
+  void TearDown() override { SetDurableStepHookForTesting(nullptr); }
+};
+
+TEST_F(DurableStepsTest, TheTemporaryIsOnDiskBeforeTheRenameAndTheFolderAfter) {
+  const fs::path dir = FreshDir("order");
+  WriteFileAtomically(dir / "cell.json", "{}\n");
+  const std::vector<std::pair<std::string, fs::path>> expected = {
+      {"sync", dir / "cell.json.tmp"}, {"rename", dir / "cell.json"}, {"sync", dir}};
+  EXPECT_EQ(steps, expected);
+}
+
+TEST_F(DurableStepsTest, ARunsFilesAreOnDiskBeforeItsMetricsSayItFinished) {
+  const fs::path dir = FreshDir("run");
+  fs::create_directories(dir / "teach");
+  std::ofstream(dir / "ground_truth.tum") << "0 0 0 0 0 0 0 1\n";
+  std::ofstream(dir / "teach" / "encoders.csv") << "t,left_ticks,right_ticks\n";
+  runner::RunMetrics m;
+  m.stop_reason = "duration reached";
+  runner::WriteMetricsJson(m, dir);
+  std::size_t rename = steps.size();
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    if (steps[k].first == "rename") rename = k;
+  }
+  ASSERT_LT(rename, steps.size());
+  EXPECT_EQ(steps[rename].second, dir / "metrics.json");
+  const auto synced_before = [&](const fs::path& p) {
+    for (std::size_t k = 0; k < rename; ++k) {
+      if (steps[k] == std::make_pair(std::string("sync"), p)) return true;
+    }
+    return false;
+  };
+  EXPECT_TRUE(synced_before(dir / "ground_truth.tum"));
+  EXPECT_TRUE(synced_before(dir / "teach" / "encoders.csv"));
+  EXPECT_TRUE(synced_before(dir / "teach"));
+  EXPECT_TRUE(synced_before(dir / "metrics.json.tmp"));
 }
 
 }  // namespace

@@ -19,4 +19,10 @@ void WriteFileAtomically(const std::filesystem::path& path, const std::string& t
 /// be synced.
 void SyncFolder(const std::filesystem::path& dir);
 
+/// For tests: called with each durable step, in order — "sync" (a file or folder on
+/// disk) and "rename" (the temporary file made visible; `path` is the target) — since
+/// a power loss itself cannot be tested. Null (the default): none. Not thread-safe.
+using DurableStepHook = void (*)(const char* step, const std::filesystem::path& path);
+void SetDurableStepHookForTesting(DurableStepHook hook);
+
 }  // namespace trackbed
