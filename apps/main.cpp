@@ -115,7 +115,10 @@ int main(int argc, char** argv) {
     return app.exit(e);
   }
   try {
-    if (*run) return Run(scenario_path, out_dir, sets, seed);
+    if (*run) {
+      trackbed::apps::DieWithSweepIfCell();
+      return Run(scenario_path, out_dir, sets, seed);
+    }
   } catch (const std::exception& e) {
     std::cerr << "trackbed: " << e.what() << "\n";
     return 2;

@@ -14,6 +14,7 @@
 #include <signal.h>
 #include <spawn.h>
 #include <sys/file.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -62,7 +63,15 @@ class CellRunner {
         signals_(signals),
         progress_(progress),
         host_(Hostname()),
-        slurm_job_(CurrentSlurmJob()) {}
+        slurm_job_(CurrentSlurmJob()) {
+    // The cells' environment: this one, and this sweep's pid (DieWithSweepIfCell).
+    for (char** e = environ; *e != nullptr; ++e) {
+      if (std::strncmp(*e, "TRACKBED_SWEEP_PID=", 19) != 0) env_text_.emplace_back(*e);
+    }
+    env_text_.push_back("TRACKBED_SWEEP_PID=" + std::to_string(::getpid()));
+    for (std::string& e : env_text_) env_.push_back(e.data());
+    env_.push_back(nullptr);
+  }
 
   /// Runs `cells` in order; returns the interrupting signal, or 0. Interrupted cells get
   /// status interrupted; cells not started stay pending (no cell.json).
@@ -178,7 +187,8 @@ class CellRunner {
     // image: the binary the sweep started with, even if its file has since been
     // replaced (a rebuild) or removed, so every cell of a sweep runs the same code.
     // argv[0] keeps the path, for ps and messages.
-    const int rc = ::posix_spawn(&child.pid, "/proc/self/exe", &files, &attr, argv.data(), environ);
+    const int rc =
+        ::posix_spawn(&child.pid, "/proc/self/exe", &files, &attr, argv.data(), env_.data());
     posix_spawn_file_actions_destroy(&files);
     posix_spawnattr_destroy(&attr);
     if (rc != 0) {
@@ -254,6 +264,8 @@ class CellRunner {
 
   fs::path dir_;
   fs::path exe_;
+  std::vector<std::string> env_text_;
+  std::vector<char*> env_;  // env_text_'s, for posix_spawn
   std::size_t jobs_;
   std::optional<double> timeout_s_;
   const BlockedSignals& signals_;
@@ -268,6 +280,18 @@ class CellRunner {
 // sweeps never write one folder.
 
 }  // namespace
+
+void DieWithSweepIfCell() {
+  const char* text = std::getenv("TRACKBED_SWEEP_PID");
+  if (text == nullptr) return;
+  const long sweep = std::strtol(text, nullptr, 10);
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  // The sweep may have ended between the spawn and the line above.
+  if (static_cast<long>(::getppid()) != sweep) {
+    std::cerr << "trackbed run: its sweep (pid " << sweep << ") is gone; not running\n";
+    std::exit(137);
+  }
+}
 
 int RunSweep(const SweepArgs& args) {
   const bool slurm = args.backend == "slurm";

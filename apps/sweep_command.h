@@ -28,6 +28,12 @@ struct SweepArgs {
   experiments::SlurmOptions slurm;  ///< with backend slurm
 };
 
+/// A sweep's cell (`trackbed run` started by a local sweep, whose pid the environment's
+/// TRACKBED_SWEEP_PID names) dies with its sweep, even a sweep killed with SIGKILL: the
+/// kernel sends the cell SIGKILL when its parent ends (PR_SET_PDEATHSIG); a cell whose
+/// sweep is already gone exits at once. Does nothing outside a sweep.
+void DieWithSweepIfCell();
+
 /// Runs the sweep and writes the summary and report; returns the exit status. Prints
 /// progress to stderr (a bar on a terminal, else one line per finished cell) and the
 /// result to stdout. Throws std::exception with a one-line reason on bad input.

@@ -378,4 +378,62 @@ TEST(SweepCliTest, AnInterruptedSweepResumesToTheSameSummaryAsAnUninterruptedOne
   EXPECT_TRUE(fs::exists(whole / "plots/ate_outdoor.png"));
 }
 
+// The pids of the processes whose command line mentions `text` (none for zombies,
+// whose command line is empty).
+std::vector<pid_t> ProcessesMentioning(const std::string& text) {
+  std::vector<pid_t> pids;
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    const std::string name = entry.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::string cmdline = Slurp(entry.path() / "cmdline");
+    std::replace(cmdline.begin(), cmdline.end(), '\0', ' ');
+    if (cmdline.find(text) != std::string::npos) pids.push_back(std::stoi(name));
+  }
+  return pids;
+}
+
+// Polls `done` every 5 ms for up to `limit`; whether it came true.
+template <class F>
+bool Within(std::chrono::seconds limit, F done) {
+  const auto end = std::chrono::steady_clock::now() + limit;
+  while (std::chrono::steady_clock::now() < end) {
+    if (done()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return done();
+}
+
+// A sweep killed with SIGKILL (which it cannot catch) takes its running cell with it,
+// and a rerun resumes. Until 2026-12-04 the cell ran on to its end, orphaned.
+TEST(SweepCliTest, ASweepKilledOutrightTakesItsCellsWithItAndResumes) {
+  const fs::path dir = TempDir("sigkill");
+  // The corridor with its camera for 120 simulated seconds: about ten seconds a cell.
+  const std::string sweep = (dir / "long.yaml").string();
+  std::ofstream(sweep) << "name: long\n"
+                       << "scenarios: [" << (kSource / "scenes/corridor.yaml").string() << "]\n"
+                       << "seeds: [1, 2]\n"
+                       << "set: [\"duration_s=120\"]\n";
+  const fs::path out = dir / "sweep";
+  pid_t pid = Spawn({"sweep", sweep, "--out", out.string(), "--jobs", "1"}, dir / "io1");
+  const std::string cell_run = (out / "cells" / "corridor__seed-1" / "run").string();
+  ASSERT_TRUE(WaitForFile(out / "cells" / "corridor__seed-1" / "stderr.txt", pid));
+  ASSERT_TRUE(
+      Within(std::chrono::seconds(10), [&] { return !ProcessesMentioning(cell_run).empty(); }));
+  ASSERT_EQ(kill(pid, SIGKILL), 0);
+  ASSERT_EQ(waitpid(pid, nullptr, 0), pid);
+  // The cell dies with it, long before its ten seconds are up.
+  EXPECT_TRUE(
+      Within(std::chrono::seconds(5), [&] { return ProcessesMentioning(cell_run).empty(); }))
+      << "cell still running: pid " << ProcessesMentioning(cell_run).front();
+  EXPECT_FALSE(fs::exists(out / "cells" / "corridor__seed-1" / "run" / "metrics.json"));
+
+  const Result resumed =
+      Trackbed("sweep " + sweep + " --out " + out.string() + " --jobs 2", dir / "io2");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.stderr_text;
+  EXPECT_NE(resumed.stderr_text.find("2 cells, 0 finished already, 2 to run"), std::string::npos)
+      << resumed.stderr_text;
+  EXPECT_EQ(CellJson(out, "corridor__seed-1")["status"], "ok");
+  EXPECT_EQ(CellJson(out, "corridor__seed-2")["status"], "ok");
+}
+
 }  // namespace
