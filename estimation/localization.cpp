@@ -45,6 +45,7 @@ LocalizationStack::LocalizationStack(const LocalizationOptions& options,
       fuzzy_(MakeFuzzy(options.fusion_rules_file)),
       fused_(PlanarPose(T_world_body0)),
       ekf_(options.ekf, PlanarPose(T_world_body0)),
+      weight_(options.fusion_weight_rise_time_s),
       T_world_body_vo_(T_world_body0),
       wheel_at_frame_(PlanarPose(T_world_body0)) {
   options_.Validate();
@@ -158,13 +159,8 @@ LocalizationFrameReport LocalizationStack::ProcessStereoFrame(double t_s, const 
     // A frame without VO counts as w = 1: the weight climbs back toward the wheels.
     report.w_rule =
         report.vo_valid ? fuzzy_.Weight(report.slip_velocity_mps, report.features) : 1.0;
-    const double tau = options_.fusion_weight_rise_time_s;
-    if (report.w_rule <= w_ || tau <= 0.0 || !(t_s > t_frame_)) {
-      w_ = report.w_rule;
-    } else {
-      w_ += (1.0 - std::exp(-(t_s - t_frame_) / tau)) * (report.w_rule - w_);
-    }
-    report.w = report.vo_valid ? w_ : 1.0;
+    const double w = weight_.Update(report.w_rule, t_s - t_frame_);
+    report.w = report.vo_valid ? w : 1.0;
     fused_.Add(wheel_increment, vo_increment, report.w);
   }
   wheel_at_frame_ = wheel_.pose();

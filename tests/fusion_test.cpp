@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include "trackbed/estimation/fusion_weight_rise.h"
 #include "trackbed/estimation/fuzzy_fusion.h"
 #include "trackbed/estimation/wheel_odometry.h"
 
@@ -171,6 +172,33 @@ TEST(FusedOdometryTest, BlendsIncrementsAndFallsBackToWheelsWithoutVision) {
   EXPECT_NEAR(fused.pose().x, 0.07, 1e-12);
   fused.Add({0.10, 0.0, 0.0}, std::nullopt, 0.25);
   EXPECT_NEAR(fused.pose().x, 0.17, 1e-12);
+}
+
+// The applied weight falls to the rule's at once and rises toward it with τ: 3 s after
+// the slip ends it has climbed 1 − 1/e of the way back to the wheels.
+TEST(FusionWeightRiseTest, FallsAtOnceAndRisesWithItsTimeConstant) {
+  FusionWeightRise w(3.0);
+  EXPECT_EQ(w.weight(), 1.0);
+  EXPECT_EQ(w.Update(0.2, 0.1), 0.2);  // slip: down in one frame
+  double expected = 0.2;
+  for (int k = 1; k <= 30; ++k) {  // 3 s of frames at 10 Hz with the rule back at 1
+    expected += (1.0 - std::exp(-0.1 / 3.0)) * (1.0 - expected);
+    EXPECT_NEAR(w.Update(1.0, 0.1), expected, 1e-15) << k;
+  }
+  EXPECT_NEAR(w.weight(), 1.0 - 0.8 * std::exp(-1.0), 1e-12);
+  // A lower rule weight in the middle of the rise takes effect at once …
+  EXPECT_EQ(w.Update(0.5, 0.1), 0.5);
+  // … and a higher one only partly: after one frame 3.3 % of the way.
+  EXPECT_NEAR(w.Update(0.9, 0.1), 0.5 + (1.0 - std::exp(-0.1 / 3.0)) * 0.4, 1e-15);
+}
+
+TEST(FusionWeightRiseTest, WithoutARiseTimeOrTimeItFollowsTheRule) {
+  FusionWeightRise none(0.0);
+  EXPECT_EQ(none.Update(0.1, 0.1), 0.1);
+  EXPECT_EQ(none.Update(0.9, 0.1), 0.9);
+  FusionWeightRise w(3.0);
+  EXPECT_EQ(w.Update(0.3, 0.1), 0.3);
+  EXPECT_EQ(w.Update(0.8, 0.0), 0.8);  // no time between frames: nothing to smooth over
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include "trackbed/common/robot_calibration.h"
 #include "trackbed/common/stereo_camera.h"
 #include "trackbed/estimation/ekf_odometry.h"
+#include "trackbed/estimation/fusion_weight_rise.h"
 #include "trackbed/estimation/fuzzy_fusion.h"
 #include "trackbed/estimation/pose2.h"
 #include "trackbed/estimation/stereo_visual_odometry.h"
@@ -124,6 +125,7 @@ class LocalizationStack {
   FuzzyFusionWeight fuzzy_;
   FusedOdometry fused_;
   EkfOdometry ekf_;
+  FusionWeightRise weight_;  // the applied wheel weight
   Eigen::Isometry3d T_world_body_vo_;
   // The body's motion over the last valid VO frame, its interval and its time (coasting).
   Eigen::Isometry3d vo_last_motion_ = Eigen::Isometry3d::Identity();
@@ -134,7 +136,6 @@ class LocalizationStack {
   Pose2 wheel_at_frame_;
   double t_frame_ = 0.0;
   bool has_frame_ = false;
-  double w_ = 1.0;  // the applied wheel weight, rising slowly (fusion_weight_rise_time_s)
   // The body's rotation since the last stereo frame, integrated from the gyro.
   Eigen::Matrix3d R_gyro_since_frame_ = Eigen::Matrix3d::Identity();
   double t_gyro_ = 0.0;
