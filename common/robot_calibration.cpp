@@ -117,15 +117,6 @@ bool ImuCalibration::IsIdentity() const {
          R_body_imu == Eigen::Matrix3d::Identity();
 }
 
-Eigen::Vector3d ImuCalibration::BodyRate(const Eigen::Vector3d& gyro,
-                                         const Eigen::Vector3d& accel) const {
-  // The specific force in the IMU frame from the accelerometer's own model, then the
-  // rate in the IMU frame, then the body frame.
-  const Eigen::Vector3d f_imu = accel_axes.lu().solve(accel);
-  const Eigen::Vector3d w_imu = gyro_axes.lu().solve(gyro - gyro_g_sensitivity * f_imu);
-  return R_body_imu * w_imu;
-}
-
 void ImuCalibration::Validate() const {
   const auto check_axes = [](const char* field, const Eigen::Matrix3d& A) {
     if (!A.allFinite() || !(std::abs(A.determinant()) > 1e-6)) {

@@ -46,6 +46,7 @@ LocalizationStack::LocalizationStack(const LocalizationOptions& options,
       fused_(PlanarPose(T_world_body0)),
       ekf_(options.ekf, PlanarPose(T_world_body0)),
       weight_(options.fusion_weight_rise_time_s),
+      imu_(options.imu),
       T_world_body_vo_(T_world_body0),
       wheel_at_frame_(PlanarPose(T_world_body0)) {
   options_.Validate();
@@ -71,8 +72,7 @@ LocalizationStack::~LocalizationStack() = default;
 
 void LocalizationStack::AddImuSample(double t_s, const Eigen::Vector3d& gyro_radps,
                                      const Eigen::Vector3d& accel_mps2) {
-  AddGyroSample(
-      t_s, options_.imu.IsIdentity() ? gyro_radps : options_.imu.BodyRate(gyro_radps, accel_mps2));
+  AddGyroSample(t_s, imu_.BodyRate(gyro_radps, accel_mps2));
 }
 
 void LocalizationStack::AddEncoderSample(double t_s, std::int64_t left_ticks,

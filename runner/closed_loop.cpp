@@ -225,10 +225,6 @@ class ClosedLoop::Impl {
   const StepResult& Step();
   RunMetrics Finish();
   bool done() const { return done_; }
-  const RobotBuild& robot() const {
-    if (!started_) throw std::logic_error("ClosedLoop::robot: Start() first");
-    return robot_;
-  }
   const estimation::LocalizationStack* localization();
   void ReportEstimate(const std::string& name, const Eigen::Matrix4d& T_world_body);
   // Writes metrics.json saying why the run failed (when there is a folder).
@@ -738,8 +734,6 @@ const StepResult& ClosedLoop::Step() {
 }
 
 bool ClosedLoop::done() const { return impl_->done(); }
-
-const RobotBuild& ClosedLoop::robot() const { return impl_->robot(); }
 
 RobotBuild BuildRunRobot(const scenario::Scenario& scenario) {
   return BuildRobot(scenario, CalibrateWheels);

@@ -18,14 +18,10 @@ RobotBuild BuildRobot(const scenario::Scenario& scenario, const WheelCalibrator&
   } else {
     b.given =
         robot::DrawGivenCalibration(b.truth, b.design, imperfections, split_mix::Stream(seed, 1));
-    const bool ideal_camera = *imperfections.focal_length_calibration_rel_std == 0 &&
-                              *imperfections.principal_point_calibration_std_px == 0 &&
-                              imperfections.stereo_translation_calibration_std_mm->isZero(0.0) &&
-                              imperfections.stereo_rotation_calibration_std_mrad->isZero(0.0) &&
-                              *imperfections.camera_mount_calibration_std_deg == 0;
-    b.given.stereo_source = ideal_camera ? "the cameras as built (no calibration error)"
-                                         : "the cameras as built with calibration errors drawn "
-                                           "from published parameter standard deviations";
+    b.given.stereo_source = b.given.stereo == b.truth.stereo
+                                ? "the cameras as built (no calibration error)"
+                                : "the cameras as built with calibration errors drawn "
+                                  "from published parameter standard deviations";
     b.given.imu_source = "the IMU's design: a perfect IMU aligned with the body";
     if (*imperfections.wheel_calibration == robot::WheelCalibration::kStraightRun &&
         scenario.estimation.enabled) {

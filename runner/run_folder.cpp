@@ -350,7 +350,7 @@ void RunFolderWriter::WriteCalibration(const scenario::Scenario& scenario,
                                        const RobotBuild& robot) {
   namespace cal = calibration;
   const cal::RobotCalibration& given = robot.given;
-  if (scenario.robot.stereo.enabled && given.stereo) {
+  if (given.stereo) {  // the robot has a camera
     WriteFileAtomically(dir_ / cal::kStereoFile,
                         cal::StereoCalibrationJson(*given.stereo, given.stereo_source));
     if (scenario.outputs.save_images == "kitti") {
@@ -364,9 +364,7 @@ void RunFolderWriter::WriteCalibration(const scenario::Scenario& scenario,
   WriteFileAtomically(dir_ / cal::kImuFile, cal::ImuCalibrationJson(given.imu, given.imu_source));
   WriteFileAtomically(dir_ / cal::kVehicleFile,
                       cal::VehicleCalibrationJson(given.vehicle, given.vehicle_source));
-  cal::RobotCalibration truth = robot.truth;
-  if (!scenario.robot.stereo.enabled) truth.stereo.reset();
-  WriteFileAtomically(dir_ / cal::kGroundTruthFile, cal::GroundTruthCalibrationJson(truth));
+  WriteFileAtomically(dir_ / cal::kGroundTruthFile, cal::GroundTruthCalibrationJson(robot.truth));
 }
 
 RunObservers RunFolderWriter::observers() {

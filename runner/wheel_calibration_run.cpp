@@ -5,18 +5,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "trackbed/estimation/pose2.h"
 #include "trackbed/robot/encoder.h"
 
 namespace trackbed::runner {
-namespace {
-
-double Yaw(const Eigen::Isometry3d& T) {
-  const Eigen::Matrix3d& R = T.linear();
-  return std::atan2(R(1, 0), R(0, 0));
-}
-
-}  // namespace
-
 scenario::Scenario StraightRunScenario(const scenario::Scenario& s) {
   scenario::Scenario c;  // scenes/calibration/straight_line.yaml, key for key
   c.seed = 1;
@@ -62,7 +54,8 @@ calibration::VehicleCalibration StraightRunFit::Result() const {
     throw std::runtime_error("straight calibration run: the robot drove " + std::to_string(chord) +
                              " m, less than the 1 m a fit needs");
   }
-  double dyaw = Yaw(last_.chassis.T_world_body) - Yaw(first_.chassis.T_world_body);
+  double dyaw = estimation::PlanarPose(last_.chassis.T_world_body).yaw -
+                estimation::PlanarPose(first_.chassis.T_world_body).yaw;
   dyaw = std::remainder(dyaw, 2.0 * M_PI);
   const double half = 0.5 * dyaw;
   const double path = std::abs(half) < 1e-9 ? chord : chord * half / std::sin(half);

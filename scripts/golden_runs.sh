@@ -22,10 +22,11 @@ for scene in corridor outdoor tr_lab nav_outdoor nav_paper_left; do
 done
 sweep=scenes/sweeps/ci.yaml
 if [ $# -gt 0 ]; then
-  # The CI sweep with the overrides added to its `set` list, beside it.
-  sweep=scenes/sweeps/.golden_ci.yaml
+  # The CI sweep with the overrides added to its `set` list, written into OUT; its
+  # scenarios are still found beside the original (base_dir).
+  sweep="$out/ci_sweep.yaml"
   extra=$(printf ', "%s"' "$@")
-  sed "s/^set: \[\(.*\)\]$/set: [\1$extra]/" scenes/sweeps/ci.yaml > "$sweep"
+  { echo "base_dir: $(realpath scenes/sweeps)"
+    sed "s/^set: \[\(.*\)\]$/set: [\1$extra]/" scenes/sweeps/ci.yaml; } > "$sweep"
 fi
 "$bin" sweep "$sweep" --out "$out/ci_sweep" --jobs 2 > "$out/ci_sweep.log" 2>&1
-[ "$sweep" = scenes/sweeps/ci.yaml ] || rm -f "$sweep"

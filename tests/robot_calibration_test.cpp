@@ -13,8 +13,11 @@
 #include <opencv2/core.hpp>
 
 #include "trackbed/common/robot_calibration.h"
+#include "trackbed/common/se3.h"
+#include "trackbed/estimation/imu_correction.h"
 #include "trackbed/perception/stereo_rectifier.h"
 #include "trackbed/robot/as_built.h"
+#include "trackbed/robot/imu.h"
 #include "trackbed/runner/closed_loop.h"
 #include "trackbed/runner/wheel_calibration_run.h"
 #include "trackbed/scenario/scenario_yaml.h"
@@ -165,6 +168,34 @@ TEST(RobotCalibrationTest, IdealGivesTheDesignAndTypicalDrawsAroundIt) {
   EXPECT_EQ(b.truth.imu.accel_axes, typical.truth.imu.accel_axes);
   EXPECT_NE(b.truth.imu.gyro_axes, typical.truth.imu.gyro_axes);
   for (int i = 0; i < 3; ++i) EXPECT_EQ(b.truth.imu.gyro_axes(i, i), 1.0);
+}
+
+// The software's correction inverts the plant's IMU model: with the true calibration
+// given, a noiseless reading of the IMU as built gives back the body's rate, where the
+// datasheet's perfect IMU (what typical and harsh give) is off by the as-built error.
+TEST(RobotCalibrationTest, TheImuCorrectionInvertsTheImuAsBuilt) {
+  robot::Imperfections big;
+  big.gyro_scale_std = big.accel_scale_std = 0.03;
+  big.gyro_misalignment_std_deg = big.accel_misalignment_std_deg = 1.0;
+  big.gyro_g_sensitivity_std_dps_per_g = 0.1;
+  big.imu_mount_std_deg = 1.0;
+  const calibration::ImuCalibration truth =
+      robot::DrawAsBuilt({}, big.Resolve(robot::Realism::kIdeal), 9).imu;
+  robot::ImuOptions quiet;
+  quiet.gyro_noise_density = quiet.gyro_bias_random_walk = 0.0;
+  quiet.accel_noise_density = quiet.accel_bias_random_walk = 0.0;
+  quiet.gyro_initial_bias_std = quiet.accel_initial_bias_std = 0.0;
+  robot::Imu imu(quiet, 9.81, 1, &truth);
+  const Eigen::Matrix3d R_world_body = geometry::ExpSO3(Eigen::Vector3d(0.1, -0.2, 0.7));
+  const Eigen::Vector3d omega_world(0.05, -0.02, 0.6), accel_world(0.3, 0.1, 0.0);
+  const robot::ImuSample s = imu.Sample(0.005, R_world_body, omega_world, accel_world);
+  const Eigen::Vector3d body_rate = R_world_body.transpose() * omega_world;
+  const estimation::ImuCorrection given_truth(truth);
+  EXPECT_FALSE(given_truth.identity());
+  EXPECT_LT((given_truth.BodyRate(s.gyro_radps, s.accel_mps2) - body_rate).norm(), 1e-12);
+  const estimation::ImuCorrection datasheet{calibration::ImuCalibration{}};
+  EXPECT_TRUE(datasheet.identity());
+  EXPECT_GT((datasheet.BodyRate(s.gyro_radps, s.accel_mps2) - body_rate).norm(), 1e-3);
 }
 
 // An 8-bit image, black but for a Gaussian spot (σ 1.5 px) centred at `uv`.

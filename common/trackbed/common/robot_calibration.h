@@ -67,6 +67,13 @@ struct StereoCalibration {
   /// Throws OptionError naming the first invalid field.
   void Validate() const;
 
+  bool operator==(const StereoCalibration& o) const {
+    return width_px == o.width_px && height_px == o.height_px && left == o.left &&
+           right == o.right && baseline_m == o.baseline_m &&
+           T_body_left.matrix() == o.T_body_left.matrix() &&
+           T_body_right.matrix() == o.T_body_right.matrix();
+  }
+
   /// The file's keys but `convention` and `source` (the file form adds them), in the
   /// order the file lists them.
   template <class Archive>
@@ -105,9 +112,6 @@ struct ImuCalibration {
   /// g-sensitivity, the IMU aligned with the body); the accelerometer's axes do not
   /// enter the body rate then.
   bool IsIdentity() const;
-  /// The body's angular rate from a gyro reading and the accelerometer's reading of
-  /// the same instant: the model above solved for ω_body (biases are the estimator's).
-  Eigen::Vector3d BodyRate(const Eigen::Vector3d& gyro, const Eigen::Vector3d& accel) const;
 
   void Validate() const;
 

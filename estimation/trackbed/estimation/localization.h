@@ -17,6 +17,7 @@
 #include "trackbed/estimation/ekf_odometry.h"
 #include "trackbed/estimation/fusion_weight_rise.h"
 #include "trackbed/estimation/fuzzy_fusion.h"
+#include "trackbed/estimation/imu_correction.h"
 #include "trackbed/estimation/pose2.h"
 #include "trackbed/estimation/stereo_visual_odometry.h"
 #include "trackbed/estimation/wheel_odometry.h"
@@ -126,6 +127,7 @@ class LocalizationStack {
   FusedOdometry fused_;
   EkfOdometry ekf_;
   FusionWeightRise weight_;  // the applied wheel weight
+  ImuCorrection imu_;        // readings to body rates (LocalizationOptions::imu)
   Eigen::Isometry3d T_world_body_vo_;
   // The body's motion over the last valid VO frame, its interval and its time (coasting).
   Eigen::Isometry3d vo_last_motion_ = Eigen::Isometry3d::Identity();

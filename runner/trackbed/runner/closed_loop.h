@@ -101,8 +101,6 @@ class ClosedLoop {
   /// for a matrix that is not a rigid transform; for a second estimate of the name at
   /// the same time. Throws std::logic_error before Start() or after Finish().
   void ReportEstimate(const std::string& name, const Eigen::Matrix4d& T_world_body);
-  /// The robot as built and the calibration its software was given; valid after Start().
-  const RobotBuild& robot() const;
   /// Writes the rest of the run folder (plots, metrics.json) and returns the metrics.
   RunMetrics Finish();
   /// Start(), Step() until done(), Finish().
