@@ -28,6 +28,12 @@ void CheckIntrinsics(const std::string& prefix, const CameraIntrinsics& k) {
   option_check::Positive((prefix + "fy").c_str(), k.fy);
   option_check::Finite((prefix + "cx").c_str(), k.cx);
   option_check::Finite((prefix + "cy").c_str(), k.cy);
+  if (!k.distortion) return;
+  try {
+    k.distortion->Validate();
+  } catch (const OptionError& e) {
+    throw OptionError(prefix + "distortion." + e.field(), e.reason());
+  }
 }
 
 // A calibration file's form: its struct's keys, plus `source` (and for the stereo file
@@ -88,11 +94,13 @@ geometry::PinholeCamera StereoCalibration::Camera(const CameraIntrinsics& k) con
   c.fy = k.fy;
   c.cx = k.cx;
   c.cy = k.cy;
+  c.distortion = k.Lens();
   return c;
 }
 
 bool StereoCalibration::IsRectified() const {
   if (!(left == right) || T_body_left.linear() != T_body_right.linear()) return false;
+  if (!left.Lens().is_zero()) return false;
   const Eigen::Vector3d t = T_left_right().translation();
   return std::abs(t.x() - baseline_m) <= 1e-9 && std::abs(t.y()) <= 1e-9 && std::abs(t.z()) <= 1e-9;
 }

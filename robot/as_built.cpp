@@ -29,6 +29,7 @@ Imperfections IdealProfile() {
   p.stereo_translation_calibration_std_mm = Eigen::Vector3d::Zero();
   p.stereo_rotation_calibration_std_mrad = Eigen::Vector3d::Zero();
   p.camera_mount_calibration_std_deg = 0.0;
+  p.distortion_calibration_std = Eigen::Vector4d::Zero();
   p.camera_time_offset_s = 0.0;
   return p;
 }
@@ -47,6 +48,8 @@ Imperfections TypicalProfile() {
   p.principal_point_calibration_std_px = 0.3;           // MATLAB 0.26–0.34, Bouguet 0.25–0.27
   p.stereo_translation_calibration_std_mm = Eigen::Vector3d(0.047, 0.038, 0.166);  // Bouguet 5
   p.stereo_rotation_calibration_std_mrad = Eigen::Vector3d(0.90, 1.03, 0.097);     // Bouguet 5
+  // Bouguet's first calibration example (640 × 480, 20 views): kc_error / 3.
+  p.distortion_calibration_std = Eigen::Vector4d(0.003142, 0.012508, 1.694e-4, 1.675e-4) / 3.0;
   p.camera_time_offset_s = 0.3e-3;  // RealSense T265, one device clock (Kalibr)
   return p;
 }
@@ -64,6 +67,8 @@ Imperfections HarshProfile() {
   p.principal_point_calibration_std_px = 1.2;   // ≈1.2 px
   p.stereo_translation_calibration_std_mm = Eigen::Vector3d(0.82, 0.82, 2.89);  // D435i
   p.stereo_rotation_calibration_std_mrad = Eigen::Vector3d(1.26, 1.36, 0.111);  // D435i
+  // A 640 × 480 webcam's Bouguet calibration: kc_error / 3.
+  p.distortion_calibration_std = Eigen::Vector4d(0.0220, 0.0908, 0.0025, 0.0033) / 3.0;
   p.camera_time_offset_s = -44.3e-3;  // median of seven unsynchronised rigs (Kalibr)
   return p;
 }
@@ -138,7 +143,40 @@ void PerturbStereo(random::Generator* g, double focal_rel_std, double pp_std_px,
   s->baseline_m = T_lr.translation().norm();
 }
 
+// Each camera's lens coefficients perturbed (k1, k2, p1, p2), drawn whatever the lens;
+// an ideal pinhole stays one.
+void PerturbLenses(random::Generator* g, const Eigen::Vector4d& sigma,
+                   calibration::StereoCalibration* s) {
+  for (calibration::CameraIntrinsics* k : {&s->left, &s->right}) {
+    const Eigen::Vector3d a = Gaussian3(g, sigma.head<3>());
+    const double b = sigma[3] * g->Gaussian();
+    if (!k->distortion || k->distortion->model == geometry::LensModel::kNone) continue;
+    geometry::LensDistortion& d = *k->distortion;
+    d.k1 += a.x(), d.k2 += a.y();
+    if (d.model == geometry::LensModel::kRadialTangential) d.p1 += a.z(), d.p2 += b;
+  }
+}
+
+// The lens of EuRoC's VI-Sensor left camera (MT9V034 behind an S-mount lens of about
+// 80° across, as ours), as its published Kalibr calibration gives it.
+geometry::LensDistortion EurocCam0Lens() {
+  return geometry::LensDistortion::RadialTangential(-0.28340811, 0.07395907, 0.00019359,
+                                                    1.76187114e-05);
+}
+
 }  // namespace
+
+StereoRigOptions WithCameraEffectsResolved(StereoRigOptions stereo, Realism profile) {
+  // `harsh` alone has the image effects so far (docs/camera_model.md): EuRoC's lens and a
+  // RealSense colour camera's rolling shutter, 33 ms to read 480 rows (VINS-Mono's
+  // configuration, from its datasheet).
+  const bool harsh = profile == Realism::kHarsh;
+  if (!stereo.distortion) stereo.distortion = harsh ? EurocCam0Lens() : geometry::LensDistortion{};
+  if (!stereo.rolling_shutter.line_delay_s) {
+    stereo.rolling_shutter.line_delay_s = harsh ? 0.033 / 480.0 : 0.0;
+  }
+  return stereo;
+}
 
 Imperfections Imperfections::Resolve(Realism profile) const {
   switch (profile) {
@@ -181,6 +219,12 @@ void Imperfections::Validate() const {
   spread3("stereo_translation_calibration_std_mm", stereo_translation_calibration_std_mm, 100.0);
   spread3("stereo_rotation_calibration_std_mrad", stereo_rotation_calibration_std_mrad, 100.0);
   spread("camera_mount_calibration_std_deg", camera_mount_calibration_std_deg, 10.0);
+  if (distortion_calibration_std) {
+    for (int i = 0; i < 4; ++i) {
+      option_check::InRange(("distortion_calibration_std[" + std::to_string(i) + "]").c_str(),
+                            (*distortion_calibration_std)[i], 0.0, 1.0);
+    }
+  }
   if (camera_time_offset_s) {
     option_check::InRange("camera_time_offset_s", *camera_time_offset_s, -0.5, 0.5);
   }
@@ -197,7 +241,10 @@ calibration::RobotCalibration DesignCalibration(const TrackedVehicleOptions& veh
     const geometry::PinholeCamera& k = rig.intrinsics();
     s.width_px = k.width_px;
     s.height_px = k.height_px;
-    s.left = s.right = {k.fx, k.fy, k.cx, k.cy};
+    s.left = s.right = {k.fx, k.fy, k.cx, k.cy, std::nullopt};
+    if (stereo.distortion && !stereo.distortion->is_zero()) {
+      s.left.distortion = s.right.distortion = *stereo.distortion;
+    }
     s.baseline_m = stereo.baseline_m;
     s.T_body_left = rig.T_body_left();
     s.T_body_right = rig.T_body_right();
@@ -249,6 +296,7 @@ calibration::RobotCalibration DrawGivenCalibration(const calibration::RobotCalib
   PerturbStereo(&g, *p.focal_length_calibration_rel_std, *p.principal_point_calibration_std_px,
                 *p.stereo_translation_calibration_std_mm, *p.stereo_rotation_calibration_std_mrad,
                 *p.camera_mount_calibration_std_deg, &stereo);
+  PerturbLenses(&g, *p.distortion_calibration_std, &stereo);
   if (c.stereo) c.stereo = stereo;
   return c;
 }

@@ -30,6 +30,18 @@ void StereoRigOptions::Validate() const {
     throw OptionError("exposure_samples",
                       "must be in [1, 64] (got " + std::to_string(exposure_samples) + ")");
   }
+  if (distortion) {
+    try {
+      distortion->Validate();
+    } catch (const OptionError& e) {
+      throw OptionError("distortion." + e.field(), e.reason());
+    }
+  }
+  if (rolling_shutter.line_delay_s) {
+    // A frame's rows must all be read within the frame period.
+    option_check::InRange("rolling_shutter.line_delay_s", *rolling_shutter.line_delay_s, 0.0,
+                          1.0 / (rate_hz * height_px));
+  }
   for (std::size_t k = 0; k < blackouts_s.size(); ++k) {
     const Eigen::Vector2d& b = blackouts_s[k];
     if (!(std::isfinite(b.x()) && std::isfinite(b.y()) && b.x() >= 0.0 && b.y() > 0.0)) {

@@ -234,6 +234,7 @@ class ClosedLoop::Impl {
   using ImagePair = std::pair<GrayImage, GrayImage>;
 
   void BuildWorld();
+  void BuildCameras();
   void BuildSoftware();
   void BuildSchedule();
   // One physics step and whatever fires in it; true when the commander was called.
@@ -275,7 +276,7 @@ class ClosedLoop::Impl {
   std::optional<robot::StereoRig> rig_;
   std::unique_ptr<sim::Renderer> renderer_;
   GrayImage left_image_, right_image_;
-  std::unique_ptr<sim::CameraExposure> exposure_;
+  std::unique_ptr<sim::CameraExposure> exposures_[2];  // left, right
   std::unique_ptr<estimation::LocalizationStack> stack_;
   EstimatorScoring estimates_;
   double estimation_wall_s_ = 0.0;
@@ -331,15 +332,7 @@ void ClosedLoop::Impl::BuildWorld() {
                                                      &robot_.truth.vehicle);
   imu_ = std::make_unique<robot::Imu>(rs.imu, scenario_.scene.world.gravity_mps2,
                                       split_mix::Stream(scenario_.seed, 1), &robot_.truth.imu);
-  if (rs.stereo.enabled) {
-    rig_.emplace(rs.stereo, *robot_.truth.stereo);
-    renderer_ = std::make_unique<sim::Renderer>(
-        *world_, scenario_.scene.appearance, scenario_.scene.occluders,
-        split_mix::Stream(scenario_.seed, 2), rs.stereo.width_px, rs.stereo.height_px,
-        rs.stereo.near_m, rs.stereo.far_m);
-  }
-  exposure_ =
-      std::make_unique<sim::CameraExposure>(rs.stereo.exposure_time_s, rs.stereo.exposure_samples);
+  if (rs.stereo.enabled) BuildCameras();
   if (rs.range_sensor.enabled) {
     range_sensor_ =
         std::make_unique<robot::RangeSensor>(rs.range_sensor, split_mix::Stream(scenario_.seed, 4));
@@ -347,6 +340,31 @@ void ClosedLoop::Impl::BuildWorld() {
   noise_seed_ = split_mix::Stream(scenario_.seed, 3);
   metrics_ = std::make_unique<MetricsAccumulator>(
       rs.vehicle.sprocket_radius_m, rs.vehicle.track_gauge_m, rs.encoders.ticks_per_rev);
+}
+
+// The stereo rig as built, one renderer for both cameras, sized for the wider of their
+// renders through the lens, and each camera's exposure.
+void ClosedLoop::Impl::BuildCameras() {
+  const scenario::RobotSpec& rs = scenario_.robot;
+  const robot::StereoRigOptions stereo = robot::WithCameraEffectsResolved(rs.stereo, rs.realism);
+  rig_.emplace(stereo, *robot_.truth.stereo);
+  // Four pixels of margin: what a rolling shutter or blur warp may reach past the edge.
+  const int margin = stereo.distortion->is_zero() && *stereo.rolling_shutter.line_delay_s == 0 &&
+                             stereo.exposure_time_s == 0
+                         ? 0
+                         : 4;
+  const geometry::PinholeCamera left = sim::RenderCameraFor(rig_->intrinsics(), margin);
+  const geometry::PinholeCamera right = sim::RenderCameraFor(rig_->right_intrinsics(), margin);
+  const int w = std::max(left.width_px, right.width_px);
+  const int h = std::max(left.height_px, right.height_px);
+  renderer_ = std::make_unique<sim::Renderer>(
+      *world_, scenario_.scene.appearance, scenario_.scene.occluders,
+      split_mix::Stream(scenario_.seed, 2), w, h, stereo.near_m, stereo.far_m);
+  const double line_delay = *stereo.rolling_shutter.line_delay_s;
+  exposures_[0] = std::make_unique<sim::CameraExposure>(
+      rig_->intrinsics(), sim::GrownTo(left, w, h), stereo.exposure_samples, line_delay);
+  exposures_[1] = std::make_unique<sim::CameraExposure>(
+      rig_->right_intrinsics(), sim::GrownTo(right, w, h), stereo.exposure_samples, line_delay);
 }
 
 // The robot software: the localization stack on the robot's own sensors, and the
@@ -514,10 +532,10 @@ bool ClosedLoop::Impl::TakeStereoFrame(const robot::ChassisState& truth, StepRes
   GrayImage& left = pair ? pair->first : left_image_;
   GrayImage& right = pair ? pair->second : right_image_;
   // Each image is exposed around the frame's time (an instant by default).
-  exposure_->Render(*renderer_, rig_->intrinsics(), motion, rig_->T_body_left(), frame.t_s + offset,
-                    &left, &rig_xy);
-  exposure_->Render(*renderer_, rig_->right_intrinsics(), motion, rig_->T_body_right(),
-                    frame.t_s + offset, &right, &rig_xy);
+  exposures_[0]->Render(*renderer_, motion, rig_->T_body_left(), frame.t_s + offset,
+                        rs.stereo.exposure_time_s, &left, &rig_xy);
+  exposures_[1]->Render(*renderer_, motion, rig_->T_body_right(), frame.t_s + offset,
+                        rs.stereo.exposure_time_s, &right, &rig_xy);
   frame.blackout = rs.stereo.InBlackout(frame.t_s);
   const CameraPipeline finish{rs.stereo, noise_seed_, frame.index, frame.blackout};
   // The sensor model is the camera's last stage. When nothing on this thread looks at

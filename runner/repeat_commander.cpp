@@ -9,14 +9,23 @@
 namespace trackbed::runner {
 
 RepeatCommander::RepeatCommander(teach_repeat::Repeater* repeater, double effective_gauge_m,
-                                 StepObserver on_step)
-    : repeater_(repeater), gauge_eff_m_(effective_gauge_m), on_step_(std::move(on_step)) {
+                                 StepObserver on_step,
+                                 std::shared_ptr<const perception::LensUndistorter> undistorter)
+    : repeater_(repeater),
+      gauge_eff_m_(effective_gauge_m),
+      on_step_(std::move(on_step)),
+      undistorter_(std::move(undistorter)) {
   if (!repeater_) throw std::invalid_argument("RepeatCommander: no repeater");
 }
 
 ControlOutput RepeatCommander::Update(const ControlInput& input) {
   if (!input.left_image) throw std::invalid_argument("RepeatCommander: no image");
-  const teach_repeat::RepeatCommand c = repeater_->Update(*input.left_image, input.t_s);
+  const cv::Mat* image = input.left_image;
+  if (undistorter_ && !undistorter_->identity()) {
+    undistorter_->Undistort(*input.left_image, &undistorted_);
+    image = &undistorted_;
+  }
+  const teach_repeat::RepeatCommand c = repeater_->Update(*image, input.t_s);
   if (on_step_) on_step_({input.t_s, c});
   features_lost_ = c.features_lost;
   features_recovered_ = c.features_recovered;

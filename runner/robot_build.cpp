@@ -11,7 +11,8 @@ RobotBuild BuildRobot(const scenario::Scenario& scenario, const WheelCalibrator&
   const robot::Imperfections imperfections = rs.imperfections.Resolve(rs.realism);
   const std::uint64_t seed = rs.AsBuiltSeed(scenario.seed);
   RobotBuild b;
-  b.design = robot::DesignCalibration(rs.vehicle, rs.stereo);
+  b.design =
+      robot::DesignCalibration(rs.vehicle, robot::WithCameraEffectsResolved(rs.stereo, rs.realism));
   b.truth = robot::DrawAsBuilt(b.design, imperfections, split_mix::Stream(seed, 0));
   if (!rs.calibration_dir.empty()) {
     b.given = calibration::ReadCalibrationFolder(rs.calibration_dir, rs.stereo.enabled);

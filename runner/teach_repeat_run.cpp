@@ -15,6 +15,7 @@
 #include "trackbed/common/units.h"
 #include "trackbed/estimation/trajectory_io.h"
 #include "trackbed/estimation/wheel_odometry.h"
+#include "trackbed/perception/lens_undistorter.h"
 #include "trackbed/perception/opencv_views.h"
 #include "trackbed/runner/closed_loop.h"
 #include "trackbed/runner/repeat_commander.h"
@@ -38,8 +39,10 @@ teach_repeat::TeachMap Teach(const scenario::Scenario& scenario, const RobotBuil
   scenario::Scenario teach = scenario;
   teach.teach_repeat.enabled = false;
   const scenario::RobotSpec& rs = scenario.robot;
-  // The robot software's own view: the left camera and the tracks as calibrated.
-  const geometry::PinholeCamera camera = robot.given.stereo->LeftCamera();
+  // The robot software's own view: the left camera and the tracks as calibrated; the
+  // milestones are taught on undistorted images (the map has no lens).
+  const perception::LensUndistorter undistorter(robot.given.stereo->LeftCamera());
+  const geometry::PinholeCamera camera = undistorter.camera();
   teach_repeat::MilestoneBuilderOptions options;
   options.mode = scenario.teach_repeat.method == "3d" ? teach_repeat::TeachMode::k3d
                                                       : teach_repeat::TeachMode::k2d;
@@ -56,7 +59,9 @@ teach_repeat::TeachMap Teach(const scenario::Scenario& scenario, const RobotBuil
   RunObservers extra;
   extra.on_stereo = [&](const StereoFrame& f) {
     odometry.AddEncoderSample(f.t_s, f.ticks[0], f.ticks[1]);
-    builder.AddImage(perception::AsCvMat(*f.left), f.t_s, odometry.pose());
+    cv::Mat image;
+    undistorter.Undistort(perception::AsCvMat(*f.left), &image);
+    builder.AddImage(image, f.t_s, odometry.pose());
   };
   extra.on_sample = [&](const RunSample& s) {
     taught_path->push_back(s.chassis.T_world_body.translation().head<2>());
@@ -277,7 +282,7 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
   options.robot = robot;
   options.commander = std::make_unique<RepeatCommander>(
       repeater.get(), repeat.estimation.icr_expansion * repeat.robot.vehicle.track_gauge_m,
-      log_step);
+      log_step, std::make_shared<perception::LensUndistorter>(robot.given.stereo->LeftCamera()));
   RunMetrics m = ClosedLoop(repeat, std::move(options)).Run();
   csv.close();
   if (!csv) throw std::runtime_error((dir / "teach_repeat.csv").string() + ": cannot write");

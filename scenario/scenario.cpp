@@ -305,6 +305,7 @@ void Scenario::Validate(DriveSource drive_source) const {
 Scenario WithRealismResolved(Scenario scenario) {
   RobotSpec& r = scenario.robot;
   r.imperfections = r.imperfections.Resolve(r.realism);
+  r.stereo = robot::WithCameraEffectsResolved(r.stereo, r.realism);
   r.as_built_seed = r.AsBuiltSeed(scenario.seed);
   return scenario;
 }

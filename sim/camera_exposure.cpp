@@ -18,41 +18,41 @@ Eigen::Isometry3d BodyMotion::PoseAfter(double dt_s) const {
   return T;
 }
 
-CameraExposure::CameraExposure(double exposure_time_s, int samples)
-    : exposure_time_s_(exposure_time_s), samples_(samples) {
-  if (!(std::isfinite(exposure_time_s) && exposure_time_s >= 0.0)) {
-    throw std::invalid_argument("CameraExposure: exposure time must be >= 0 s (got " +
-                                std::to_string(exposure_time_s) + ")");
-  }
+CameraExposure::CameraExposure(const geometry::PinholeCamera& sensor,
+                               const geometry::PinholeCamera& render, int samples,
+                               double line_delay_s)
+    : warp_(sensor, render), samples_(samples), line_delay_s_(line_delay_s) {
   if (samples < 1 || samples > 64) {
     throw std::invalid_argument("CameraExposure: samples must be in [1, 64] (got " +
                                 std::to_string(samples) + ")");
   }
+  if (!(std::isfinite(line_delay_s) && line_delay_s >= 0.0)) {
+    throw std::invalid_argument("CameraExposure: line delay must be >= 0 s (got " +
+                                std::to_string(line_delay_s) + ")");
+  }
 }
 
-void CameraExposure::Render(Renderer& renderer, const geometry::PinholeCamera& K,
-                            const BodyMotion& motion, const Eigen::Isometry3d& T_body_camera,
-                            double t_s, GrayImage* gray, const Eigen::Vector2d* detail_center_xy) {
-  const int n = samples();
-  if (n == 1) {
-    renderer.Render(K, motion.T_world_body * T_body_camera, t_s, gray, nullptr, detail_center_xy);
+void CameraExposure::Render(Renderer& renderer, const BodyMotion& motion,
+                            const Eigen::Isometry3d& T_body_camera, double t_s,
+                            double exposure_time_s, GrayImage* gray,
+                            const Eigen::Vector2d* detail_center_xy) {
+  if (!(std::isfinite(exposure_time_s) && exposure_time_s >= 0.0)) {
+    throw std::invalid_argument("CameraExposure: exposure time must be >= 0 s (got " +
+                                std::to_string(exposure_time_s) + ")");
+  }
+  const Eigen::Isometry3d T_world_camera = motion.T_world_body * T_body_camera;
+  const SensorTiming timing{exposure_time_s, samples(exposure_time_s), line_delay_s_};
+  if (warp_.identity() && timing.instant()) {
+    renderer.Render(warp_.render(), T_world_camera, t_s, gray, nullptr, detail_center_xy);
     return;
   }
-  for (int k = 0; k < n; ++k) {
-    // Midpoint of the k-th of n equal parts of [−T/2, T/2].
-    const double dt = exposure_time_s_ * ((k + 0.5) / n - 0.5);
-    renderer.Render(K, motion.PoseAfter(dt) * T_body_camera, t_s + dt, &sub_, nullptr,
-                    detail_center_xy);
-    if (k == 0) sum_.assign(sub_.pixels.size(), 0);
-    for (std::size_t i = 0; i < sub_.pixels.size(); ++i) sum_[i] += sub_.pixels[i];
-  }
-  gray->width = sub_.width;
-  gray->height = sub_.height;
-  gray->pixels.resize(sum_.size());
-  const unsigned half = static_cast<unsigned>(n) / 2, count = static_cast<unsigned>(n);
-  for (std::size_t i = 0; i < sum_.size(); ++i) {
-    gray->pixels[i] = static_cast<std::uint8_t>((sum_[i] + half) / count);
-  }
+  renderer.Render(warp_.render(), T_world_camera, t_s, &rendered_,
+                  timing.instant() ? nullptr : &depth_, detail_center_xy);
+  // The camera's coordinates at the render to its coordinates dt later.
+  const CameraMotion camera_motion = [&](double dt) {
+    return (motion.PoseAfter(dt) * T_body_camera).inverse() * T_world_camera;
+  };
+  warp_.Apply(rendered_, timing.instant() ? nullptr : &depth_, camera_motion, timing, gray);
 }
 
 }  // namespace trackbed::sim

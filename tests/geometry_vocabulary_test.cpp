@@ -69,8 +69,8 @@ TEST(PinholeCameraTest, ValidateNamesTheField) {
 // Undistort inverts Distort over the image.
 TEST(RadialTangentialTest, MatchesOpenCvsProjectionAndInverts) {
   PinholeCamera c = Kitti06Left();
-  c.distortion = {-0.28, 0.07, -0.001, 0.0008, 0.0011};  // k1 k2 k3 p1 p2
-  const RadialTangential& d = c.distortion;
+  c.distortion = LensDistortion::RadialTangential(-0.28, 0.07, 0.0008, 0.0011, -0.001);
+  const LensDistortion& d = c.distortion;
   const cv::Mat dist = (cv::Mat_<double>(1, 5) << d.k1, d.k2, d.p1, d.p2, d.k3);
   std::vector<cv::Point3d> points;
   for (double x = -6.0; x <= 6.0; x += 1.5) {
@@ -85,6 +85,35 @@ TEST(RadialTangentialTest, MatchesOpenCvsProjectionAndInverts) {
     EXPECT_NEAR(uv.x(), expected[i].x, 1e-9);
     EXPECT_NEAR(uv.y(), expected[i].y, 1e-9);
     EXPECT_LE((c.Backproject(uv.x(), uv.y(), p.z()) - p).norm(), 1e-9) << i;
+  }
+}
+
+// An equidistant (fisheye) lens, TUM VI's left camera (ORB-SLAM3's TUM-VI.yaml),
+// distorts as cv::fisheye::distortPoints does, and Undistort inverts it out to 80°.
+TEST(EquidistantTest, MatchesOpenCvsFisheyeAndInverts) {
+  const LensDistortion d = LensDistortion::Equidistant(
+      0.0034823894022493434, 0.0007150348452162257, -0.0020532361418706202, 0.00020293673591811182);
+  const cv::Matx33d identity = cv::Matx33d::eye();
+  const cv::Vec4d coefficients(d.k1, d.k2, d.k3, d.k4);
+  for (double angle = 0.0; angle < 80.0; angle += 7.5) {
+    const double r = std::tan(units::Radians(angle));
+    const Eigen::Vector2d xy(0.6 * r, -0.8 * r);
+    std::vector<cv::Point2d> in = {{xy.x(), xy.y()}}, out;
+    cv::fisheye::distortPoints(in, out, identity, coefficients);
+    const Eigen::Vector2d xy_d = d.Distort(xy);
+    EXPECT_NEAR(xy_d.x(), out[0].x, 1e-9) << angle;
+    EXPECT_NEAR(xy_d.y(), out[0].y, 1e-9) << angle;
+    EXPECT_LE((d.Undistort(xy_d) - xy).norm(), 1e-9 * (1.0 + r)) << angle;
+  }
+  EXPECT_FALSE(d.is_zero());
+  EXPECT_TRUE(LensDistortion::RadialTangential(0, 0, 0, 0).is_zero());
+  LensDistortion bad = d;
+  bad.p1 = 0.001;
+  try {
+    bad.Validate();
+    FAIL() << "no error";
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.field(), "p1");
   }
 }
 

@@ -24,9 +24,13 @@ namespace trackbed::calibration {
 /// shares it).
 struct CameraIntrinsics {
   double fx = 0.0, fy = 0.0, cx = 0.0, cy = 0.0;  ///< [px]
+  /// The lens (absent: an ideal pinhole, and the file has no `distortion`).
+  std::optional<geometry::LensDistortion> distortion;
 
+  /// The lens, an ideal pinhole when none is given.
+  geometry::LensDistortion Lens() const { return distortion.value_or(geometry::LensDistortion{}); }
   bool operator==(const CameraIntrinsics& o) const {
-    return fx == o.fx && fy == o.fy && cx == o.cx && cy == o.cy;
+    return fx == o.fx && fy == o.fy && cx == o.cx && cy == o.cy && Lens() == o.Lens();
   }
   template <class Archive>
   void Serialize(Archive* a) {
@@ -34,6 +38,7 @@ struct CameraIntrinsics {
     a->Visit("fy", &fy, archive::kRequired);
     a->Visit("cx", &cx, archive::kRequired);
     a->Visit("cy", &cy, archive::kRequired);
+    a->Visit("distortion", &distortion, archive::kOmitEmpty);
   }
 };
 
@@ -51,7 +56,7 @@ struct StereoCalibration {
   Eigen::Isometry3d T_body_left = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d T_body_right = Eigen::Isometry3d::Identity();
 
-  /// The left or right camera as a pinhole camera (no lens distortion).
+  /// The left or right camera, with its lens.
   geometry::PinholeCamera LeftCamera() const { return Camera(left); }
   geometry::PinholeCamera RightCamera() const { return Camera(right); }
   /// A camera of this pair's image size with intrinsics `k`.
@@ -59,7 +64,8 @@ struct StereoCalibration {
   /// The right camera in the left camera's frame.
   Eigen::Isometry3d T_left_right() const { return T_body_left.inverse() * T_body_right; }
   /// Whether the pair is rectified as given: the same intrinsics and orientation, and
-  /// the right camera `baseline_m` along the left camera's x axis (to 1e-9 m). Then
+  /// the right camera `baseline_m` along the left camera's x axis (to 1e-9 m), and ideal
+  /// pinhole lenses. Then
   /// `RectifiedPair()` is the pair, exactly.
   bool IsRectified() const;
   geometry::StereoCamera RectifiedPair() const { return {LeftCamera(), baseline_m}; }
@@ -84,6 +90,7 @@ struct StereoCalibration {
     a->Visit("fy", &left.fy, archive::kRequired);
     a->Visit("cx", &left.cx, archive::kRequired);
     a->Visit("cy", &left.cy, archive::kRequired);
+    a->Visit("distortion", &left.distortion, archive::kOmitEmpty);
     a->Visit("baseline_m", &baseline_m, archive::kRequired);
     a->Visit("T_body_left", &T_body_left, archive::kRequired);
     a->Visit("T_body_right", &T_body_right, archive::kRequired);

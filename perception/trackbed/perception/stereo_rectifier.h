@@ -1,6 +1,8 @@
 // Rectification of a stereo pair from its calibration, as a real stereo pipeline
 // does before matching: OpenCV's stereoRectify (Bouguet's method: both image planes
 // rotated half way to a common orientation, rows aligned) and one remap per image.
+// A lens (radial–tangential or equidistant) is undistorted by the same remap, as
+// initUndistortRectifyMap does (the fisheye module's for an equidistant lens).
 // The software knows the pair only through its given calibration, so a calibration
 // error leaves rows misaligned and disparities biased: the error a real robot's VO
 // lives with (docs/calibration.md).

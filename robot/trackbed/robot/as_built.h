@@ -74,6 +74,9 @@ struct Imperfections {
   std::optional<Eigen::Vector3d> stereo_translation_calibration_std_mm;
   std::optional<Eigen::Vector3d> stereo_rotation_calibration_std_mrad;
   std::optional<double> camera_mount_calibration_std_deg;
+  /// Each camera's lens coefficients as calibrated about the lens as built: the
+  /// spreads of k1, k2, p1, p2 (k3 and k4 are given as built).
+  std::optional<Eigen::Vector4d> distortion_calibration_std;
   /// The camera's time offset as built [s] (a constant, not a spread): a frame stamped
   /// t was exposed at t + offset (ImuCalibration::camera_time_offset_s).
   std::optional<double> camera_time_offset_s;
@@ -105,12 +108,18 @@ struct Imperfections {
     a->Visit("stereo_translation_calibration_std_mm", &stereo_translation_calibration_std_mm, kOpt);
     a->Visit("stereo_rotation_calibration_std_mrad", &stereo_rotation_calibration_std_mrad, kOpt);
     a->Visit("camera_mount_calibration_std_deg", &camera_mount_calibration_std_deg, kOpt);
+    a->Visit("distortion_calibration_std", &distortion_calibration_std, kOpt);
     a->Visit("camera_time_offset_s", &camera_time_offset_s, kOpt);
   }
 };
 
+/// `stereo` with the camera's image effects the realism profile sets where the scenario
+/// leaves them out (the lens, the rolling shutter; docs/camera_model.md).
+StereoRigOptions WithCameraEffectsResolved(StereoRigOptions stereo, Realism profile);
+
 /// The design as a calibration: both tracks at the design's sprocket radius, a perfect
-/// IMU aligned with the body, the stereo rig's cameras (when `stereo` is on).
+/// IMU aligned with the body, the stereo rig's cameras with their lens (when `stereo` is
+/// on; its effects resolved).
 calibration::RobotCalibration DesignCalibration(const TrackedVehicleOptions& vehicle,
                                                 const StereoRigOptions& stereo);
 

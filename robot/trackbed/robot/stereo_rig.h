@@ -4,16 +4,30 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Geometry>
 
+#include "trackbed/common/archive.h"
 #include "trackbed/common/robot_calibration.h"
 #include "trackbed/common/stereo_camera.h"
 #include "trackbed/sim/image.h"
 #include "trackbed/sim/pinhole.h"
 
 namespace trackbed::robot {
+
+/// `robot.stereo.rolling_shutter`: rows exposed one after another (sim/sensor_warp.h).
+struct RollingShutterOptions {
+  /// Delay from one row's exposure to the next's [s], >= 0; 0 is a global shutter.
+  /// Absent: the realism profile's (docs/camera_model.md).
+  std::optional<double> line_delay_s;
+
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("line_delay_s", &line_delay_s, archive::kOmitEmpty);
+  }
+};
 
 struct StereoRigOptions {
   /// Whether the robot carries (and the run renders) the stereo camera.
@@ -43,8 +57,13 @@ struct StereoRigOptions {
   /// How long the shutter is open [s], in [0, 1 / rate_hz]: what moves across the
   /// view meanwhile is smeared (sim/camera_exposure.h). 0 takes an instant.
   double exposure_time_s = 0.0;
-  /// Renders averaged over an exposure, in [1, 64] (used when exposure_time_s > 0).
+  /// Instants of the render's warp averaged over an exposure, in [1, 64] (used when
+  /// the exposure time is > 0).
   int exposure_samples = 4;
+  /// Both cameras' lens as designed (as built: the same; the calibration given to the
+  /// software: drawn about it). Absent: the realism profile's (docs/camera_model.md).
+  std::optional<geometry::LensDistortion> distortion;
+  RollingShutterOptions rolling_shutter;
   /// Camera faults: [start, duration] pairs [s] during which both cameras deliver black
   /// frames (a covered lens, a dropped link), for fault tests.
   std::vector<Eigen::Vector2d> blackouts_s;
@@ -72,6 +91,8 @@ struct StereoRigOptions {
     a->Visit("exposure_time_s", &exposure_time_s);
     a->Visit("exposure_samples", &exposure_samples);
     a->Visit("blackouts_s", &blackouts_s);
+    a->Visit("distortion", &distortion, archive::kOmitEmpty);
+    a->Visit("rolling_shutter", &rolling_shutter);
   }
 };
 

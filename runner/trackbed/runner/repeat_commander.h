@@ -5,8 +5,10 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <utility>
 
+#include "trackbed/perception/lens_undistorter.h"
 #include "trackbed/runner/commander.h"
 #include "trackbed/teach_repeat/teach_repeat.h"
 
@@ -15,9 +17,11 @@ namespace trackbed::runner {
 class RepeatCommander : public Commander {
  public:
   /// `repeater` must outlive this. `on_step` (may be empty) sees every frame's time and
-  /// command.
+  /// command. `undistorter` (may be null: the images are a pinhole's) undistorts each
+  /// left image as the map's images were.
   using StepObserver = std::function<void(const std::pair<double, teach_repeat::RepeatCommand>&)>;
-  RepeatCommander(teach_repeat::Repeater* repeater, double effective_gauge_m, StepObserver on_step);
+  RepeatCommander(teach_repeat::Repeater* repeater, double effective_gauge_m, StepObserver on_step,
+                  std::shared_ptr<const perception::LensUndistorter> undistorter = nullptr);
 
   Trigger trigger() const override { return Trigger::kStereoFrame; }
   double period_s() const override { return 0.0; }
@@ -30,6 +34,8 @@ class RepeatCommander : public Commander {
   teach_repeat::Repeater* repeater_;
   double gauge_eff_m_;
   StepObserver on_step_;
+  std::shared_ptr<const perception::LensUndistorter> undistorter_;
+  cv::Mat undistorted_;
   std::int64_t features_lost_ = 0, features_recovered_ = 0;
 };
 

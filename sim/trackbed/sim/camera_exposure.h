@@ -1,15 +1,15 @@
-// A camera's exposure: the image integrated over the time the shutter is open,
-// so that what moves across the view during it is smeared (motion blur).
+// A camera's exposure: one render of the scene at the frame's instant, warped into what
+// the sensor records (sim/sensor_warp.h): through its lens, each row at its own time
+// under a rolling shutter, and integrated over the time the shutter is open, so that
+// what moves across the view meanwhile is smeared (motion blur).
 //
 // A real camera does not take an instant: at 0.4 m/s in a 30°/s turn, a 10 ms
-// exposure sweeps the view by 0.3°, 2 px at 381 px focal length. The renderer
-// draws instants, so an exposure of duration T centred at t is approximated by
-// the mean of N renders at the midpoints of N equal parts of [t − T/2, t + T/2],
-// with the body moving at its velocity and angular velocity at t (taken as
-// constant over T, a few milliseconds in which a tracked robot's motion hardly
-// changes) and the scene's occluders at each instant. The mean of the renders'
-// grey levels is rounded to grey levels once; noise and gain
-// (robot::ApplySensorModel) come after it. T = 0 is one render at t.
+// exposure sweeps the view by 0.3°, 2 px at 381 px focal length. The renderer draws
+// instants; the warp moves the render by the camera's motion over the exposure with the
+// body moving at its velocity and angular velocity at t (taken as constant over the
+// frame, a few milliseconds in which a tracked robot's motion hardly changes). Moving
+// occluders are drawn where they are at t: the camera's motion blurs them, their own
+// does not. Noise and gain (robot::ApplySensorModel) come after it.
 #pragma once
 
 #include <cstdint>
@@ -20,6 +20,7 @@
 #include "trackbed/sim/image.h"
 #include "trackbed/sim/pinhole.h"
 #include "trackbed/sim/renderer.h"
+#include "trackbed/sim/sensor_warp.h"
 
 namespace trackbed::sim {
 
@@ -33,31 +34,38 @@ struct BodyMotion {
   Eigen::Isometry3d PoseAfter(double dt_s) const;
 };
 
-/// Renders exposures with one renderer; holds the sum and sub-frame buffers so that
-/// no frame allocates. Not copyable.
+/// A camera's frames: renders with a shared renderer, warped for this camera. Holds the
+/// render buffers and the warp, so that no frame allocates. Not copyable.
 class CameraExposure {
  public:
-  /// `exposure_time_s` >= 0, `samples` in [1, 64] (used when the time is > 0).
-  /// Throws std::invalid_argument otherwise.
-  CameraExposure(double exposure_time_s, int samples);
+  /// The camera `sensor` (with its lens), drawn through the pinhole `render` (the
+  /// renderer's size: RenderCameraFor(sensor), grown to the renderer's size).
+  /// `samples` in [1, 64] instants average an exposure; `line_delay_s` >= 0 (rolling
+  /// shutter). Throws std::invalid_argument otherwise.
+  CameraExposure(const geometry::PinholeCamera& sensor, const geometry::PinholeCamera& render,
+                 int samples, double line_delay_s);
   CameraExposure(const CameraExposure&) = delete;
   CameraExposure& operator=(const CameraExposure&) = delete;
 
-  double exposure_time_s() const { return exposure_time_s_; }
-  int samples() const { return exposure_time_s_ > 0.0 ? samples_ : 1; }
+  const geometry::PinholeCamera& sensor() const { return warp_.sensor(); }
+  double line_delay_s() const { return line_delay_s_; }
+  /// Instants an exposure of `exposure_time_s` averages.
+  int samples(double exposure_time_s) const { return exposure_time_s > 0.0 ? samples_ : 1; }
 
-  /// The image of the camera at `T_body_camera` on a body moving as `motion`,
-  /// exposed around `t_s`. `detail_center_xy` as for Renderer::Render (held for
-  /// the whole exposure, so the terrain's meshes do not change within it).
-  void Render(Renderer& renderer, const geometry::PinholeCamera& K, const BodyMotion& motion,
-              const Eigen::Isometry3d& T_body_camera, double t_s, GrayImage* gray,
+  /// The image of the camera at `T_body_camera` on a body moving as `motion`, its middle
+  /// row exposed for `exposure_time_s` (>= 0) around `t_s`. `detail_center_xy` as for
+  /// Renderer::Render. With an ideal lens, no rolling shutter and no exposure time, the
+  /// render itself.
+  void Render(Renderer& renderer, const BodyMotion& motion, const Eigen::Isometry3d& T_body_camera,
+              double t_s, double exposure_time_s, GrayImage* gray,
               const Eigen::Vector2d* detail_center_xy = nullptr);
 
  private:
-  double exposure_time_s_;
+  SensorWarp warp_;
   int samples_;
-  GrayImage sub_;
-  std::vector<std::uint16_t> sum_;
+  double line_delay_s_;
+  GrayImage rendered_;
+  DepthImage depth_;
 };
 
 }  // namespace trackbed::sim

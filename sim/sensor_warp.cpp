@@ -1,0 +1,210 @@
+// The sensor's image of a render, through the lens and in time (see sensor_warp.h).
+#include "trackbed/sim/sensor_warp.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace trackbed::sim {
+namespace {
+
+// The render's grey level at (u, v), bilinear, clamped to the edge.
+inline float Bilinear(const std::uint8_t* image, int w, int h, float u, float v) {
+  u = std::min(std::max(u, 0.0f), static_cast<float>(w - 1));
+  v = std::min(std::max(v, 0.0f), static_cast<float>(h - 1));
+  const int u0 = std::min(static_cast<int>(u), w - 2), v0 = std::min(static_cast<int>(v), h - 2);
+  const float a = u - static_cast<float>(u0), b = v - static_cast<float>(v0);
+  const std::uint8_t* p = image + static_cast<std::size_t>(v0) * w + u0;
+  return (1.0f - b) * ((1.0f - a) * p[0] + a * p[1]) + b * ((1.0f - a) * p[w] + a * p[w + 1]);
+}
+
+// A rigid motion in single precision, applied to points (finite depth) or rays.
+struct Motion {
+  float R[9], t[3];
+  explicit Motion(const Eigen::Isometry3d& A) {
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) R[3 * r + c] = static_cast<float>(A.linear()(r, c));
+      t[r] = static_cast<float>(A.translation()[r]);
+    }
+  }
+};
+
+// The render camera's intrinsics in single precision.
+struct Intrinsics {
+  float fx, fy, cx, cy;
+  explicit Intrinsics(const geometry::PinholeCamera& K)
+      : fx(static_cast<float>(K.fx)),
+        fy(static_cast<float>(K.fy)),
+        cx(static_cast<float>(K.cx)),
+        cy(static_cast<float>(K.cy)) {}
+};
+
+// `steps` fixed-point steps towards the render pixel q whose point the motion carries
+// onto pixel p0 (see sensor_warp.h).
+inline void Solve(const Intrinsics& k, const Motion& m, const DepthImage& depth, float u0, float v0,
+                  int steps, float* qu, float* qv) {
+  const int w = depth.width, h = depth.height;
+  for (int i = 0; i < steps; ++i) {
+    const int iu = std::min(std::max(static_cast<int>(*qu + 0.5f), 0), w - 1);
+    const int iv = std::min(std::max(static_cast<int>(*qv + 0.5f), 0), h - 1);
+    const float z = depth.depth_m[static_cast<std::size_t>(iv) * w + iu];
+    const float x = (*qu - k.cx) / k.fx, y = (*qv - k.cy) / k.fy;
+    // A point (x z, y z, z), or the ray (x, y, 1) where nothing was drawn.
+    const bool finite = std::isfinite(z);
+    const float s = finite ? z : 1.0f, tw = finite ? 1.0f : 0.0f;
+    const float X = m.R[0] * x * s + m.R[1] * y * s + m.R[2] * s + tw * m.t[0];
+    const float Y = m.R[3] * x * s + m.R[4] * y * s + m.R[5] * s + tw * m.t[1];
+    const float Z = m.R[6] * x * s + m.R[7] * y * s + m.R[8] * s + tw * m.t[2];
+    if (!(Z > 1e-6f)) return;  // behind the camera: keep the last estimate
+    *qu += u0 - (k.fx * X / Z + k.cx);
+    *qv += v0 - (k.fy * Y / Z + k.cy);
+  }
+}
+
+}  // namespace
+
+geometry::PinholeCamera RenderCameraFor(const geometry::PinholeCamera& sensor, int margin_px) {
+  sensor.Validate();
+  if (margin_px < 0) throw std::invalid_argument("RenderCameraFor: negative margin");
+  if (sensor.distortion.is_zero() && margin_px == 0) return sensor;
+  // The extreme rays lie on the sensor's border (the lens maps the image's rectangle
+  // to a region bounded by its border's image).
+  double x_min = 1e300, x_max = -1e300, y_min = 1e300, y_max = -1e300;
+  const auto take = [&](double u, double v) {
+    const Eigen::Vector2d d((u - sensor.cx) / sensor.fx, (v - sensor.cy) / sensor.fy);
+    const Eigen::Vector2d xy = sensor.distortion.Undistort(d);
+    if (!xy.allFinite() || (sensor.distortion.Distort(xy) - d).norm() > 1e-9) {
+      throw std::invalid_argument("RenderCameraFor: the lens cannot be inverted at pixel (" +
+                                  std::to_string(u) + ", " + std::to_string(v) + ")");
+    }
+    x_min = std::min(x_min, xy.x()), x_max = std::max(x_max, xy.x());
+    y_min = std::min(y_min, xy.y()), y_max = std::max(y_max, xy.y());
+  };
+  const int w = sensor.width_px, h = sensor.height_px;
+  for (int u = 0; u < w; ++u) take(u, 0), take(u, h - 1);
+  for (int v = 0; v < h; ++v) take(0, v), take(w - 1, v);
+  const double limit = 2.0 * std::tan(80.0 * M_PI / 180.0);
+  if (x_max - x_min > limit || y_max - y_min > limit) {
+    throw std::invalid_argument(
+        "RenderCameraFor: the lens sees more than 160 degrees across, which a pinhole "
+        "render cannot cover");
+  }
+  geometry::PinholeCamera render;
+  render.fx = sensor.fx;
+  render.fy = sensor.fy;
+  render.cx = margin_px - sensor.fx * x_min;
+  render.cy = margin_px - sensor.fy * y_min;
+  // (Less 1e-9 px, so that rounding does not add a row to an exact fit.)
+  const auto pixels = [margin_px](double extent_px) {
+    return static_cast<int>(std::ceil(extent_px + 2.0 * margin_px - 1e-9)) + 1;
+  };
+  render.width_px = pixels(sensor.fx * (x_max - x_min));
+  render.height_px = pixels(sensor.fy * (y_max - y_min));
+  return render;
+}
+
+geometry::PinholeCamera GrownTo(const geometry::PinholeCamera& camera, int width_px,
+                                int height_px) {
+  if (width_px < camera.width_px || height_px < camera.height_px) {
+    throw std::invalid_argument("GrownTo: the camera cannot shrink");
+  }
+  geometry::PinholeCamera grown = camera;
+  grown.cx += (width_px - camera.width_px) / 2;
+  grown.cy += (height_px - camera.height_px) / 2;
+  grown.width_px = width_px;
+  grown.height_px = height_px;
+  return grown;
+}
+
+SensorWarp::SensorWarp(const geometry::PinholeCamera& sensor, const geometry::PinholeCamera& render)
+    : sensor_(sensor), render_(render) {
+  sensor_.Validate();
+  render_.Validate();
+  if (!render_.distortion.is_zero()) {
+    throw std::invalid_argument("SensorWarp: the render camera must be an ideal pinhole");
+  }
+  identity_ = sensor_.distortion.is_zero() && sensor_.width_px == render_.width_px &&
+              sensor_.height_px == render_.height_px && sensor_.fx == render_.fx &&
+              sensor_.fy == render_.fy && sensor_.cx == render_.cx && sensor_.cy == render_.cy;
+  const int w = sensor_.width_px, h = sensor_.height_px;
+  map_u_.resize(static_cast<std::size_t>(w) * h);
+  map_v_.resize(map_u_.size());
+  for (int v = 0; v < h; ++v) {
+    for (int u = 0; u < w; ++u) {
+      const Eigen::Vector2d d((u - sensor_.cx) / sensor_.fx, (v - sensor_.cy) / sensor_.fy);
+      const Eigen::Vector2d xy = sensor_.distortion.Undistort(d);
+      const double ru = render_.fx * xy.x() + render_.cx, rv = render_.fy * xy.y() + render_.cy;
+      constexpr double kSlack = 1e-6;  // rounding in the render camera's principal point
+      if (!(ru >= -kSlack && rv >= -kSlack && ru <= render_.width_px - 1 + kSlack &&
+            rv <= render_.height_px - 1 + kSlack)) {
+        throw std::invalid_argument("SensorWarp: the render does not cover sensor pixel (" +
+                                    std::to_string(u) + ", " + std::to_string(v) + ")");
+      }
+      map_u_[static_cast<std::size_t>(v) * w + u] = static_cast<float>(ru);
+      map_v_[static_cast<std::size_t>(v) * w + u] = static_cast<float>(rv);
+    }
+  }
+}
+
+void SensorWarp::ApplyLens(const GrayImage& rendered, GrayImage* out) const {
+  const int w = sensor_.width_px, h = sensor_.height_px;
+  out->width = w;
+  out->height = h;
+  out->pixels.resize(static_cast<std::size_t>(w) * h);
+  for (std::size_t i = 0; i < out->pixels.size(); ++i) {
+    const float g =
+        Bilinear(rendered.pixels.data(), rendered.width, rendered.height, map_u_[i], map_v_[i]);
+    out->pixels[i] = static_cast<std::uint8_t>(std::min(g + 0.5f, 255.0f));
+  }
+}
+
+void SensorWarp::Apply(const GrayImage& rendered, const DepthImage* depth,
+                       const CameraMotion& motion, const SensorTiming& timing, GrayImage* out) {
+  if (rendered.width != render_.width_px || rendered.height != render_.height_px) {
+    throw std::invalid_argument("SensorWarp: the render is not the render camera's size");
+  }
+  if (timing.instant()) {
+    if (identity_) {
+      *out = rendered;
+    } else {
+      ApplyLens(rendered, out);
+    }
+    return;
+  }
+  if (!depth || depth->width != rendered.width || depth->height != rendered.height) {
+    throw std::invalid_argument("SensorWarp: a warp in time needs the render's depth");
+  }
+  if (timing.samples < 1 || timing.samples > 64) {
+    throw std::invalid_argument("SensorWarp: samples must be in [1, 64]");
+  }
+  const int w = sensor_.width_px, h = sensor_.height_px;
+  const int n = timing.exposure_time_s > 0.0 ? timing.samples : 1;
+  const Intrinsics k(render_);
+  sum_.assign(map_u_.size(), 0.0f);
+  q_u_ = map_u_;
+  q_v_ = map_v_;
+  for (int s = 0; s < n; ++s) {
+    const double open = timing.exposure_time_s * ((s + 0.5) / n - 0.5);
+    const int steps = s == 0 ? 3 : 2;
+    for (int v = 0; v < h; ++v) {
+      const Motion m(motion((v - 0.5 * (h - 1)) * timing.line_delay_s + open));
+      const std::size_t row = static_cast<std::size_t>(v) * w;
+      for (int u = 0; u < w; ++u) {
+        const std::size_t i = row + u;
+        Solve(k, m, *depth, map_u_[i], map_v_[i], steps, &q_u_[i], &q_v_[i]);
+        sum_[i] +=
+            Bilinear(rendered.pixels.data(), rendered.width, rendered.height, q_u_[i], q_v_[i]);
+      }
+    }
+  }
+  out->width = w;
+  out->height = h;
+  out->pixels.resize(sum_.size());
+  const float scale = 1.0f / static_cast<float>(n);
+  for (std::size_t i = 0; i < sum_.size(); ++i) {
+    out->pixels[i] = static_cast<std::uint8_t>(std::min(sum_[i] * scale + 0.5f, 255.0f));
+  }
+}
+
+}  // namespace trackbed::sim
