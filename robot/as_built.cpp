@@ -175,6 +175,19 @@ StereoRigOptions WithCameraEffectsResolved(StereoRigOptions stereo, Realism prof
   if (!stereo.rolling_shutter.line_delay_s) {
     stereo.rolling_shutter.line_delay_s = harsh ? 0.033 / 480.0 : 0.0;
   }
+  // The sensor: typical's a Sony IMX174 (EMVA 1288 figures Point Grey published),
+  // harsh's a Sony ICX625 (Basler piA2400-17gm's EMVA 1288 datasheet) behind a lens
+  // whose corners get half the light (Alexandrov et al. 2016: an Asus Xtion's colour
+  // camera); typical's corner 0.71 (a wide-angle lens measured at full aperture).
+  PhotometricOptions& p = stereo.photometric;
+  if (!p.enabled) p.enabled = harsh;
+  if (!p.full_well_e) p.full_well_e = harsh ? 7000.0 : 32691.0;
+  if (!p.read_noise_e) p.read_noise_e = harsh ? 13.0 : 6.83;
+  if (!p.prnu_std) p.prnu_std = 0.0;
+  if (!p.dsnu_std_e) p.dsnu_std_e = 0.0;
+  if (!p.adc_bits) p.adc_bits = 12;
+  if (!p.vignetting_corner) p.vignetting_corner = harsh ? 0.5 : 0.71;
+  if (!p.gain) p.gain = 1.0;
   return stereo;
 }
 

@@ -42,6 +42,17 @@ void StereoRigOptions::Validate() const {
     option_check::InRange("rolling_shutter.line_delay_s", *rolling_shutter.line_delay_s, 0.0,
                           1.0 / (rate_hz * height_px));
   }
+  photometric.Validate();
+  if (auto_exposure.enabled) {
+    auto_exposure.Validate();
+    if (!(exposure_time_s > 0.0)) {
+      throw OptionError("auto_exposure.enabled",
+                        "needs exposure_time_s > 0: the exposure the render shows, the first "
+                        "the controller sets");
+    }
+    option_check::InRange("auto_exposure.max_exposure_s", auto_exposure.max_exposure_s,
+                          auto_exposure.min_exposure_s, 1.0 / rate_hz);
+  }
   for (std::size_t k = 0; k < blackouts_s.size(); ++k) {
     const Eigen::Vector2d& b = blackouts_s[k];
     if (!(std::isfinite(b.x()) && std::isfinite(b.y()) && b.x() >= 0.0 && b.y() > 0.0)) {

@@ -17,7 +17,9 @@
 #include "trackbed/common/units.h"
 #include "trackbed/estimation/skid_steer.h"
 #include "trackbed/perception/opencv_views.h"
+#include "trackbed/robot/auto_exposure.h"
 #include "trackbed/robot/encoder.h"
+#include "trackbed/robot/image_sensor.h"
 #include "trackbed/robot/tracked_vehicle.h"
 #include "trackbed/runner/closed_loop_navigation.h"
 #include "trackbed/runner/estimator_scoring.h"
@@ -89,23 +91,39 @@ auto Timed(double* seconds, F&& f) {
 }
 
 // The camera's stages after rendering: the sensor model (exposure, gain, noise keyed
-// by seed, frame and camera), then the blackout fault, on a rendered pair.
+// by seed, frame and camera: in electrons when `sensors` are given, else in grey
+// levels), then the blackout fault, on a rendered pair.
 struct CameraPipeline {
   const robot::StereoRigOptions& stereo;
+  const robot::ImageSensor* sensors;  // left, right; null: the grey-level model
+  double exposure;                    // light on the sensor relative to the render's
+  double gain;                        // analog gain (auto-exposure)
   std::uint64_t noise_seed;
   std::int64_t frame_index;
   bool blackout;
 
   void Apply(GrayImage* left, GrayImage* right) const {
     const auto frame = static_cast<std::uint64_t>(frame_index);
-    robot::ApplySensorModel(stereo.exposure, stereo.noise_std, noise_seed, frame, 0, left);
-    robot::ApplySensorModel(stereo.exposure, stereo.noise_std, noise_seed, frame, 1, right);
+    if (sensors) {
+      sensors[0].Apply(exposure, noise_seed, frame, left, gain);
+      sensors[1].Apply(exposure, noise_seed, frame, right, gain);
+    } else {
+      robot::ApplySensorModel(exposure * gain, stereo.noise_std, noise_seed, frame, 0, left);
+      robot::ApplySensorModel(exposure * gain, stereo.noise_std, noise_seed, frame, 1, right);
+    }
     if (blackout) {
       std::fill(left->pixels.begin(), left->pixels.end(), 0);
       std::fill(right->pixels.begin(), right->pixels.end(), 0);
     }
   }
 };
+
+// The mean grey level of an image.
+double MeanGrey(const GrayImage& image) {
+  std::uint64_t sum = 0;
+  for (const std::uint8_t p : image.pixels) sum += p;
+  return image.pixels.empty() ? 0.0 : static_cast<double>(sum) / image.pixels.size();
+}
 
 // The observers, each call's time added to *io_s (they write the run folder).
 RunObservers TimedObservers(const RunObservers& o, double* io_s) {
@@ -277,6 +295,8 @@ class ClosedLoop::Impl {
   std::unique_ptr<sim::Renderer> renderer_;
   GrayImage left_image_, right_image_;
   std::unique_ptr<sim::CameraExposure> exposures_[2];  // left, right
+  std::vector<robot::ImageSensor> image_sensors_;      // left, right; or none
+  std::optional<robot::AutoExposure> auto_exposure_;   // when on
   std::unique_ptr<estimation::LocalizationStack> stack_;
   EstimatorScoring estimates_;
   double estimation_wall_s_ = 0.0;
@@ -365,6 +385,16 @@ void ClosedLoop::Impl::BuildCameras() {
       rig_->intrinsics(), sim::GrownTo(left, w, h), stereo.exposure_samples, line_delay);
   exposures_[1] = std::make_unique<sim::CameraExposure>(
       rig_->right_intrinsics(), sim::GrownTo(right, w, h), stereo.exposure_samples, line_delay);
+  if (stereo.auto_exposure.enabled) {
+    auto_exposure_.emplace(stereo.auto_exposure, stereo.exposure_time_s);
+  }
+  if (*stereo.photometric.enabled) {
+    const std::uint64_t pattern_seed = split_mix::Stream(scenario_.seed, 6);
+    for (int camera = 0; camera < 2; ++camera) {
+      image_sensors_.emplace_back(stereo.photometric, stereo.width_px, stereo.height_px,
+                                  pattern_seed, camera);
+    }
+  }
 }
 
 // The robot software: the localization stack on the robot's own sensors, and the
@@ -531,23 +561,39 @@ bool ClosedLoop::Impl::TakeStereoFrame(const robot::ChassisState& truth, StepRes
   ImagePair* pair = worker_ ? FreePair() : nullptr;
   GrayImage& left = pair ? pair->first : left_image_;
   GrayImage& right = pair ? pair->second : right_image_;
-  // Each image is exposed around the frame's time (an instant by default).
+  // Each image is exposed around the frame's time (an instant by default), for the
+  // time the auto-exposure chose if it is on.
+  frame.exposure_time_s =
+      auto_exposure_ ? auto_exposure_->exposure_time_s() : rs.stereo.exposure_time_s;
+  frame.gain = auto_exposure_ ? auto_exposure_->gain() : 1.0;
   exposures_[0]->Render(*renderer_, motion, rig_->T_body_left(), frame.t_s + offset,
-                        rs.stereo.exposure_time_s, &left, &rig_xy);
+                        frame.exposure_time_s, &left, &rig_xy);
   exposures_[1]->Render(*renderer_, motion, rig_->T_body_right(), frame.t_s + offset,
-                        rs.stereo.exposure_time_s, &right, &rig_xy);
+                        frame.exposure_time_s, &right, &rig_xy);
   frame.blackout = rs.stereo.InBlackout(frame.t_s);
-  const CameraPipeline finish{rs.stereo, noise_seed_, frame.index, frame.blackout};
+  // The render shows the scene at `exposure_time_s`; the light scales with the time.
+  const double light = auto_exposure_ ? frame.exposure_time_s / rs.stereo.exposure_time_s : 1.0;
+  const CameraPipeline finish{rs.stereo,
+                              image_sensors_.empty() ? nullptr : image_sensors_.data(),
+                              rs.stereo.exposure * light,
+                              frame.gain,
+                              noise_seed_,
+                              frame.index,
+                              frame.blackout};
   // The sensor model is the camera's last stage. When nothing on this thread looks at
   // the images, it runs on the worker, off this thread's critical path; the bytes are
   // the same either way (its noise is keyed by seed, frame and camera).
   const bool image_commander = commander_->trigger() == Commander::Trigger::kStereoFrame;
   const bool finish_on_worker =
-      pair && !observers_.on_stereo && !image_commander && !options_.step_images;
+      pair && !observers_.on_stereo && !image_commander && !options_.step_images && !auto_exposure_;
   const auto rendered = std::chrono::steady_clock::now();
   render_wall_s_ += std::chrono::duration<double>(rendered - render_start).count();
   if (!finish_on_worker) {
     finish.Apply(&left, &right);
+    // The auto-exposure meters the left image for the next frame.
+    if (auto_exposure_ && !frame.blackout) {
+      auto_exposure_->Update(MeanGrey(left), 1.0 / rs.stereo.rate_hz);
+    }
     sensor_model_wall_s_ +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - rendered).count();
   }

@@ -328,6 +328,7 @@ struct RunFolderWriter::Files {
   Eigen::Isometry3d T_world_cam0 = Eigen::Isometry3d::Identity();
   std::unique_ptr<LogFile> navigation_csv;
   std::vector<navigation::NavigationLogEntry> navigation_log;
+  std::unique_ptr<LogFile> exposure_csv;  // with the auto-exposure
 };
 
 RunFolderWriter::RunFolderWriter(const scenario::Scenario& scenario, const fs::path& dir)
@@ -341,6 +342,10 @@ RunFolderWriter::RunFolderWriter(const scenario::Scenario& scenario, const fs::p
   if (scenario.navigation.enabled) {
     files_->navigation_csv =
         std::make_unique<LogFile>(dir / "navigation.csv", kNavigationCsvHeader);
+  }
+  if (scenario.robot.stereo.enabled && scenario.robot.stereo.auto_exposure.enabled) {
+    files_->exposure_csv =
+        std::make_unique<LogFile>(dir / "camera_exposure.csv", "t,exposure_time_s,gain");
   }
 }
 
@@ -370,10 +375,17 @@ void RunFolderWriter::WriteCalibration(const scenario::Scenario& scenario,
 RunObservers RunFolderWriter::observers() {
   Files& f = *files_;
   RunObservers o;
-  // Only with an image export: a run that looks at no image on the main thread lets
-  // the sensor model run on the localization thread (closed_loop.cpp).
-  if (f.kitti) {
+  // Only with an image export or the auto-exposure's log: a run that looks at no image
+  // on the main thread lets the sensor model run on the localization thread
+  // (closed_loop.cpp).
+  if (f.kitti || f.exposure_csv) {
     o.on_stereo = [&f](const StereoFrame& s) {
+      if (f.exposure_csv) {
+        char line[96];
+        std::snprintf(line, sizeof(line), "%.6f,%.9g,%.6g", s.t_s, s.exposure_time_s, s.gain);
+        f.exposure_csv->Line(line);
+      }
+      if (!f.kitti) return;
       // Ground truth of the rectified left camera.
       const Eigen::Isometry3d T_world_cam =
           f.rectifier->identity() ? s.T_world_left : s.T_world_left * f.T_left_rect;
@@ -409,6 +421,7 @@ RunObservers RunFolderWriter::observers() {
 
 void RunFolderWriter::Close(const scenario::Scenario& scenario, const RunMetrics& metrics) {
   Files& f = *files_;
+  if (f.exposure_csv) f.exposure_csv->Close();
   if (f.navigation_csv) {
     f.navigation_csv->Close();
     const navigation::NavigationScene scene = NavigationSceneOf(scenario);

@@ -41,24 +41,24 @@ struct Intrinsics {
 };
 
 // `steps` fixed-point steps towards the render pixel q whose point the motion carries
-// onto pixel p0 (see sensor_warp.h).
-inline void Solve(const Intrinsics& k, const Motion& m, const DepthImage& depth, float u0, float v0,
-                  int steps, float* qu, float* qv) {
-  const int w = depth.width, h = depth.height;
+// onto pixel p0 (see sensor_warp.h). The render's points are homogeneous, (x, y, 1, 1/z)
+// with (x, y) q's normalized ray and 1/z from `inverse_depth` (0 for sky, which the
+// translation then leaves in place), so sky and ground take the same arithmetic.
+inline void Solve(const Intrinsics& k, const Motion& m, const float* inverse_depth, int w, int h,
+                  float u0, float v0, int steps, float* qu, float* qv) {
+  const float inv_fx = 1.0f / k.fx, inv_fy = 1.0f / k.fy;
   for (int i = 0; i < steps; ++i) {
     const int iu = std::min(std::max(static_cast<int>(*qu + 0.5f), 0), w - 1);
     const int iv = std::min(std::max(static_cast<int>(*qv + 0.5f), 0), h - 1);
-    const float z = depth.depth_m[static_cast<std::size_t>(iv) * w + iu];
-    const float x = (*qu - k.cx) / k.fx, y = (*qv - k.cy) / k.fy;
-    // A point (x z, y z, z), or the ray (x, y, 1) where nothing was drawn.
-    const bool finite = std::isfinite(z);
-    const float s = finite ? z : 1.0f, tw = finite ? 1.0f : 0.0f;
-    const float X = m.R[0] * x * s + m.R[1] * y * s + m.R[2] * s + tw * m.t[0];
-    const float Y = m.R[3] * x * s + m.R[4] * y * s + m.R[5] * s + tw * m.t[1];
-    const float Z = m.R[6] * x * s + m.R[7] * y * s + m.R[8] * s + tw * m.t[2];
+    const float iz = inverse_depth[static_cast<std::size_t>(iv) * w + iu];
+    const float x = (*qu - k.cx) * inv_fx, y = (*qv - k.cy) * inv_fy;
+    const float X = m.R[0] * x + m.R[1] * y + m.R[2] + iz * m.t[0];
+    const float Y = m.R[3] * x + m.R[4] * y + m.R[5] + iz * m.t[1];
+    const float Z = m.R[6] * x + m.R[7] * y + m.R[8] + iz * m.t[2];
     if (!(Z > 1e-6f)) return;  // behind the camera: keep the last estimate
-    *qu += u0 - (k.fx * X / Z + k.cx);
-    *qv += v0 - (k.fy * Y / Z + k.cy);
+    const float inv_Z = 1.0f / Z;
+    *qu += u0 - (k.fx * X * inv_Z + k.cx);
+    *qv += v0 - (k.fy * Y * inv_Z + k.cy);
   }
 }
 
@@ -93,14 +93,17 @@ geometry::PinholeCamera RenderCameraFor(const geometry::PinholeCamera& sensor, i
   geometry::PinholeCamera render;
   render.fx = sensor.fx;
   render.fy = sensor.fy;
-  render.cx = margin_px - sensor.fx * x_min;
-  render.cy = margin_px - sensor.fy * y_min;
+  // The principal point a whole number of pixels from the sensor's, so that near the
+  // centre, where the lens hardly bends, sensor pixels fall on render pixels and the
+  // resampling does not blur (one more pixel of margin at most).
+  render.cx = sensor.cx + std::ceil(margin_px - sensor.fx * x_min - sensor.cx - 1e-9);
+  render.cy = sensor.cy + std::ceil(margin_px - sensor.fy * y_min - sensor.cy - 1e-9);
   // (Less 1e-9 px, so that rounding does not add a row to an exact fit.)
-  const auto pixels = [margin_px](double extent_px) {
-    return static_cast<int>(std::ceil(extent_px + 2.0 * margin_px - 1e-9)) + 1;
+  const auto pixels = [margin_px](double last_ray_px) {  // the last ray's render pixel
+    return static_cast<int>(std::ceil(last_ray_px + margin_px - 1e-9)) + 1;
   };
-  render.width_px = pixels(sensor.fx * (x_max - x_min));
-  render.height_px = pixels(sensor.fy * (y_max - y_min));
+  render.width_px = pixels(sensor.fx * x_max + render.cx - margin_px);
+  render.height_px = pixels(sensor.fy * y_max + render.cy - margin_px);
   return render;
 }
 
@@ -181,18 +184,32 @@ void SensorWarp::Apply(const GrayImage& rendered, const DepthImage* depth,
   const int w = sensor_.width_px, h = sensor_.height_px;
   const int n = timing.exposure_time_s > 0.0 ? timing.samples : 1;
   const Intrinsics k(render_);
+  inverse_depth_.resize(depth->depth_m.size());
+  for (std::size_t i = 0; i < inverse_depth_.size(); ++i) {
+    inverse_depth_[i] = 1.0f / depth->depth_m[i];  // +infinity (sky) gives 0
+  }
   sum_.assign(map_u_.size(), 0.0f);
   q_u_ = map_u_;
   q_v_ = map_v_;
   for (int s = 0; s < n; ++s) {
     const double open = timing.exposure_time_s * ((s + 0.5) / n - 0.5);
-    const int steps = s == 0 ? 3 : 2;
     for (int v = 0; v < h; ++v) {
       const Motion m(motion((v - 0.5 * (h - 1)) * timing.line_delay_s + open));
       const std::size_t row = static_cast<std::size_t>(v) * w;
       for (int u = 0; u < w; ++u) {
         const std::size_t i = row + u;
-        Solve(k, m, *depth, map_u_[i], map_v_[i], steps, &q_u_[i], &q_v_[i]);
+        // Warm starts: the first instant from the left neighbour's shift (the shift
+        // changes slowly along a row), three steps at a row's start; later instants
+        // from this pixel's previous q.
+        int steps = 2;
+        if (s == 0 && u > 0) {
+          q_u_[i] = map_u_[i] + (q_u_[i - 1] - map_u_[i - 1]);
+          q_v_[i] = map_v_[i] + (q_v_[i - 1] - map_v_[i - 1]);
+        } else if (s == 0) {
+          steps = 3;
+        }
+        Solve(k, m, inverse_depth_.data(), render_.width_px, render_.height_px, map_u_[i],
+              map_v_[i], steps, &q_u_[i], &q_v_[i]);
         sum_[i] +=
             Bilinear(rendered.pixels.data(), rendered.width, rendered.height, q_u_[i], q_v_[i]);
       }

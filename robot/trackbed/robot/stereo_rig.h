@@ -12,6 +12,8 @@
 #include "trackbed/common/archive.h"
 #include "trackbed/common/robot_calibration.h"
 #include "trackbed/common/stereo_camera.h"
+#include "trackbed/robot/auto_exposure.h"
+#include "trackbed/robot/image_sensor.h"
 #include "trackbed/sim/image.h"
 #include "trackbed/sim/pinhole.h"
 
@@ -64,6 +66,12 @@ struct StereoRigOptions {
   /// software: drawn about it). Absent: the realism profile's (docs/camera_model.md).
   std::optional<geometry::LensDistortion> distortion;
   RollingShutterOptions rolling_shutter;
+  /// The sensor in electrons (robot/image_sensor.h); when enabled it replaces
+  /// `noise_std`'s grey-level noise.
+  PhotometricOptions photometric;
+  /// Exposure time and gain set frame by frame (robot/auto_exposure.h); the render shows
+  /// the scene at `exposure_time_s`, the controller's first exposure.
+  AutoExposureOptions auto_exposure;
   /// Camera faults: [start, duration] pairs [s] during which both cameras deliver black
   /// frames (a covered lens, a dropped link), for fault tests.
   std::vector<Eigen::Vector2d> blackouts_s;
@@ -93,6 +101,8 @@ struct StereoRigOptions {
     a->Visit("blackouts_s", &blackouts_s);
     a->Visit("distortion", &distortion, archive::kOmitEmpty);
     a->Visit("rolling_shutter", &rolling_shutter);
+    a->Visit("photometric", &photometric);
+    a->Visit("auto_exposure", &auto_exposure);
   }
 };
 

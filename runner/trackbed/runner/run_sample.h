@@ -43,7 +43,9 @@ struct StereoFrame {
   Eigen::Isometry3d T_world_left;  ///< Ground truth of the left camera (OpenCV axes).
   Eigen::Isometry3d T_world_right;
   const robot::StereoRig* rig = nullptr;
-  bool blackout = false;  ///< A camera fault blanked this pair (robot.stereo.blackouts_s).
+  bool blackout = false;         ///< A camera fault blanked this pair (robot.stereo.blackouts_s).
+  double exposure_time_s = 0.0;  ///< how long each row's shutter was open [s]
+  double gain = 1.0;             ///< the analog gain the auto-exposure set (1 without it)
   /// The encoders' last reading (counts since start), taken with this pair.
   std::int64_t ticks[2] = {0, 0};
 };

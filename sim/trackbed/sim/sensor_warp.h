@@ -12,8 +12,9 @@
 //     A(t) the camera's motion from the render's instant to t;
 //   pixel = the mean over k of the render, bilinear at q.
 //
-// q is found by the fixed-point iteration q ← q + p0 − project(A · X(q)) from q = p0
-// (three steps for the first instant, two from the previous instant's q after it):
+// q is found by the fixed-point iteration q ← q + p0 − project(A · X(q)), two steps from
+// the left neighbour's shift for the first instant (three at a row's start), two from
+// the previous instant's q after it:
 // exact where the depth is smooth, wrong by up to the parallax across a depth edge,
 // which is what a per-band render would get right (sensor_warp_test states the error
 // against per-band renders). Sky (infinite depth) moves by the rotation only.
@@ -85,7 +86,7 @@ class SensorWarp {
   bool identity_ = false;
   // Each sensor pixel's ray as a render pixel (row-major, sensor size).
   std::vector<float> map_u_, map_v_;
-  std::vector<float> sum_;
+  std::vector<float> sum_, inverse_depth_;
   std::vector<float> q_u_, q_v_;
 };
 

@@ -1,0 +1,106 @@
+// The image sensor in electrons (see image_sensor.h).
+#include "trackbed/robot/image_sensor.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "trackbed/common/option_error.h"
+#include "trackbed/common/random.h"
+#include "trackbed/common/split_mix.h"
+
+namespace trackbed::robot {
+namespace {
+
+// 65536 standard normal values (Box–Muller from a fixed seed), built once: a pixel's
+// noise is one of them, picked by 16 random bits.
+const std::vector<float>& UnitNormals() {
+  static const std::vector<float> table = [] {
+    std::vector<float> t(1 << 16);
+    random::Generator g(0x5e4503ULL);
+    for (float& v : t) v = static_cast<float>(g.Gaussian());
+    return t;
+  }();
+  return table;
+}
+
+}  // namespace
+
+void PhotometricOptions::Validate() const {
+  if (full_well_e) option_check::Positive("photometric.full_well_e", *full_well_e);
+  if (read_noise_e) option_check::NonNegative("photometric.read_noise_e", *read_noise_e);
+  if (prnu_std) option_check::InRange("photometric.prnu_std", *prnu_std, 0.0, 0.5);
+  if (dsnu_std_e) option_check::NonNegative("photometric.dsnu_std_e", *dsnu_std_e);
+  if (adc_bits && (*adc_bits < 8 || *adc_bits > 16)) {
+    throw OptionError("photometric.adc_bits",
+                      "must be in [8, 16] (got " + std::to_string(*adc_bits) + ")");
+  }
+  if (vignetting_corner) {
+    option_check::InRange("photometric.vignetting_corner", *vignetting_corner, 1e-3, 1.0);
+  }
+  if (gain) option_check::InRange("photometric.gain", *gain, 1.0, 1000.0);
+}
+
+ImageSensor::ImageSensor(const PhotometricOptions& options, int width_px, int height_px,
+                         std::uint64_t seed, int camera)
+    : o_(options), width_(width_px), height_(height_px), camera_(camera) {
+  o_.Validate();
+  if (!(o_.full_well_e && o_.read_noise_e && o_.prnu_std && o_.dsnu_std_e && o_.adc_bits &&
+        o_.vignetting_corner && o_.gain)) {
+    throw OptionError("photometric", "every key must be resolved");
+  }
+  const std::size_t n = static_cast<std::size_t>(width_px) * height_px;
+  gain_map_.resize(n);
+  offset_map_.resize(n);
+  random::Generator g(split_mix::Mix(seed ^ (0xf1c3d0ULL + static_cast<std::uint64_t>(camera))));
+  const double cx = 0.5 * (width_px - 1), cy = 0.5 * (height_px - 1);
+  const double half_diagonal2 = cx * cx + cy * cy;
+  for (int v = 0; v < height_px; ++v) {
+    for (int u = 0; u < width_px; ++u) {
+      const double r2 = ((u - cx) * (u - cx) + (v - cy) * (v - cy)) / half_diagonal2;
+      const double vignetting = 1.0 + (*o_.vignetting_corner - 1.0) * r2;
+      const std::size_t i = static_cast<std::size_t>(v) * width_px + u;
+      const double prnu = g.Gaussian(), dsnu = g.Gaussian();
+      gain_map_[i] = static_cast<float>(vignetting * (1.0 + *o_.prnu_std * prnu));
+      offset_map_[i] = static_cast<float>(*o_.dsnu_std_e * dsnu);
+    }
+  }
+}
+
+double ImageSensor::electrons_per_grey() const { return *o_.full_well_e / (*o_.gain * 255.0); }
+
+void ImageSensor::Apply(double exposure, std::uint64_t seed, std::uint64_t frame, GrayImage* image,
+                        double gain) const {
+  if (image->width != width_ || image->height != height_) {
+    throw std::invalid_argument("ImageSensor: the image is not the sensor's size");
+  }
+  const float full_well = static_cast<float>(*o_.full_well_e);
+  const float signal_per_grey = static_cast<float>(exposure / 255.0) * full_well;
+  const float read2 = static_cast<float>(*o_.read_noise_e * *o_.read_noise_e);
+  const float dn_max = static_cast<float>((1 << *o_.adc_bits) - 1);
+  const float dn_per_e = static_cast<float>(*o_.gain * gain) * dn_max / full_well;
+  const float grey_per_dn = 255.0f / dn_max;
+  const std::vector<float>& normal = UnitNormals();
+  // A xorshift64* stream keyed by (seed, frame, camera), 16 bits per pixel indexing the
+  // table (as ApplySensorModel's noise).
+  std::uint64_t x =
+      split_mix::Mix(seed ^ split_mix::Mix(frame * 2 + static_cast<std::uint64_t>(camera_))) | 1;
+  std::uint64_t bits = 0;
+  std::uint8_t* px = image->pixels.data();
+  for (std::size_t i = 0; i < image->pixels.size(); ++i) {
+    if ((i & 3) == 0) {
+      x ^= x >> 12;
+      x ^= x << 25;
+      x ^= x >> 27;
+      bits = x * 0x2545f4914f6cdd1dULL;
+    }
+    const float n = normal[(bits >> (16 * (i & 3))) & 0xffff];
+    const float signal = signal_per_grey * static_cast<float>(px[i]) * gain_map_[i];
+    const float sigma = std::sqrt(std::max(signal, 0.0f) + read2);
+    const float charge = signal + offset_map_[i] + sigma * n;
+    const float dn = std::min(std::max(std::nearbyint(charge * dn_per_e), 0.0f), dn_max);
+    px[i] = static_cast<std::uint8_t>(std::nearbyint(dn * grey_per_dn));
+  }
+}
+
+}  // namespace trackbed::robot

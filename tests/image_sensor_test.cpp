@@ -1,0 +1,149 @@
+// The image sensor in electrons (robot/image_sensor.h): a photon-transfer test (noise
+// variance against mean grey level follows shot + read noise through the conversion
+// gain), vignetting at the corners, a fixed pattern fixed per camera, images
+// reproducible from (seed, frame, camera).
+#include "trackbed/robot/image_sensor.h"
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+namespace trackbed::robot {
+namespace {
+
+PhotometricOptions Sensor(double full_well, double read_noise) {
+  PhotometricOptions o;
+  o.enabled = true;
+  o.full_well_e = full_well;
+  o.read_noise_e = read_noise;
+  o.prnu_std = 0.0;
+  o.dsnu_std_e = 0.0;
+  o.adc_bits = 12;
+  o.vignetting_corner = 1.0;
+  o.gain = 1.0;
+  return o;
+}
+
+GrayImage Flat(int grey) {
+  GrayImage g;
+  g.width = 320;
+  g.height = 240;
+  g.pixels.assign(static_cast<std::size_t>(g.width) * g.height, static_cast<std::uint8_t>(grey));
+  return g;
+}
+
+struct Moments {
+  double mean = 0.0, variance = 0.0;
+};
+
+// Mean and variance of the difference of two frames (the fixed pattern cancels), the
+// photon-transfer method of EMVA 1288: variance = var(a − b) / 2.
+Moments FrameMoments(const ImageSensor& sensor, int grey, double exposure) {
+  GrayImage a = Flat(grey), b = Flat(grey);
+  sensor.Apply(exposure, 7, 1, &a);
+  sensor.Apply(exposure, 7, 2, &b);
+  double sum = 0, diff = 0, diff2 = 0;
+  for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+    sum += 0.5 * (a.pixels[i] + b.pixels[i]);
+    const double d = double(a.pixels[i]) - double(b.pixels[i]);
+    diff += d, diff2 += d * d;
+  }
+  const double n = static_cast<double>(a.pixels.size());
+  return {sum / n, 0.5 * (diff2 / n - (diff / n) * (diff / n))};
+}
+
+// A small full well (harsh's ICX625, 7000 e⁻, 13 e⁻ read noise): at gain 1 one grey
+// level is 27.5 e⁻, so mean μ grey levels carry 27.5 μ e⁻ of shot noise and the
+// variance in grey levels is μ / 27.5 + (13 / 27.5)² + 1/12 (rounding to 8 bits).
+TEST(ImageSensorTest, VarianceAgainstMeanFollowsShotAndReadNoise) {
+  const PhotometricOptions o = Sensor(7000.0, 13.0);
+  const ImageSensor sensor(o, 320, 240, 3, 0);
+  const double k = sensor.electrons_per_grey();
+  EXPECT_NEAR(k, 7000.0 / 255.0, 1e-9);
+  std::vector<double> means, variances;
+  for (int grey : {8, 32, 64, 128, 192, 240}) {
+    const Moments m = FrameMoments(sensor, grey, 1.0);
+    const double expected = m.mean / k + std::pow(13.0 / k, 2) + 1.0 / 12.0;
+    std::printf("grey %3d: mean %7.2f, variance %.3f (shot + read + rounding: %.3f)\n", grey,
+                m.mean, m.variance, expected);
+    EXPECT_NEAR(m.mean, grey, 0.1);
+    EXPECT_NEAR(m.variance, expected, 0.08 * expected);
+    means.push_back(m.mean);
+    variances.push_back(m.variance);
+  }
+  // The photon-transfer slope: one grey level per k electrons.
+  const double slope = (variances.back() - variances.front()) / (means.back() - means.front());
+  std::printf("photon-transfer slope %.4f grey levels per grey level (1/k = %.4f)\n", slope, 1 / k);
+  EXPECT_NEAR(slope, 1.0 / k, 0.05 / k);
+  // Twice the gain: the same light, twice the grey levels and four times the variance.
+  PhotometricOptions doubled = o;
+  doubled.gain = 2.0;
+  const Moments d = FrameMoments(ImageSensor(doubled, 320, 240, 3, 0), 64, 1.0);
+  const Moments s = FrameMoments(sensor, 64, 1.0);
+  EXPECT_NEAR(d.mean, 2 * s.mean, 0.2);
+  EXPECT_NEAR(d.variance, 4 * (s.variance - 1.0 / 12) + 1.0 / 12, 0.1 * d.variance);
+}
+
+// Vignetting: a flat field comes out `corner` times as bright at the corners as at the
+// centre; PRNU is a pattern fixed per camera (the same in every frame); frames repeat
+// from (seed, frame) and differ between frames.
+TEST(ImageSensorTest, VignettingAndFixedPatternAndReproducibleFrames) {
+  PhotometricOptions o = Sensor(32691.0, 6.83);
+  o.vignetting_corner = 0.5;
+  o.prnu_std = 0.02;
+  const ImageSensor sensor(o, 320, 240, 3, 0);
+  GrayImage a = Flat(200), b = Flat(200);
+  sensor.Apply(1.0, 7, 1, &a);
+  sensor.Apply(1.0, 7, 1, &b);
+  EXPECT_EQ(a.pixels, b.pixels);
+  const auto mean_at = [&](const GrayImage& g, int u0, int v0) {
+    double s = 0;
+    for (int v = v0; v < v0 + 4; ++v) {
+      for (int u = u0; u < u0 + 4; ++u) s += g.at(u, v);
+    }
+    return s / 16;
+  };
+  const double centre = mean_at(a, 158, 118), corner = mean_at(a, 0, 0);
+  std::printf("flat field 200: centre %.1f, corner %.1f\n", centre, corner);
+  EXPECT_NEAR(centre, 200.0, 4.0);
+  EXPECT_NEAR(corner / centre, 0.5, 0.03);
+  // The same pattern in two frames: in the centre, one frame's spread holds the 2 %
+  // PRNU (4 grey levels) and the temporal noise; their difference, the noise alone.
+  GrayImage c = Flat(200);
+  sensor.Apply(1.0, 7, 2, &c);
+  double s1 = 0, s2 = 0, d1 = 0, d2 = 0;
+  int n = 0;
+  for (int v = 100; v < 140; ++v) {
+    for (int u = 140; u < 180; ++u, ++n) {
+      const double x = a.at(u, v), d = x - c.at(u, v);
+      s1 += x, s2 += x * x, d1 += d, d2 += d * d;
+    }
+  }
+  const double spread = std::sqrt(s2 / n - (s1 / n) * (s1 / n));
+  const double temporal = std::sqrt(0.5 * (d2 / n - (d1 / n) * (d1 / n)));
+  std::printf("centre: spread %.2f grey levels in a frame, %.2f between frames\n", spread,
+              temporal);
+  EXPECT_GT(spread, 3.0 * temporal);
+  const ImageSensor other(o, 320, 240, 3, 1);  // the other camera's pattern
+  GrayImage d = Flat(200);
+  other.Apply(1.0, 7, 1, &d);
+  EXPECT_NE(a.pixels, d.pixels);
+}
+
+TEST(ImageSensorTest, BadOptionsNameTheirKey) {
+  PhotometricOptions o = Sensor(7000.0, 13.0);
+  o.adc_bits = 20;
+  try {
+    ImageSensor(o, 32, 32, 1, 0);
+    FAIL() << "no error";
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.field(), "photometric.adc_bits");
+  }
+  o = Sensor(-1.0, 13.0);
+  EXPECT_THROW(ImageSensor(o, 32, 32, 1, 0), OptionError);
+}
+
+}  // namespace
+}  // namespace trackbed::robot
