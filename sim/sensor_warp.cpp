@@ -200,8 +200,9 @@ void SensorWarp::Apply(const GrayImage& rendered, const DepthImage* depth,
         const std::size_t i = row + u;
         // Warm starts: the first instant from the left neighbour's shift (the shift
         // changes slowly along a row), three steps at a row's start; later instants
-        // from this pixel's previous q.
-        int steps = 2;
+        // from this pixel's previous q. One step from a warm start matches per-band
+        // renders as closely as two did (sensor_warp_test) at half the cost.
+        int steps = 1;
         if (s == 0 && u > 0) {
           q_u_[i] = map_u_[i] + (q_u_[i - 1] - map_u_[i - 1]);
           q_v_[i] = map_v_[i] + (q_v_[i - 1] - map_v_[i - 1]);

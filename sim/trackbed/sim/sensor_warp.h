@@ -12,8 +12,8 @@
 //     A(t) the camera's motion from the render's instant to t;
 //   pixel = the mean over k of the render, bilinear at q.
 //
-// q is found by the fixed-point iteration q ← q + p0 − project(A · X(q)), two steps from
-// the left neighbour's shift for the first instant (three at a row's start), two from
+// q is found by the fixed-point iteration q ← q + p0 − project(A · X(q)): one step from
+// the left neighbour's shift for the first instant (three at a row's start), one from
 // the previous instant's q after it:
 // exact where the depth is smooth, wrong by up to the parallax across a depth edge,
 // which is what a per-band render would get right (sensor_warp_test states the error
