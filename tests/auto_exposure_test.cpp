@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "render_test_scene.h"
 #include "trackbed/common/units.h"
 #include "trackbed/sim/camera_exposure.h"
 #include "trackbed/sim/renderer.h"
@@ -96,18 +97,10 @@ double RampLength(const GrayImage& image, int row, double bright) {
 // Darkened, the controller lengthens the exposure; yawing at 1 rad/s, the edge of a
 // plate smears over ω · exposure · f pixels at each exposure it chose.
 TEST(AutoExposureTest, TheBlurFollowsTheExposureTimeItChose) {
-  sim::TerrainOptions t;
-  t.extent_m = {-2, -6, 12, 6};
-  sim::StaticObject plate;
-  plate.kind = "box";
-  plate.appearance = "plain_paint";
-  plate.center_m = {4.0005, 0.0};
-  plate.base_z_m = 99.5;
-  plate.size_m = {0.001, 1.0, 1.0};
-  plate.collides = false;
-  const sim::World world(sim::WorldOptions{}, sim::Terrain(t, 1), {plate});
-  sim::SceneAppearance flat;
-  flat.ambient = 1.0, flat.diffuse = 0.0, flat.sky_gray = 0.0, flat.tree_crowns = false;
+  // A 1 m plate 4 m ahead, 100 m above the floor (out of view), against a black sky.
+  const sim::World world =
+      sim::test::FlatWorld({sim::test::Plate({4.0, 0.0, 100.0}, 1.0, 1.0, "plain_paint")});
+  const sim::SceneAppearance flat = sim::test::AmbientOnly();
   const geometry::PinholeCamera K =
       geometry::PinholeCamera::FromFieldOfView(640, 480, units::Radians(80.0));
   const geometry::PinholeCamera render = sim::RenderCameraFor(K, 8);

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "render_test_scene.h"
 #include "trackbed/perception/opencv_views.h"
 #include "trackbed/perception/stereo_rectifier.h"
 #include "trackbed/robot/as_built.h"
@@ -19,16 +20,9 @@
 namespace trackbed {
 namespace {
 
-// A square plate of uniform paint facing −x, its front face centred at `c`.
+// A square plate of uniform paint facing the cameras, its front face centred at `c`.
 sim::StaticObject Plate(const Eigen::Vector3d& c, double side) {
-  sim::StaticObject o;
-  o.kind = "box";
-  o.appearance = "plain_paint";
-  o.center_m = c.head<2>() + Eigen::Vector2d(0.0005, 0);
-  o.base_z_m = c.z() - side / 2;
-  o.size_m = {0.001, side, side};
-  o.collides = false;
-  return o;
+  return sim::test::Plate(c, side, side, "plain_paint");
 }
 
 // Grey-level centroid of a window of `image` around (u, v).
@@ -70,12 +64,8 @@ PairError Measure(const calibration::StereoCalibration& as_built,
   for (const Eigen::Vector2d& p : xy) {
     plates.push_back(Plate(T_world_left * Eigen::Vector3d(p.x(), p.y(), depth), side));
   }
-  sim::TerrainOptions t;
-  t.extent_m = {-2, -6, 12, 6};
-  t.cell_size_m = 0.5;
-  const sim::World world(sim::WorldOptions{}, sim::Terrain(t, 1), plates);
-  sim::SceneAppearance flat;
-  flat.ambient = 1.0, flat.diffuse = 0.0, flat.sky_gray = 0.0, flat.tree_crowns = false;
+  const sim::World world = sim::test::FlatWorld(plates);
+  const sim::SceneAppearance flat = sim::test::AmbientOnly();
   const geometry::PinholeCamera left_render = sim::RenderCameraFor(rig.intrinsics(), 0);
   const geometry::PinholeCamera right_render = sim::RenderCameraFor(rig.right_intrinsics(), 0);
   const int w = std::max(left_render.width_px, right_render.width_px);

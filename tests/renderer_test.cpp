@@ -12,39 +12,19 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
+#include "render_test_scene.h"
 #include "trackbed/robot/stereo_rig.h"
 
 namespace trackbed::sim {
 namespace {
 
-// A flat floor under a black sky, lit by ambient light only (flat shading).
-World MakeWorld(std::vector<StaticObject> objects) {
-  TerrainOptions t;
-  t.extent_m = {-2, -6, 12, 6};
-  t.cell_size_m = 0.5;
-  return World(WorldOptions{}, Terrain(t, 1), std::move(objects));
-}
+World MakeWorld(std::vector<StaticObject> objects) { return test::FlatWorld(std::move(objects)); }
 
-SceneAppearance Flat() {
-  SceneAppearance a;
-  a.ambient = 1.0;
-  a.diffuse = 0.0;
-  a.sky_gray = 0.0;
-  a.tree_crowns = false;
-  return a;
-}
+SceneAppearance Flat() { return test::AmbientOnly(); }
 
-// A thin square plate facing −x (towards the cameras), its front face centred
-// at `c`, of side `side` (1 mm thick, so no other face shows).
+// A square plate of side `side` facing the cameras, its front face centred at `c`.
 StaticObject Marker(const Eigen::Vector3d& c, double side, const std::string& appearance) {
-  StaticObject o;
-  o.kind = "box";
-  o.appearance = appearance;
-  o.center_m = c.head<2>() + Eigen::Vector2d(0.0005, 0);  // front face at x = c.x
-  o.base_z_m = c.z() - side / 2;
-  o.size_m = {0.001, side, side};
-  o.collides = false;
-  return o;
+  return test::Plate(c, side, side, appearance);
 }
 
 // The rig on a body at (0, 0, 0.7) looking along +x, level.

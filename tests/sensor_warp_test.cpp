@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include "render_test_scene.h"
 #include "trackbed/common/units.h"
 #include "trackbed/robot/stereo_rig.h"
 #include "trackbed/sim/camera_exposure.h"
@@ -19,36 +20,13 @@
 namespace trackbed::sim {
 namespace {
 
-// A flat floor under a black sky, lit by ambient light only.
+// A floor 80 m across, the scene's plates (render_test_scene.h).
 World MakeWorld(std::vector<StaticObject> objects) {
-  TerrainOptions t;
-  t.extent_m = {-2, -40, 40, 40};
-  t.cell_size_m = 0.5;
-  return World(WorldOptions{}, Terrain(t, 1), std::move(objects));
+  return test::FlatWorld(std::move(objects), {-2, -40, 40, 40});
 }
 
-SceneAppearance Flat() {
-  SceneAppearance a;
-  a.ambient = 1.0;
-  a.diffuse = 0.0;
-  a.sky_gray = 0.0;
-  a.tree_crowns = false;
-  return a;
-}
-
-// A thin plate facing −x, its front face centred at `c`, `width` across (y) and
-// `height` tall.
-StaticObject Plate(const Eigen::Vector3d& c, double width, double height,
-                   const std::string& appearance) {
-  StaticObject o;
-  o.kind = "box";
-  o.appearance = appearance;
-  o.center_m = c.head<2>() + Eigen::Vector2d(0.0005, 0);
-  o.base_z_m = c.z() - height / 2;
-  o.size_m = {0.001, width, height};
-  o.collides = false;
-  return o;
-}
+SceneAppearance Flat() { return test::AmbientOnly(); }
+using test::Plate;
 
 // A level camera looking along +x (OpenCV axes), on a body whose origin is the
 // camera's centre.

@@ -1,0 +1,49 @@
+// Scenes for the renderer's and the camera's tests: a flat floor under a black sky lit
+// by ambient light alone, and thin plates to see.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "trackbed/sim/renderer.h"
+#include "trackbed/sim/world.h"
+
+namespace trackbed::sim::test {
+
+/// A flat floor over `extent_m` (x_min, y_min, x_max, y_max) with `objects` on it.
+inline World FlatWorld(std::vector<StaticObject> objects,
+                       const Eigen::Vector4d& extent_m = {-2, -6, 12, 6}) {
+  TerrainOptions t;
+  t.extent_m = extent_m;
+  t.cell_size_m = 0.5;
+  return World(WorldOptions{}, Terrain(t, 1), std::move(objects));
+}
+
+/// Ambient light only (flat shading), a black sky, no tree crowns.
+inline SceneAppearance AmbientOnly() {
+  SceneAppearance a;
+  a.ambient = 1.0;
+  a.diffuse = 0.0;
+  a.sky_gray = 0.0;
+  a.tree_crowns = false;
+  return a;
+}
+
+/// A thin plate facing −x (towards a camera looking along +x), its front face centred at
+/// `c`, `width` across (y) and `height` tall (1 mm thick, so no other face shows).
+inline StaticObject Plate(const Eigen::Vector3d& c, double width, double height,
+                          const std::string& appearance) {
+  StaticObject o;
+  o.kind = "box";
+  o.appearance = appearance;
+  o.center_m = c.head<2>() + Eigen::Vector2d(0.0005, 0);  // front face at x = c.x
+  o.base_z_m = c.z() - height / 2;
+  o.size_m = {0.001, width, height};
+  o.collides = false;
+  return o;
+}
+
+}  // namespace trackbed::sim::test
