@@ -42,6 +42,10 @@ void StereoRigOptions::Validate() const {
     option_check::InRange("rolling_shutter.line_delay_s", *rolling_shutter.line_delay_s, 0.0,
                           1.0 / (rate_hz * height_px));
   }
+  if (supersampling < 1 || supersampling > 4) {
+    throw OptionError("supersampling",
+                      "must be in [1, 4] (got " + std::to_string(supersampling) + ")");
+  }
   photometric.Validate();
   if (auto_exposure.enabled) {
     auto_exposure.Validate();

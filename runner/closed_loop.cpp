@@ -368,13 +368,16 @@ void ClosedLoop::Impl::BuildCameras() {
   const scenario::RobotSpec& rs = scenario_.robot;
   const robot::StereoRigOptions stereo = robot::WithCameraEffectsResolved(rs.stereo, rs.realism);
   rig_.emplace(stereo, *robot_.truth.stereo);
-  // Four pixels of margin: what a rolling shutter or blur warp may reach past the edge.
+  // Four pixels of margin: what a rolling shutter or blur warp may reach past the edge;
+  // the render drawn `supersampling` times as finely.
   const int margin = stereo.distortion->is_zero() && *stereo.rolling_shutter.line_delay_s == 0 &&
                              stereo.exposure_time_s == 0
                          ? 0
                          : 4;
-  const geometry::PinholeCamera left = sim::RenderCameraFor(rig_->intrinsics(), margin);
-  const geometry::PinholeCamera right = sim::RenderCameraFor(rig_->right_intrinsics(), margin);
+  const geometry::PinholeCamera left =
+      sim::Supersampled(sim::RenderCameraFor(rig_->intrinsics(), margin), stereo.supersampling);
+  const geometry::PinholeCamera right = sim::Supersampled(
+      sim::RenderCameraFor(rig_->right_intrinsics(), margin), stereo.supersampling);
   const int w = std::max(left.width_px, right.width_px);
   const int h = std::max(left.height_px, right.height_px);
   renderer_ = std::make_unique<sim::Renderer>(

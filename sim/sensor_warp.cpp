@@ -107,6 +107,20 @@ geometry::PinholeCamera RenderCameraFor(const geometry::PinholeCamera& sensor, i
   return render;
 }
 
+geometry::PinholeCamera Supersampled(const geometry::PinholeCamera& camera, int factor) {
+  if (factor < 1 || factor > 4) throw std::invalid_argument("Supersampled: factor not in [1, 4]");
+  if (factor == 1) return camera;
+  geometry::PinholeCamera fine = camera;
+  fine.fx *= factor;
+  fine.fy *= factor;
+  // Pixel u's centre is at factor·u + (factor − 1)/2 in the finer grid.
+  fine.cx = factor * camera.cx + 0.5 * (factor - 1);
+  fine.cy = factor * camera.cy + 0.5 * (factor - 1);
+  fine.width_px *= factor;
+  fine.height_px *= factor;
+  return fine;
+}
+
 geometry::PinholeCamera GrownTo(const geometry::PinholeCamera& camera, int width_px,
                                 int height_px) {
   if (width_px < camera.width_px || height_px < camera.height_px) {

@@ -256,5 +256,28 @@ TEST(SensorWarpTest, AnExposureSmearsAnEdgeByTheCameraMotionDuringIt) {
   EXPECT_NEAR(mass_blurred, mass_plain, 0.3);
 }
 
+// Supersampled twice, each pixel is the mean of the 2 × 2 render pixels it covers
+// (to rounding): what a pixel integrating over its area records.
+TEST(SensorWarpTest, ASupersampledPixelIsTheMeanOfTheRenderPixelsItCovers) {
+  const World world = MakeWorld({Plate({3.0, 0.4, 1.2}, 0.7, 0.5, "brick")});
+  const geometry::PinholeCamera K = Camera();
+  const geometry::PinholeCamera fine = Supersampled(K, 2);
+  ASSERT_EQ(fine.width_px, 1280);
+  Renderer renderer(world, Flat(), {}, 3, fine.width_px, fine.height_px, 0.05, 120.0);
+  CameraExposure camera(K, fine, 1, 0.0);
+  GrayImage image, render;
+  camera.Render(renderer, AtRest(), T_body_camera(), 0.0, 0.0, &image);
+  renderer.Render(fine, AtRest().T_world_body * T_body_camera(), 0.0, &render, nullptr);
+  int worst = 0;
+  for (int v = 0; v < 480; ++v) {
+    for (int u = 0; u < 640; ++u) {
+      const int sum = render.at(2 * u, 2 * v) + render.at(2 * u + 1, 2 * v) +
+                      render.at(2 * u, 2 * v + 1) + render.at(2 * u + 1, 2 * v + 1);
+      worst = std::max(worst, std::abs(4 * image.at(u, v) - sum));
+    }
+  }
+  EXPECT_LE(worst, 2);  // 4 × (mean rounded) differs from the sum by at most 2
+}
+
 }  // namespace
 }  // namespace trackbed::sim

@@ -72,6 +72,10 @@ struct StereoRigOptions {
   /// Exposure time and gain set frame by frame (robot/auto_exposure.h); the render shows
   /// the scene at `exposure_time_s`, the controller's first exposure.
   AutoExposureOptions auto_exposure;
+  /// Render pixels per image pixel along each axis, in [1, 4]: above 1 each pixel is
+  /// the mean over its area instead of one point of the scene (antialiasing), at
+  /// `supersampling`² times the pixels to draw (docs/camera_model.md).
+  int supersampling = 1;
   /// Camera faults: [start, duration] pairs [s] during which both cameras deliver black
   /// frames (a covered lens, a dropped link), for fault tests.
   std::vector<Eigen::Vector2d> blackouts_s;
@@ -99,6 +103,7 @@ struct StereoRigOptions {
     a->Visit("exposure_time_s", &exposure_time_s);
     a->Visit("exposure_samples", &exposure_samples);
     a->Visit("blackouts_s", &blackouts_s);
+    a->Visit("supersampling", &supersampling);
     a->Visit("distortion", &distortion, archive::kOmitEmpty);
     a->Visit("rolling_shutter", &rolling_shutter);
     a->Visit("photometric", &photometric);

@@ -52,6 +52,13 @@ struct SensorTiming {
 /// (beyond 160° across, where the render would grow without bound).
 geometry::PinholeCamera RenderCameraFor(const geometry::PinholeCamera& sensor, int margin_px);
 
+/// `camera` drawn `factor` times as finely (factor × factor render pixels per pixel,
+/// the render camera's pixel (u, v) covering the supersampled pixels from factor·u to
+/// factor·u + factor − 1): a sensor pixel then takes the mean of the renders' pixels it
+/// covers rather than one point of the scene, as a real pixel integrates over its area.
+/// `factor` in [1, 4]; 1 returns `camera`.
+geometry::PinholeCamera Supersampled(const geometry::PinholeCamera& camera, int factor);
+
 /// `camera` grown to `width_px` × `height_px` (at least its size) about the same rays:
 /// the principal point moves by half the growth, rounded down.
 geometry::PinholeCamera GrownTo(const geometry::PinholeCamera& camera, int width_px, int height_px);
