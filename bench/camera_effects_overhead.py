@@ -2,7 +2,7 @@
 """What each image effect of the camera costs in speed (docs/camera_model.md): the outdoor
 park on the ideal robot with a pinhole global-shutter camera, and with one effect on at a
 time (EuRoC's lens; a 68.75 us rolling shutter; a 10 ms exposure warped at 4 instants;
-all of harsh's camera), each run --repeats times interleaved, by the real-time factor
+lens and shutter; 2 x 2 samples per pixel, without and with the lens), each run --repeats times interleaved, by the real-time factor
 metrics.json reports. A benchmark: it prints figures and ratios to the plain camera, pair
 by pair; it never fails on them.
 
@@ -25,6 +25,8 @@ VARIANTS = {
     "rolling shutter": [SHUTTER],
     "10 ms exposure": ["robot.stereo.exposure_time_s=0.01"],
     "lens + shutter": [LENS, SHUTTER],
+    "supersampled 2x": ["robot.stereo.supersampling=2"],
+    "lens, 2x": [LENS, "robot.stereo.supersampling=2"],
 }
 
 
