@@ -4,6 +4,9 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "trackbed/perception/lens_undistorter.h"
+#include "trackbed/perception/opencv_views.h"
+
 namespace trackbed::perception {
 namespace {
 
@@ -13,35 +16,6 @@ cv::Matx33d ToCv(const Eigen::Matrix3d& m) {
     for (int c = 0; c < 3; ++c) out(r, c) = m(r, c);
   }
   return out;
-}
-
-cv::Matx33d CameraMatrix(const calibration::CameraIntrinsics& k) {
-  return {k.fx, 0.0, k.cx, 0.0, k.fy, k.cy, 0.0, 0.0, 1.0};
-}
-
-// OpenCV's coefficient vector for the lens: (k1, k2, p1, p2, k3) for calib3d's model,
-// (k1, k2, k3, k4) for its fisheye module.
-cv::Mat Coefficients(const geometry::LensDistortion& d) {
-  if (d.model == geometry::LensModel::kEquidistant) {
-    return (cv::Mat_<double>(1, 4) << d.k1, d.k2, d.k3, d.k4);
-  }
-  return (cv::Mat_<double>(1, 5) << d.k1, d.k2, d.p1, d.p2, d.k3);
-}
-
-bool IsFisheye(const calibration::CameraIntrinsics& k) {
-  return k.Lens().model == geometry::LensModel::kEquidistant;
-}
-
-// The map from a rectified camera's pixels to one camera's, through its lens.
-void RectifyMap(const calibration::CameraIntrinsics& k, const cv::Mat& R, const cv::Mat& P,
-                cv::Size size, cv::Mat* map_x, cv::Mat* map_y) {
-  if (IsFisheye(k)) {
-    cv::fisheye::initUndistortRectifyMap(CameraMatrix(k), Coefficients(k.Lens()), R, P, size,
-                                         CV_32FC1, *map_x, *map_y);
-  } else {
-    cv::initUndistortRectifyMap(CameraMatrix(k), Coefficients(k.Lens()), R, P, size, CV_32FC1,
-                                *map_x, *map_y);
-  }
 }
 
 }  // namespace
@@ -61,19 +35,23 @@ StereoRectifier::StereoRectifier(const calibration::StereoCalibration& given) {
                     T_right_left.translation().z());
   const cv::Size size(given.width_px, given.height_px);
   cv::Mat R1, R2, P1, P2, Q;
-  if (IsFisheye(given.left) || IsFisheye(given.right)) {
+  const geometry::PinholeCamera left = given.LeftCamera(), right = given.RightCamera();
+  const auto fisheye = [](const geometry::PinholeCamera& c) {
+    return c.distortion.model == geometry::LensModel::kEquidistant;
+  };
+  if (fisheye(left) || fisheye(right)) {
     // The fisheye module's rectification (balance 0: no invalid pixels in view).
-    cv::fisheye::stereoRectify(CameraMatrix(given.left), Coefficients(given.left.Lens()),
-                               CameraMatrix(given.right), Coefficients(given.right.Lens()), size, R,
+    cv::fisheye::stereoRectify(CvCameraMatrix(left), CvLensCoefficients(left.distortion),
+                               CvCameraMatrix(right), CvLensCoefficients(right.distortion), size, R,
                                T, R1, R2, P1, P2, Q, cv::CALIB_ZERO_DISPARITY, size,
                                /*balance=*/0.0);
   } else {
-    cv::stereoRectify(CameraMatrix(given.left), Coefficients(given.left.Lens()),
-                      CameraMatrix(given.right), Coefficients(given.right.Lens()), size, R, T, R1,
+    cv::stereoRectify(CvCameraMatrix(left), CvLensCoefficients(left.distortion),
+                      CvCameraMatrix(right), CvLensCoefficients(right.distortion), size, R, T, R1,
                       R2, P1, P2, Q, cv::CALIB_ZERO_DISPARITY, /*alpha=*/0.0, size);
   }
-  RectifyMap(given.left, R1, P1, size, &map_left_x_, &map_left_y_);
-  RectifyMap(given.right, R2, P2, size, &map_right_x_, &map_right_y_);
+  UndistortRectifyMap(left, R1, P1, &map_left_x_, &map_left_y_);
+  UndistortRectifyMap(right, R2, P2, &map_right_x_, &map_right_y_);
   camera_.left.width_px = given.width_px;
   camera_.left.height_px = given.height_px;
   camera_.left.fx = P1.at<double>(0, 0);

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "trackbed/common/units.h"
+
 namespace trackbed::sim {
 namespace {
 
@@ -32,12 +34,14 @@ struct Motion {
 
 // The render camera's intrinsics in single precision.
 struct Intrinsics {
-  float fx, fy, cx, cy;
+  float fx, fy, cx, cy, inv_fx, inv_fy;
   explicit Intrinsics(const geometry::PinholeCamera& K)
       : fx(static_cast<float>(K.fx)),
         fy(static_cast<float>(K.fy)),
         cx(static_cast<float>(K.cx)),
-        cy(static_cast<float>(K.cy)) {}
+        cy(static_cast<float>(K.cy)),
+        inv_fx(static_cast<float>(1.0 / K.fx)),
+        inv_fy(static_cast<float>(1.0 / K.fy)) {}
 };
 
 // `steps` fixed-point steps towards the render pixel q whose point the motion carries
@@ -46,12 +50,11 @@ struct Intrinsics {
 // translation then leaves in place), so sky and ground take the same arithmetic.
 inline void Solve(const Intrinsics& k, const Motion& m, const float* inverse_depth, int w, int h,
                   float u0, float v0, int steps, float* qu, float* qv) {
-  const float inv_fx = 1.0f / k.fx, inv_fy = 1.0f / k.fy;
   for (int i = 0; i < steps; ++i) {
     const int iu = std::min(std::max(static_cast<int>(*qu + 0.5f), 0), w - 1);
     const int iv = std::min(std::max(static_cast<int>(*qv + 0.5f), 0), h - 1);
     const float iz = inverse_depth[static_cast<std::size_t>(iv) * w + iu];
-    const float x = (*qu - k.cx) * inv_fx, y = (*qv - k.cy) * inv_fy;
+    const float x = (*qu - k.cx) * k.inv_fx, y = (*qv - k.cy) * k.inv_fy;
     const float X = m.R[0] * x + m.R[1] * y + m.R[2] + iz * m.t[0];
     const float Y = m.R[3] * x + m.R[4] * y + m.R[5] + iz * m.t[1];
     const float Z = m.R[6] * x + m.R[7] * y + m.R[8] + iz * m.t[2];
@@ -84,7 +87,7 @@ geometry::PinholeCamera RenderCameraFor(const geometry::PinholeCamera& sensor, i
   const int w = sensor.width_px, h = sensor.height_px;
   for (int u = 0; u < w; ++u) take(u, 0), take(u, h - 1);
   for (int v = 0; v < h; ++v) take(0, v), take(w - 1, v);
-  const double limit = 2.0 * std::tan(80.0 * M_PI / 180.0);
+  const double limit = 2.0 * std::tan(units::Radians(80.0));
   if (x_max - x_min > limit || y_max - y_min > limit) {
     throw std::invalid_argument(
         "RenderCameraFor: the lens sees more than 160 degrees across, which a pinhole "

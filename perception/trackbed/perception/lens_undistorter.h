@@ -10,6 +10,16 @@
 
 namespace trackbed::perception {
 
+/// OpenCV's coefficient vector for `lens`: (k1, k2, p1, p2, k3) for calib3d's
+/// radial–tangential model, (k1, k2, k3, k4) for its fisheye module.
+cv::Mat CvLensCoefficients(const geometry::LensDistortion& lens);
+
+/// The map from the pixels of a rectified camera (projection P, rotated by R from
+/// `camera`'s frame) to `camera`'s pixels through its lens, as
+/// initUndistortRectifyMap makes it (the fisheye module's for an equidistant lens).
+void UndistortRectifyMap(const geometry::PinholeCamera& camera, const cv::Mat& R, const cv::Mat& P,
+                         cv::Mat* map_x, cv::Mat* map_y);
+
 class LensUndistorter {
  public:
   /// Throws OptionError for an invalid camera or lens.
