@@ -165,17 +165,39 @@ SensorWarp::SensorWarp(const geometry::PinholeCamera& sensor, const geometry::Pi
       map_v_[static_cast<std::size_t>(v) * w + u] = static_cast<float>(rv);
     }
   }
+  BuildLensTable();
+}
+
+void SensorWarp::BuildLensTable() {
+  // Bilinear as Bilinear() samples, clamped to the edge, its weights rounded to 1/256
+  // of a pixel (at most 1/512 px off the ray).
+  const int rw = render_.width_px, rh = render_.height_px;
+  lens_index_.resize(map_u_.size());
+  lens_a_.resize(map_u_.size());
+  lens_b_.resize(map_u_.size());
+  for (std::size_t i = 0; i < map_u_.size(); ++i) {
+    const float u = std::min(std::max(map_u_[i], 0.0f), static_cast<float>(rw - 1));
+    const float v = std::min(std::max(map_v_[i], 0.0f), static_cast<float>(rh - 1));
+    const int u0 = std::min(static_cast<int>(u), rw - 2),
+              v0 = std::min(static_cast<int>(v), rh - 2);
+    lens_index_[i] = static_cast<std::uint32_t>(v0 * rw + u0);
+    lens_a_[i] = static_cast<std::uint16_t>(std::lround((u - static_cast<float>(u0)) * 256.0f));
+    lens_b_[i] = static_cast<std::uint16_t>(std::lround((v - static_cast<float>(v0)) * 256.0f));
+  }
 }
 
 void SensorWarp::ApplyLens(const GrayImage& rendered, GrayImage* out) const {
-  const int w = sensor_.width_px, h = sensor_.height_px;
+  const int w = sensor_.width_px, h = sensor_.height_px, rw = rendered.width;
   out->width = w;
   out->height = h;
   out->pixels.resize(static_cast<std::size_t>(w) * h);
+  const std::uint8_t* src = rendered.pixels.data();
   for (std::size_t i = 0; i < out->pixels.size(); ++i) {
-    const float g =
-        Bilinear(rendered.pixels.data(), rendered.width, rendered.height, map_u_[i], map_v_[i]);
-    out->pixels[i] = static_cast<std::uint8_t>(std::min(g + 0.5f, 255.0f));
+    const std::uint8_t* p = src + lens_index_[i];
+    const std::uint32_t a = lens_a_[i], b = lens_b_[i];
+    const std::uint32_t top = (256 - a) * p[0] + a * p[1];
+    const std::uint32_t bottom = (256 - a) * p[rw] + a * p[rw + 1];
+    out->pixels[i] = static_cast<std::uint8_t>(((256 - b) * top + b * bottom + 32768) >> 16);
   }
 }
 

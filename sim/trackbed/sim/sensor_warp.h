@@ -87,12 +87,17 @@ class SensorWarp {
              const SensorTiming& timing, GrayImage* out);
 
  private:
+  void BuildLensTable();
   void ApplyLens(const GrayImage& rendered, GrayImage* out) const;
 
   geometry::PinholeCamera sensor_, render_;
   bool identity_ = false;
   // Each sensor pixel's ray as a render pixel (row-major, sensor size).
   std::vector<float> map_u_, map_v_;
+  // The same for the lens alone in fixed point: the index of the render pixel at the
+  // top left of the ray's 2 × 2 neighbourhood, and its bilinear weights in 1/256 px.
+  std::vector<std::uint32_t> lens_index_;
+  std::vector<std::uint16_t> lens_a_, lens_b_;  // in [0, 256]
   std::vector<float> sum_, inverse_depth_;
   std::vector<float> q_u_, q_v_;
 };
