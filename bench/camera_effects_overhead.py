@@ -2,7 +2,8 @@
 """What each image effect of the camera costs in speed (docs/camera_model.md): the outdoor
 park on the ideal robot with a pinhole global-shutter camera, and with one effect on at a
 time (EuRoC's lens; a 68.75 us rolling shutter; a 10 ms exposure warped at 4 instants;
-lens and shutter; 2 x 2 samples per pixel, without and with the lens), each run --repeats times interleaved, by the real-time factor
+lens and shutter; 2 x 2 samples per pixel, without and with the lens; the sun's shadows
+baked into a light map, scene_lighting.h), each run --repeats times interleaved, by the real-time factor
 metrics.json reports. A benchmark: it prints figures and ratios to the plain camera, pair
 by pair; it never fails on them.
 
@@ -27,6 +28,7 @@ VARIANTS = {
     "lens + shutter": [LENS, SHUTTER],
     "supersampled 2x": ["robot.stereo.supersampling=2"],
     "lens, 2x": [LENS, "robot.stereo.supersampling=2"],
+    "sun's shadows (baked)": ["scene.appearance.lighting={sun_shadows: true}"],
 }
 
 

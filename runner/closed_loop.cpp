@@ -569,16 +569,20 @@ bool ClosedLoop::Impl::TakeStereoFrame(const robot::ChassisState& truth, StepRes
   frame.exposure_time_s =
       auto_exposure_ ? auto_exposure_->exposure_time_s() : rs.stereo.exposure_time_s;
   frame.gain = auto_exposure_ ? auto_exposure_->gain() : 1.0;
+  // The render shows the scene at `exposure_time_s`; the light scales with the time.
+  // With scene lighting the renderer applies it before its output clips (a zone
+  // brighter than the exposure holds saturates), else the sensor model does.
+  const double light = rs.stereo.exposure *
+                       (auto_exposure_ ? frame.exposure_time_s / rs.stereo.exposure_time_s : 1.0);
+  if (renderer_->pre_exposed()) renderer_->SetExposure(light);
   exposures_[0]->Render(*renderer_, motion, rig_->T_body_left(), frame.t_s + offset,
                         frame.exposure_time_s, &left, &rig_xy);
   exposures_[1]->Render(*renderer_, motion, rig_->T_body_right(), frame.t_s + offset,
                         frame.exposure_time_s, &right, &rig_xy);
   frame.blackout = rs.stereo.InBlackout(frame.t_s);
-  // The render shows the scene at `exposure_time_s`; the light scales with the time.
-  const double light = auto_exposure_ ? frame.exposure_time_s / rs.stereo.exposure_time_s : 1.0;
   const CameraPipeline finish{rs.stereo,
                               image_sensors_.empty() ? nullptr : image_sensors_.data(),
-                              rs.stereo.exposure * light,
+                              renderer_->pre_exposed() ? 1.0 : light,
                               frame.gain,
                               noise_seed_,
                               frame.index,

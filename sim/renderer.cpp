@@ -22,6 +22,7 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "lit_program.h"
 #include "trackbed/common/option_error.h"
 #include "trackbed/common/units.h"
 #include "trackbed/sim/procedural_texture.h"
@@ -37,6 +38,7 @@ void SceneAppearance::Validate() const {
   option_check::InRange("sky_gray", sky_gray, 0.0, 1.0);
   option_check::NonNegative("terrain_full_detail_m", terrain_full_detail_m);
   option_check::NonNegative("ceiling_height_m", ceiling_height_m);
+  if (lighting) option_check::Nested("lighting", *lighting);
   if (texture_size_px < 16 || texture_size_px > 2048 ||
       (texture_size_px & (texture_size_px - 1)) != 0) {
     throw OptionError("texture_size_px", "must be a power of two in [16, 2048] (got " +
@@ -125,6 +127,8 @@ struct Renderer::Gl {
   std::vector<OccluderSpec> occluders;
   std::vector<GLuint> occluder_lists;
   std::vector<std::pair<double, int>> draw_order;  // per frame, kept to avoid reallocation
+  std::unique_ptr<LitProgram> lit;                 // with scene lighting
+  double exposure = 1.0;                           // what a lit render is pre-exposed for
 
   ~Gl() {
     if (context) OSMesaDestroyContext(context);
@@ -135,6 +139,37 @@ struct Renderer::Gl {
       throw std::runtime_error("Renderer: OSMesaMakeCurrent failed");
     }
     if (framebuffer != 0) glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+  }
+
+  // The frame's grey levels and depths, top row first. Reading the frame buffer object
+  // waits for llvmpipe to finish the frame.
+  void ReadBack(GrayImage* gray_out, DepthImage* depth_out) {
+    const int W = width, H = height;
+    if (gray_out) {
+      glPixelStorei(GL_PACK_ALIGNMENT, 1);
+      glReadPixels(0, 0, W, H, GL_RED, GL_UNSIGNED_BYTE, grey.data());
+      gray_out->width = W;
+      gray_out->height = H;
+      gray_out->pixels.resize(static_cast<std::size_t>(W) * H);
+      for (int v = 0; v < H; ++v) {  // OpenGL's first row is the bottom one
+        std::copy_n(&grey[static_cast<std::size_t>(H - 1 - v) * W], W,
+                    &gray_out->pixels[static_cast<std::size_t>(v) * W]);
+      }
+    }
+    if (depth_out) {
+      glPixelStorei(GL_PACK_ALIGNMENT, 4);
+      glReadPixels(0, 0, W, H, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+      depth_out->width = W;
+      depth_out->height = H;
+      depth_out->depth_m.resize(static_cast<std::size_t>(W) * H);
+      for (int v = 0; v < H; ++v) {
+        const float* src = &depth[static_cast<std::size_t>(H - 1 - v) * W];
+        float* dst = &depth_out->depth_m[static_cast<std::size_t>(v) * W];
+        for (int u = 0; u < W; ++u) {
+          dst[u] = static_cast<float>(DepthFromBuffer(src[u], near_m, far_m));
+        }
+      }
+    }
   }
 
   void CreateFramebuffer() {
@@ -353,7 +388,7 @@ struct Renderer::Gl {
         double top = o.height_m, reach = o.radius_m;
         if (o.kind == "tree" && appearance.tree_crowns) {
           // Visual-only foliage: a crown a third of the trunk's height across.
-          const double crown = std::max(0.6, o.height_m / 3.0);
+          const double crown = TreeCrownRadius(o);
           const GlTexture& leaves = Texture("leaves");
           glBindTexture(GL_TEXTURE_2D, leaves.name);
           glTranslated(0, 0, o.height_m);
@@ -475,11 +510,28 @@ Renderer::Renderer(const World& world, const SceneAppearance& appearance,
 
   g.BuildTerrain();
   g.BuildObjects(world);
+  if (appearance.lighting) {
+    const Eigen::Vector3d sun =
+        SunDirection(appearance.sun_azimuth_deg, appearance.sun_elevation_deg);
+    g.lit = std::make_unique<LitProgram>(
+        BakeLightMap(world, *appearance.lighting, sun, appearance.tree_crowns), appearance.ambient,
+        appearance.diffuse);
+  }
   if (glGetError() != GL_NO_ERROR)
     throw std::runtime_error("Renderer: OpenGL error while building");
 }
 
 Renderer::~Renderer() = default;
+
+bool Renderer::pre_exposed() const { return gl_->lit != nullptr; }
+
+void Renderer::SetExposure(double exposure) {
+  if (!gl_->lit) throw std::logic_error("Renderer::SetExposure: the scene has no lighting");
+  if (!(std::isfinite(exposure) && exposure > 0.0)) {
+    throw std::invalid_argument("Renderer::SetExposure: exposure must be > 0");
+  }
+  gl_->exposure = exposure;
+}
 
 std::string Renderer::gl_description() const {
   gl_->MakeCurrent();
@@ -500,6 +552,10 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
   }
   g.MakeCurrent();
   glViewport(0, 0, g.width, g.height);
+  if (g.lit) {  // the sky pre-exposed too
+    const float sky = static_cast<float>(std::min(g.appearance.sky_gray * g.exposure, 1.0));
+    glClearColor(sky, sky, sky, 1.0f);
+  }
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 
   const Eigen::Matrix4d P = OpenGlProjection(K, g.near_m, g.far_m);
@@ -513,12 +569,12 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
   view = view * T_camera_world.matrix();
   glMatrixMode(GL_MODELVIEW);
   glLoadMatrixd(view.data());
-  const double az = units::Radians(g.appearance.sun_azimuth_deg);
-  const double el = units::Radians(g.appearance.sun_elevation_deg);
-  const float sun[] = {static_cast<float>(std::cos(el) * std::cos(az)),
-                       static_cast<float>(std::cos(el) * std::sin(az)),
-                       static_cast<float>(std::sin(el)), 0.0f};
+  const Eigen::Vector3d sun_world =
+      SunDirection(g.appearance.sun_azimuth_deg, g.appearance.sun_elevation_deg);
+  const float sun[] = {static_cast<float>(sun_world.x()), static_cast<float>(sun_world.y()),
+                       static_cast<float>(sun_world.z()), 0.0f};
   glLightfv(GL_LIGHT0, GL_POSITION, sun);
+  if (g.lit) g.lit->Begin(view, sun_world, g.exposure);
 
   // Frustum culling in camera coordinates: a box is skipped when all its
   // corners are outside one of the six planes.
@@ -578,33 +634,8 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
     glCallList(g.occluder_lists[k]);
     glPopMatrix();
   }
-  // Reading the frame buffer object waits for llvmpipe to finish the frame.
-  const int W = g.width, H = g.height;
-  if (gray) {
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, W, H, GL_RED, GL_UNSIGNED_BYTE, g.grey.data());
-    gray->width = W;
-    gray->height = H;
-    gray->pixels.resize(static_cast<std::size_t>(W) * H);
-    for (int v = 0; v < H; ++v) {  // OpenGL's first row is the bottom one
-      std::copy_n(&g.grey[static_cast<std::size_t>(H - 1 - v) * W], W,
-                  &gray->pixels[static_cast<std::size_t>(v) * W]);
-    }
-  }
-  if (depth) {
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glReadPixels(0, 0, W, H, GL_DEPTH_COMPONENT, GL_FLOAT, g.depth.data());
-    depth->width = W;
-    depth->height = H;
-    depth->depth_m.resize(static_cast<std::size_t>(W) * H);
-    for (int v = 0; v < H; ++v) {
-      const float* src = &g.depth[static_cast<std::size_t>(H - 1 - v) * W];
-      float* dst = &depth->depth_m[static_cast<std::size_t>(v) * W];
-      for (int u = 0; u < W; ++u) {
-        dst[u] = static_cast<float>(DepthFromBuffer(src[u], g.near_m, g.far_m));
-      }
-    }
-  }
+  if (g.lit) g.lit->End();
+  g.ReadBack(gray, depth);
 }
 
 }  // namespace trackbed::sim

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "trackbed/sim/image.h"
 #include "trackbed/sim/occluder.h"
 #include "trackbed/sim/pinhole.h"
+#include "trackbed/sim/scene_lighting.h"
 #include "trackbed/sim/world.h"
 
 namespace trackbed::sim {
@@ -43,6 +45,9 @@ struct SceneAppearance {
   /// from 2× to 3×, every 8th from 4× to 6× this distance (TerrainDetail). 0: the
   /// full grid everywhere.
   double terrain_full_detail_m = 0.0;
+  /// Light that changes across the scene: shadows and lit zones (scene_lighting.h).
+  /// Absent: the whole scene is lit alike, by the fixed-function pipeline.
+  std::optional<SceneLighting> lighting;
 
   void Validate() const;
 
@@ -59,6 +64,7 @@ struct SceneAppearance {
     a->Visit("tree_crowns", &tree_crowns);
     a->Visit("texture_size_px", &texture_size_px);
     a->Visit("terrain_full_detail_m", &terrain_full_detail_m);
+    a->Visit("lighting", &lighting, archive::kOmitEmpty);
   }
 };
 
@@ -84,6 +90,14 @@ class Renderer {
   void Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d& T_world_camera, double t_s,
               GrayImage* gray, DepthImage* depth,
               const Eigen::Vector2d* detail_center_xy = nullptr);
+
+  /// Whether the output is pre-exposed: with scene lighting, the light is multiplied by
+  /// the exposure (SetExposure) before the 8-bit output clips, as a sensor saturates;
+  /// without it, the output is the scene at exposure 1 and the caller scales it.
+  bool pre_exposed() const;
+  /// The exposure the following renders are pre-exposed for (relative light, > 0).
+  /// Throws std::logic_error without scene lighting.
+  void SetExposure(double exposure);
 
   /// OpenGL renderer and version strings, e.g. "llvmpipe (LLVM 15.0.6, 256 bits) / 4.5
   /// (Compatibility Profile) Mesa 22.3.6".
