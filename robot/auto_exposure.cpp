@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "trackbed/common/option_error.h"
 
@@ -16,12 +17,38 @@ void AutoExposureOptions::Validate() const {
     throw OptionError("auto_exposure.max_exposure_s", "must be >= min_exposure_s");
   }
   option_check::InRange("auto_exposure.max_gain", max_gain, 1.0, 1000.0);
+  const Eigen::Vector4d& w = metering_window;
+  if (!(w.allFinite() && w[0] >= 0.0 && w[1] >= 0.0 && w[0] < w[2] && w[1] < w[3] && w[2] <= 1.0 &&
+        w[3] <= 1.0)) {
+    throw OptionError("auto_exposure.metering_window",
+                      "must be [left, top, right, bottom] with 0 <= left < right <= 1 and "
+                      "0 <= top < bottom <= 1");
+  }
 }
 
 AutoExposure::AutoExposure(const AutoExposureOptions& options, double initial_exposure_s)
     : o_(options) {
   o_.Validate();
   exposure_s_ = std::min(std::max(initial_exposure_s, o_.min_exposure_s), o_.max_exposure_s);
+}
+
+double AutoExposure::Meter(const GrayImage& image) const {
+  const Eigen::Vector4d& w = o_.metering_window;
+  const auto at = [](double f, int n) {
+    return std::clamp(static_cast<int>(std::lround(f * n)), 0, n);
+  };
+  const int u0 = at(w[0], image.width), v0 = at(w[1], image.height);
+  const int u1 = std::max(at(w[2], image.width), u0 + 1),
+            v1 = std::max(at(w[3], image.height), v0 + 1);
+  if (image.width == 0 || image.height == 0) return 0.0;
+  std::uint64_t sum = 0;
+  for (int v = v0; v < std::min(v1, image.height); ++v) {
+    const std::uint8_t* row = &image.pixels[static_cast<std::size_t>(v) * image.width];
+    for (int u = u0; u < std::min(u1, image.width); ++u) sum += row[u];
+  }
+  const double n = static_cast<double>(std::min(v1, image.height) - v0) *
+                   static_cast<double>(std::min(u1, image.width) - u0);
+  return static_cast<double>(sum) / n;
 }
 
 void AutoExposure::Update(double mean_grey, double dt_s) {

@@ -118,13 +118,6 @@ struct CameraPipeline {
   }
 };
 
-// The mean grey level of an image.
-double MeanGrey(const GrayImage& image) {
-  std::uint64_t sum = 0;
-  for (const std::uint8_t p : image.pixels) sum += p;
-  return image.pixels.empty() ? 0.0 : static_cast<double>(sum) / image.pixels.size();
-}
-
 // The observers, each call's time added to *io_s (they write the run folder).
 RunObservers TimedObservers(const RunObservers& o, double* io_s) {
   return CombineObservers(o, o, [io_s](const auto& f, const auto&) -> std::decay_t<decltype(f)> {
@@ -599,7 +592,7 @@ bool ClosedLoop::Impl::TakeStereoFrame(const robot::ChassisState& truth, StepRes
     finish.Apply(&left, &right);
     // The auto-exposure meters the left image for the next frame.
     if (auto_exposure_ && !frame.blackout) {
-      auto_exposure_->Update(MeanGrey(left), 1.0 / rs.stereo.rate_hz);
+      auto_exposure_->Update(auto_exposure_->Meter(left), 1.0 / rs.stereo.rate_hz);
     }
     sensor_model_wall_s_ +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - rendered).count();

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "render_test_scene.h"
+#include "trackbed/common/option_error.h"
 #include "trackbed/common/units.h"
 #include "trackbed/sim/camera_exposure.h"
 #include "trackbed/sim/renderer.h"
@@ -136,6 +137,26 @@ TEST(AutoExposureTest, TheBlurFollowsTheExposureTimeItChose) {
                 length, expected);
     EXPECT_NEAR(length, expected, 0.15 * expected + 0.5);
   }
+}
+
+// The metering window: the mean over the window's pixels only (a bright sky above, dark
+// ground below), and a window that is not one is refused.
+TEST(AutoExposureTest, TheMeteringWindowMetersItsPixelsOnly) {
+  GrayImage image;
+  image.width = 40;
+  image.height = 30;
+  image.pixels.assign(40 * 30, 50);
+  std::fill(image.pixels.begin(), image.pixels.begin() + 40 * 10, 250);  // top third
+  AutoExposureOptions o;
+  EXPECT_NEAR(AutoExposure(o, 1e-3).Meter(image), (250.0 + 2 * 50.0) / 3.0, 1e-9);
+  o.metering_window = {0.0, 0.5, 1.0, 1.0};  // the lower half
+  EXPECT_DOUBLE_EQ(AutoExposure(o, 1e-3).Meter(image), 50.0);
+  o.metering_window = {0.25, 0.0, 0.75, 0.5};  // rows 0-14: 10 at 250, 5 at 50
+  EXPECT_NEAR(AutoExposure(o, 1e-3).Meter(image), (10 * 250.0 + 5 * 50.0) / 15.0, 1e-9);
+  o.metering_window = {0.5, 0.0, 0.5, 1.0};
+  EXPECT_THROW(o.Validate(), OptionError);
+  o.metering_window = {0.0, 0.0, 1.0, 1.5};
+  EXPECT_THROW(o.Validate(), OptionError);
 }
 
 }  // namespace

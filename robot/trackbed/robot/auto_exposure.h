@@ -13,7 +13,10 @@
 
 #include <optional>
 
-#include "trackbed/common/archive.h"
+#include <Eigen/Core>
+
+#include "trackbed/common/archive_eigen.h"
+#include "trackbed/sim/image.h"
 
 namespace trackbed::robot {
 
@@ -29,6 +32,11 @@ struct AutoExposureOptions {
   double max_exposure_s = 15.3e-3;
   /// Largest analog gain, >= 1.
   double max_gain = 4.0;
+  /// The metering window, [left, top, right, bottom] as fractions of the image's width
+  /// and height, 0 <= left < right <= 1, 0 <= top < bottom <= 1: the mean is taken
+  /// there, as a camera's auto-exposure region of interest (librealsense's
+  /// rs2_set_region_of_interest). The whole image by default.
+  Eigen::Vector4d metering_window{0.0, 0.0, 1.0, 1.0};
 
   /// Throws OptionError naming the first bad key.
   void Validate() const;
@@ -41,6 +49,7 @@ struct AutoExposureOptions {
     a->Visit("min_exposure_s", &min_exposure_s);
     a->Visit("max_exposure_s", &max_exposure_s);
     a->Visit("max_gain", &max_gain);
+    a->Visit("metering_window", &metering_window);
   }
 };
 
@@ -51,6 +60,9 @@ class AutoExposure {
 
   double exposure_time_s() const { return exposure_s_; }
   double gain() const { return gain_; }
+
+  /// The mean grey level of `image` over the metering window (0 for an empty image).
+  double Meter(const GrayImage& image) const;
 
   /// The frame just taken with the current settings had mean grey level `mean_grey`;
   /// the next is `dt_s` later. A black frame (mean 0) counts as 0.5 grey levels.
