@@ -33,22 +33,22 @@ AutoExposure::AutoExposure(const AutoExposureOptions& options, double initial_ex
 }
 
 double AutoExposure::Meter(const GrayImage& image) const {
-  const Eigen::Vector4d& w = o_.metering_window;
-  const auto at = [](double f, int n) {
-    return std::clamp(static_cast<int>(std::lround(f * n)), 0, n);
-  };
-  const int u0 = at(w[0], image.width), v0 = at(w[1], image.height);
-  const int u1 = std::max(at(w[2], image.width), u0 + 1),
-            v1 = std::max(at(w[3], image.height), v0 + 1);
   if (image.width == 0 || image.height == 0) return 0.0;
+  // The window's pixel bounds, at least one pixel (a window narrower than a pixel).
+  const Eigen::Vector4d& w = o_.metering_window;
+  const auto span = [](double lo, double hi, int n, int* first, int* end) {
+    *first = std::min(static_cast<int>(std::lround(lo * n)), n - 1);
+    *end = std::clamp(static_cast<int>(std::lround(hi * n)), *first + 1, n);
+  };
+  int u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+  span(w[0], w[2], image.width, &u0, &u1);
+  span(w[1], w[3], image.height, &v0, &v1);
   std::uint64_t sum = 0;
-  for (int v = v0; v < std::min(v1, image.height); ++v) {
+  for (int v = v0; v < v1; ++v) {
     const std::uint8_t* row = &image.pixels[static_cast<std::size_t>(v) * image.width];
-    for (int u = u0; u < std::min(u1, image.width); ++u) sum += row[u];
+    for (int u = u0; u < u1; ++u) sum += row[u];
   }
-  const double n = static_cast<double>(std::min(v1, image.height) - v0) *
-                   static_cast<double>(std::min(u1, image.width) - u0);
-  return static_cast<double>(sum) / n;
+  return static_cast<double>(sum) / (static_cast<double>(u1 - u0) * (v1 - v0));
 }
 
 void AutoExposure::Update(double mean_grey, double dt_s) {

@@ -42,10 +42,14 @@ void SceneLighting::Validate() const {
   }
 }
 
+Eigen::Vector2i LightMap::Texel(double x, double y) const {
+  return {std::clamp(static_cast<int>(std::floor((x - x_min) / texel_m)), 0, width - 1),
+          std::clamp(static_cast<int>(std::floor((y - y_min) / texel_m)), 0, height - 1)};
+}
+
 std::size_t LightMap::Index(double x, double y) const {
-  const int i = std::clamp(static_cast<int>(std::floor((x - x_min) / texel_m)), 0, width - 1);
-  const int j = std::clamp(static_cast<int>(std::floor((y - y_min) / texel_m)), 0, height - 1);
-  return static_cast<std::size_t>(j) * width + i;
+  const Eigen::Vector2i t = Texel(x, y);
+  return static_cast<std::size_t>(t.y()) * width + t.x();
 }
 
 Eigen::Vector3d SunDirection(double azimuth_deg, double elevation_deg) {
@@ -134,13 +138,11 @@ void CastShadow(const World& world, const StaticObject& o, bool crown, const Eig
   const double fall = (top - terrain.min_height_m()) / std::max(sun.z(), 1e-3);
   const Eigen::Vector2d away = -sun.head<2>() * fall;
   const Eigen::Vector2d a = lo.cwiseMin(lo + away), b = hi.cwiseMax(hi + away);
-  const std::size_t i0 = map->Index(a.x(), a.y()), i1 = map->Index(b.x(), b.y());
-  const int x0 = static_cast<int>(i0 % map->width), y0 = static_cast<int>(i0 / map->width);
-  const int x1 = static_cast<int>(i1 % map->width), y1 = static_cast<int>(i1 / map->width);
+  const Eigen::Vector2i first = map->Texel(a.x(), a.y()), last = map->Texel(b.x(), b.y());
   const bool tree = crown && o.kind == "tree";
   const Eigen::Vector3d crown_center(o.center_m.x(), o.center_m.y(), o.base_z_m + o.height_m);
-  for (int j = y0; j <= y1; ++j) {
-    for (int i = x0; i <= x1; ++i) {
+  for (int j = first.y(); j <= last.y(); ++j) {
+    for (int i = first.x(); i <= last.x(); ++i) {
       int lit = 0;
       for (int k = 0; k < 4; ++k) {
         const double x = map->x_min + (i + 0.25 + 0.5 * (k % 2)) * map->texel_m;

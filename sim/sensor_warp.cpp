@@ -11,13 +11,22 @@
 namespace trackbed::sim {
 namespace {
 
-// The render's grey level at (u, v), bilinear, clamped to the edge.
-inline float Bilinear(const std::uint8_t* image, int w, int h, float u, float v) {
+// Where a bilinear sample of a w × h image at (u, v), clamped to the edge, reads: the
+// index of the top-left pixel of its 2 × 2 neighbourhood and the weights a, b of the
+// right column and the bottom row.
+inline std::size_t BilinearTap(int w, int h, float u, float v, float* a, float* b) {
   u = std::min(std::max(u, 0.0f), static_cast<float>(w - 1));
   v = std::min(std::max(v, 0.0f), static_cast<float>(h - 1));
   const int u0 = std::min(static_cast<int>(u), w - 2), v0 = std::min(static_cast<int>(v), h - 2);
-  const float a = u - static_cast<float>(u0), b = v - static_cast<float>(v0);
-  const std::uint8_t* p = image + static_cast<std::size_t>(v0) * w + u0;
+  *a = u - static_cast<float>(u0);
+  *b = v - static_cast<float>(v0);
+  return static_cast<std::size_t>(v0) * w + u0;
+}
+
+// The render's grey level at (u, v), bilinear, clamped to the edge.
+inline float Bilinear(const std::uint8_t* image, int w, int h, float u, float v) {
+  float a = 0.0f, b = 0.0f;
+  const std::uint8_t* p = image + BilinearTap(w, h, u, v, &a, &b);
   return (1.0f - b) * ((1.0f - a) * p[0] + a * p[1]) + b * ((1.0f - a) * p[w] + a * p[w + 1]);
 }
 
@@ -169,20 +178,17 @@ SensorWarp::SensorWarp(const geometry::PinholeCamera& sensor, const geometry::Pi
 }
 
 void SensorWarp::BuildLensTable() {
-  // Bilinear as Bilinear() samples, clamped to the edge, its weights rounded to 1/256
-  // of a pixel (at most 1/512 px off the ray).
-  const int rw = render_.width_px, rh = render_.height_px;
+  // Bilinear as Bilinear() samples, its weights rounded to 1/256 of a pixel (at most
+  // 1/512 px off the ray).
   lens_index_.resize(map_u_.size());
   lens_a_.resize(map_u_.size());
   lens_b_.resize(map_u_.size());
   for (std::size_t i = 0; i < map_u_.size(); ++i) {
-    const float u = std::min(std::max(map_u_[i], 0.0f), static_cast<float>(rw - 1));
-    const float v = std::min(std::max(map_v_[i], 0.0f), static_cast<float>(rh - 1));
-    const int u0 = std::min(static_cast<int>(u), rw - 2),
-              v0 = std::min(static_cast<int>(v), rh - 2);
-    lens_index_[i] = static_cast<std::uint32_t>(v0 * rw + u0);
-    lens_a_[i] = static_cast<std::uint16_t>(std::lround((u - static_cast<float>(u0)) * 256.0f));
-    lens_b_[i] = static_cast<std::uint16_t>(std::lround((v - static_cast<float>(v0)) * 256.0f));
+    float a = 0.0f, b = 0.0f;
+    lens_index_[i] = static_cast<std::uint32_t>(
+        BilinearTap(render_.width_px, render_.height_px, map_u_[i], map_v_[i], &a, &b));
+    lens_a_[i] = static_cast<std::uint16_t>(std::lround(a * 256.0f));
+    lens_b_[i] = static_cast<std::uint16_t>(std::lround(b * 256.0f));
   }
 }
 

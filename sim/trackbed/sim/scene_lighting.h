@@ -79,7 +79,9 @@ struct LightMap {
   std::vector<float> sunlit;  ///< fraction of the texel that sees the sun, row-major (j, i)
   std::vector<float> gain;    ///< the zones' product, row-major (j, i)
 
-  /// The texel holding (x, y), clamped to the map.
+  /// The texel (i, j) holding (x, y), clamped to the map.
+  Eigen::Vector2i Texel(double x, double y) const;
+  /// Its index in `sunlit` and `gain`.
   std::size_t Index(double x, double y) const;
 };
 
