@@ -167,9 +167,10 @@ geometry::LensDistortion EurocCam0Lens() {
 }  // namespace
 
 StereoRigOptions WithCameraEffectsResolved(StereoRigOptions stereo, Realism profile) {
-  // `harsh` alone has the image effects so far (docs/camera_model.md): EuRoC's lens and a
-  // RealSense colour camera's rolling shutter, 33 ms to read 480 rows (VINS-Mono's
-  // configuration, from its datasheet).
+  // `harsh` has EuRoC's lens and a RealSense colour camera's rolling shutter, 33 ms to
+  // read 480 rows (VINS-Mono's configuration, from its datasheet); `typical` a global
+  // shutter (the IMX174's) and images free of distortion, as a stereo camera that
+  // rectifies them itself delivers them (docs/camera_model.md, "Profiles").
   const bool harsh = profile == Realism::kHarsh;
   if (!stereo.distortion) stereo.distortion = harsh ? EurocCam0Lens() : geometry::LensDistortion{};
   if (!stereo.rolling_shutter.line_delay_s) {
@@ -180,7 +181,7 @@ StereoRigOptions WithCameraEffectsResolved(StereoRigOptions stereo, Realism prof
   // whose corners get half the light (Alexandrov et al. 2016: an Asus Xtion's colour
   // camera); typical's corner 0.71 (a wide-angle lens measured at full aperture).
   PhotometricOptions& p = stereo.photometric;
-  if (!p.enabled) p.enabled = harsh;
+  if (!p.enabled) p.enabled = profile != Realism::kIdeal;
   if (!p.full_well_e) p.full_well_e = harsh ? 7000.0 : 32691.0;
   if (!p.read_noise_e) p.read_noise_e = harsh ? 13.0 : 6.83;
   if (!p.prnu_std) p.prnu_std = 0.0;

@@ -70,7 +70,7 @@ ImageSensor::ImageSensor(const PhotometricOptions& options, int width_px, int he
 double ImageSensor::electrons_per_grey() const { return *o_.full_well_e / (*o_.gain * 255.0); }
 
 void ImageSensor::Apply(double exposure, std::uint64_t seed, std::uint64_t frame, GrayImage* image,
-                        double gain) const {
+                        double gain, bool clipped_render) const {
   if (image->width != width_ || image->height != height_) {
     throw std::invalid_argument("ImageSensor: the image is not the sensor's size");
   }
@@ -97,7 +97,8 @@ void ImageSensor::Apply(double exposure, std::uint64_t seed, std::uint64_t frame
     const float n = normal[(bits >> (16 * (i & 3))) & 0xffff];
     const float signal = signal_per_grey * static_cast<float>(px[i]) * gain_map_[i];
     const float sigma = std::sqrt(std::max(signal, 0.0f) + read2);
-    const float charge = signal + offset_map_[i] + sigma * n;
+    const float charge =
+        clipped_render && px[i] == 255 ? full_well : signal + offset_map_[i] + sigma * n;
     const float dn = std::min(std::max(std::nearbyint(charge * dn_per_e), 0.0f), dn_max);
     px[i] = static_cast<std::uint8_t>(std::nearbyint(dn * grey_per_dn));
   }

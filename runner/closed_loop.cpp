@@ -98,6 +98,7 @@ struct CameraPipeline {
   const robot::ImageSensor* sensors;  // left, right; null: the grey-level model
   double exposure;                    // light on the sensor relative to the render's
   double gain;                        // analog gain (auto-exposure)
+  bool clipped_render;                // exposed before the render's 8 bits clipped
   std::uint64_t noise_seed;
   std::int64_t frame_index;
   bool blackout;
@@ -105,8 +106,8 @@ struct CameraPipeline {
   void Apply(GrayImage* left, GrayImage* right) const {
     const auto frame = static_cast<std::uint64_t>(frame_index);
     if (sensors) {
-      sensors[0].Apply(exposure, noise_seed, frame, left, gain);
-      sensors[1].Apply(exposure, noise_seed, frame, right, gain);
+      sensors[0].Apply(exposure, noise_seed, frame, left, gain, clipped_render);
+      sensors[1].Apply(exposure, noise_seed, frame, right, gain, clipped_render);
     } else {
       robot::ApplySensorModel(exposure * gain, stereo.noise_std, noise_seed, frame, 0, left);
       robot::ApplySensorModel(exposure * gain, stereo.noise_std, noise_seed, frame, 1, right);
@@ -577,6 +578,7 @@ bool ClosedLoop::Impl::TakeStereoFrame(const robot::ChassisState& truth, StepRes
                               image_sensors_.empty() ? nullptr : image_sensors_.data(),
                               renderer_->pre_exposed() ? 1.0 : light,
                               frame.gain,
+                              renderer_->pre_exposed(),
                               noise_seed_,
                               frame.index,
                               frame.blackout};

@@ -132,6 +132,28 @@ TEST(ImageSensorTest, VignettingAndFixedPatternAndReproducibleFrames) {
   EXPECT_NE(a.pixels, d.pixels);
 }
 
+// A render exposed before its 8 bits clipped (scene lighting): 255 stands for light at
+// or above the full well, so the pixel reads full however dark the lens's corner; a
+// render exposed after (255 is the light itself) is vignetted and noisy as any other.
+TEST(ImageSensorTest, AClippedRenderReadsAsAFullWell) {
+  PhotometricOptions o = Sensor(32691.0, 6.83);  // typical's IMX174
+  o.vignetting_corner = 0.71;
+  const ImageSensor sensor(o, 320, 240, 3, 0);
+  GrayImage clipped = Flat(255), exact = Flat(255);
+  sensor.Apply(1.0, 7, 1, &clipped, 1.0, /*clipped_render=*/true);
+  sensor.Apply(1.0, 7, 1, &exact, 1.0, /*clipped_render=*/false);
+  int full = 0;
+  for (std::uint8_t p : clipped.pixels) full += p == 255;
+  EXPECT_EQ(full, static_cast<int>(clipped.pixels.size()));
+  EXPECT_NEAR(exact.pixels[0], 255 * 0.71, 3.0);  // a corner: 181 grey levels
+  EXPECT_LT(exact.pixels[120 * 320 + 160], 255 + 1);
+  // Below the clip the flag changes nothing.
+  GrayImage a = Flat(200), b = Flat(200);
+  sensor.Apply(1.0, 7, 1, &a, 1.0, true);
+  sensor.Apply(1.0, 7, 1, &b, 1.0, false);
+  EXPECT_EQ(a.pixels, b.pixels);
+}
+
 TEST(ImageSensorTest, BadOptionsNameTheirKey) {
   PhotometricOptions o = Sensor(7000.0, 13.0);
   o.adc_bits = 20;

@@ -66,9 +66,12 @@ class ImageSensor {
 
   /// Turns a render into the camera's image in place (`exposure` scales the light as
   /// StereoRigOptions::exposure; `gain` multiplies the configured analog gain, as an
-  /// auto-exposure sets it).
+  /// auto-exposure sets it). `clipped_render`: the render was exposed before its 8 bits
+  /// clipped (scene lighting), so a render pixel at 255 stands for light at or above the
+  /// full well, however far: the pixel reads as a full well, which neither vignetting nor
+  /// noise lowers.
   void Apply(double exposure, std::uint64_t seed, std::uint64_t frame, GrayImage* image,
-             double gain = 1.0) const;
+             double gain = 1.0, bool clipped_render = false) const;
 
   /// The electrons one grey level of the output stands for [e⁻ per grey level].
   double electrons_per_grey() const;
