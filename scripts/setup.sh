@@ -9,8 +9,11 @@ packages=(
   g++ cmake ninja-build ccache pkg-config python3
   libbullet-dev libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libopencv-dev libosmesa6-dev libfuzzylite-dev libboost-math-dev
-  pybind11-dev python3-dev python3-numpy
+  pybind11-dev python3-dev python3-numpy libzstd-dev zlib1g-dev
 )
+# `--tests`: what the test suite needs beyond the build (node and npm run the
+# independent MCAP readers, tests/mcap/).
+[ "${1:-}" = "--tests" ] && packages+=(nodejs npm)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
