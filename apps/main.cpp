@@ -13,6 +13,7 @@
 #include <CLI/CLI.hpp>
 
 #include "eval_command.h"
+#include "export_mcap_command.h"
 #include "report_command.h"
 #include "sweep_command.h"
 #include "trackbed/runner/run_scenario.h"
@@ -108,6 +109,7 @@ int main(int argc, char** argv) {
   trackbed::apps::AddSweepCommand(app);
   trackbed::apps::AddReportCommand(app);
   trackbed::apps::AddVoCommand(app);
+  trackbed::apps::AddExportMcapCommand(app);
 
   try {
     app.parse(argc, argv);

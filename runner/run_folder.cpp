@@ -19,6 +19,7 @@
 #include "trackbed/runner/log_file.h"
 #include "trackbed/runner/navigation_log.h"
 #include "trackbed/runner/navigation_scenario.h"
+#include "trackbed/runner/run_bag.h"
 #include "trackbed/runner/run_plots.h"
 #include "trackbed/scenario/scenario_yaml.h"
 
@@ -435,6 +436,7 @@ void RunFolderWriter::Close(const scenario::Scenario& scenario, const RunMetrics
   f.logs.Close();
   if (f.kitti) f.kitti->Close();
   f.plots.Write(dir_, scenario.scene.name);
+  if (scenario.outputs.mcap) WriteRunBag(dir_);
   WriteMetricsJson(metrics, dir_);
 }
 

@@ -8,6 +8,7 @@
 #include "trackbed/runner/closed_loop.h"
 #include "trackbed/runner/kinematic_navigation_run.h"
 #include "trackbed/runner/log_file.h"
+#include "trackbed/runner/run_bag.h"
 #include "trackbed/runner/run_folder.h"
 #include "trackbed/runner/teach_repeat_run.h"
 #include "trackbed/scenario/scenario_yaml.h"
@@ -29,6 +30,7 @@ RunMetrics RunKinematicToFolder(const scenario::Scenario& scenario, const fs::pa
   RunMetrics metrics;
   try {
     metrics = RunKinematicNavigation(scenario, dir);
+    if (scenario.outputs.mcap) WriteRunBag(dir);
   } catch (const std::exception& e) {
     metrics.completed = false;
     metrics.stop_reason = std::string("failed: ") + e.what();

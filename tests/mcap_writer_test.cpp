@@ -3,7 +3,6 @@
 // and seeking through the summary), the CRCs recomputed, and every message decoded by
 // Foxglove's ROS 2 parser and CDR decoder (tests/mcap/check_mcap.mjs; the npm packages
 // are installed into the build folder by the test fixture `mcap_readers`).
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -14,6 +13,8 @@
 
 #include "trackbed/recording/mcap_writer.h"
 #include "trackbed/recording/ros2_messages.h"
+
+#include "mcap_readers.h"
 
 namespace trackbed::recording {
 namespace {
@@ -109,35 +110,10 @@ std::string Slurp(const std::string& path) {
   return s.str();
 }
 
-// Runs the independent readers on a file; fails the test if they cannot run.
-json ReadWithIndependentReaders(const std::string& path) {
-  const std::string npm_dir = TRACKBED_MCAP_READERS_DIR;
-  if (!fs::exists(npm_dir + "/node_modules/@mcap/core")) {
-    ADD_FAILURE() << "the MCAP readers are not installed in " << npm_dir
-                  << " (the ctest fixture mcap_readers installs them with npm)";
-    return {};
-  }
-  const std::string command = "TRACKBED_NPM_DIR='" + npm_dir +
-                              "' node '" TRACKBED_SOURCE_DIR "/tests/mcap/check_mcap.mjs' '" +
-                              path + "' 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string out;
-  char buffer[65536];
-  for (std::size_t n; (n = fread(buffer, 1, sizeof buffer, pipe)) > 0;) out.append(buffer, n);
-  const int status = pclose(pipe);
-  EXPECT_EQ(status, 0) << out;
-  try {
-    return json::parse(out);
-  } catch (const json::exception&) {
-    ADD_FAILURE() << "the readers printed no JSON: " << out.substr(0, 2000);
-    return {};
-  }
-}
-
 TEST(McapWriterTest, IndependentReadersReadEveryRecordAndMessage) {
   const std::string path = (fs::temp_directory_path() / "mcap_writer_test.mcap").string();
   WriteBag(path);
-  const json r = ReadWithIndependentReaders(path);
+  const json r = testing_mcap::ReadWithIndependentReaders(path);
   ASSERT_TRUE(r.is_object());
   EXPECT_TRUE(r["problems"].empty()) << r["problems"].dump();
   EXPECT_EQ(r["header"]["profile"], "ros2");

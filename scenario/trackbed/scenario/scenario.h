@@ -434,6 +434,9 @@ struct OutputsSpec {
   /// Camera images to save: none, or kitti (KITTI odometry layout in images/;
   /// needs robot.stereo.enabled).
   std::string save_images = "none";
+  /// Whether the run folder gets run.mcap and metadata.yaml: the run as a ROS 2 bag
+  /// (runner/run_bag.h, docs/mcap.md).
+  bool mcap = true;
 
   void Validate() const;
 
@@ -442,6 +445,7 @@ struct OutputsSpec {
   template <class Archive>
   void Serialize(Archive* a) {
     a->Visit("save_images", &save_images);
+    a->Visit("mcap", &mcap);
   }
 };
 
