@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-#include "trackbed/experiments/sweep_report.h"
+#include "trackbed/experiments/expectation_checks.h"
 
 namespace trackbed::apps {
 
@@ -21,10 +21,14 @@ void AddReportCommand(CLI::App& app) {
   report->add_option("dir", *dir, "Sweep folder (the --out of `trackbed sweep`)")->required();
   report->callback([dir]() {
     try {
-      const experiments::SweepCounts n = experiments::WriteSweepReport(*dir);
+      const experiments::SweepVerdict verdict = experiments::ReportSweep(*dir);
+      const experiments::SweepCounts& n = verdict.cells;
       std::cout << "trackbed report: " << n.total() << " cells (" << n.ok << " ok, " << n.failed
                 << " failed, " << n.timed_out << " timed out, " << n.interrupted << " interrupted, "
                 << n.pending << " pending) -> " << *dir << "/report.md" << std::endl;
+      for (const std::string& f : verdict.expectations.failed) {
+        std::cout << "trackbed report: expectation failed: " << f << "\n";
+      }
     } catch (const std::exception& e) {
       std::cerr << "trackbed report: " << e.what() << std::endl;
       throw CLI::RuntimeError(2);

@@ -34,6 +34,7 @@
 #include <string>
 #include <vector>
 
+#include "trackbed/experiments/expectation_checks.h"
 #include "trackbed/experiments/slurm_backend.h"
 #include "trackbed/experiments/sweep.h"
 #include "trackbed/experiments/sweep_report.h"
@@ -347,7 +348,8 @@ int RunSweep(const SweepArgs& args) {
   }
   progress.End();
 
-  const experiments::SweepCounts n = experiments::WriteSweepReport(dir);
+  const experiments::SweepVerdict verdict = experiments::ReportSweep(dir);
+  const experiments::SweepCounts& n = verdict.cells;
   if (interrupt != 0) {
     std::cerr << "trackbed sweep: interrupted by " << SignalText(interrupt) << ": " << n.ok
               << " ok, " << (n.failed + n.timed_out) << " not ok, " << (n.interrupted + n.pending)
@@ -355,10 +357,8 @@ int RunSweep(const SweepArgs& args) {
               << std::endl;
     return 128 + interrupt;
   }
-  std::cout << "trackbed sweep: " << plan.name << ": " << n.ok << " ok, " << n.failed << " failed, "
-            << n.timed_out << " timed out; summary in " << (dir / "summary.csv").string()
-            << ", report in " << (dir / "report.md").string() << std::endl;
-  return n.ok == n.total() ? kExitAllOk : kExitSomeFailed;
+  experiments::PrintSweepResult(std::cout, plan.name, dir, verdict);
+  return experiments::SweepExitStatus(verdict);
 }
 
 int RunSweepCell(const std::string& sweep_dir, std::size_t index, const std::string& list_file) {

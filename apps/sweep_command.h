@@ -4,10 +4,11 @@
 // what a batch scheduler's array task runs; `--backend slurm` submits the cells
 // as one Slurm array job of such tasks (slurm_backend.h).
 //
-// Exit status of `sweep`: 0 when every cell is ok; 1 when some cell failed or timed
-// out (the summary and report are written all the same); 2 on bad input (sweep file,
-// command line, a sweep folder holding another sweep); 128 + signal (130 for SIGINT,
-// 143 for SIGTERM) when interrupted — finished cells are kept and a rerun resumes.
+// Exit status of `sweep`: 0 when every cell is ok and every expectation held; 1 when
+// some cell failed or timed out (the summary and report are written all the same); 3
+// when every cell is ok and an expectation failed (expectation_checks.h); 2 on bad input (sweep
+// file, command line, a sweep folder holding another sweep); 128 + signal (130 for SIGINT, 143 for
+// SIGTERM) when interrupted — finished cells are kept and a rerun resumes.
 #pragma once
 
 #include <cstddef>

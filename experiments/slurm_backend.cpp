@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "trackbed/common/archive.h"
+#include "trackbed/experiments/expectation_checks.h"
 #include "trackbed/experiments/sweep_report.h"
 
 namespace trackbed::experiments {
@@ -429,7 +430,7 @@ int RunSlurmSweep(const fs::path& dir, const SweepPlan& plan, const SlurmOptions
   }
 
   if (!options.wait) {
-    experiments::WriteSweepReport(dir);
+    experiments::ReportSweep(dir);
     if (!watch.empty()) {
       std::cout << "trackbed sweep: follow it with the same command and --wait, or squeue; "
                    "`trackbed report "
@@ -439,16 +440,14 @@ int RunSlurmSweep(const fs::path& dir, const SweepPlan& plan, const SlurmOptions
   }
   interrupt = Follow(dir, plan, subs, watch, options, signals, progress);
   progress.End();
-  const experiments::SweepCounts n = experiments::WriteSweepReport(dir);
+  const experiments::SweepVerdict verdict = experiments::ReportSweep(dir);
   if (interrupt != 0) {
     std::cerr << "trackbed sweep: stopped following by " << SignalText(interrupt)
               << "; the Slurm job(s) go on: rerun with --wait to follow them" << std::endl;
     return 128 + interrupt;
   }
-  std::cout << "trackbed sweep: " << plan.name << ": " << n.ok << " ok, " << n.failed << " failed, "
-            << n.timed_out << " timed out; summary in " << (dir / "summary.csv").string()
-            << ", report in " << (dir / "report.md").string() << std::endl;
-  return n.ok == n.total() ? kExitAllOk : kExitSomeFailed;
+  experiments::PrintSweepResult(std::cout, plan.name, dir, verdict);
+  return experiments::SweepExitStatus(verdict);
 }
 
 }  // namespace trackbed::experiments

@@ -140,6 +140,7 @@ struct PlanFields {
   std::optional<double> timeout_s;  // null: no limit
   std::vector<std::string> vary_keys, replicate_keys;
   std::vector<CellFields> cells;
+  std::vector<SweepExpectation> expect;
 
   template <class Archive>
   void Serialize(Archive* a) {
@@ -148,6 +149,7 @@ struct PlanFields {
     a->Visit("vary_keys", &vary_keys, archive::kRequired);
     a->Visit("replicate_keys", &replicate_keys, archive::kRequired);
     a->Visit("cells", &cells, archive::kRequired);
+    a->Visit("expect", &expect, archive::kOmitEmpty);
   }
 };
 
@@ -280,6 +282,7 @@ SweepPlan MakeSweepPlan(const SweepSpec& spec) {
     if (a.replicate) plan.replicate_keys.push_back(a.key);
   }
   plan.cells = ExpandSweep(spec);
+  plan.expect = spec.expect;
   return plan;
 }
 
@@ -289,6 +292,7 @@ std::string SweepPlanJson(const SweepPlan& plan) {
   fields.timeout_s = plan.timeout_s;
   fields.vary_keys = plan.vary_keys;
   fields.replicate_keys = plan.replicate_keys;
+  fields.expect = plan.expect;
   for (const SweepCell& c : plan.cells) {
     CellFields& cell = fields.cells.emplace_back();
     cell.index = c.index;
@@ -311,6 +315,13 @@ SweepPlan ParseSweepPlan(const std::string& json_text, const std::string& source
   plan.timeout_s = fields.timeout_s;
   plan.vary_keys = fields.vary_keys;
   plan.replicate_keys = fields.replicate_keys;
+  plan.expect = fields.expect;
+  for (std::size_t i = 0; i < fields.expect.size(); ++i) {
+    const std::string problem = fields.expect[i].Problem();
+    if (!problem.empty()) {
+      throw SweepError(source_name, archive::JoinIndex("expect", i), problem);
+    }
+  }
   for (std::size_t i = 0; i < fields.cells.size(); ++i) {
     const CellFields& c = fields.cells[i];
     const std::string where = archive::JoinIndex("cells", i);

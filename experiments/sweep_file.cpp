@@ -80,6 +80,7 @@ struct SweepFileFields {
   std::optional<std::vector<std::string>> set;
   std::optional<std::vector<AxisFields>> vary;
   std::optional<double> timeout_s;
+  std::optional<std::vector<SweepExpectation>> expect;
 
   template <class Archive>
   void Serialize(Archive* a) {
@@ -90,6 +91,7 @@ struct SweepFileFields {
     a->Visit("set", &set, archive::kOmitEmpty);
     a->Visit("vary", &vary, archive::kOmitEmpty);
     a->Visit("timeout_s", &timeout_s, archive::kOmitEmpty);
+    a->Visit("expect", &expect, archive::kOmitEmpty);
   }
 };
 
@@ -341,6 +343,24 @@ SweepSpec ParseSweep(const std::string& yaml_text, const std::string& source_nam
     if (!(t > 0)) fail("timeout_s", "must be > 0");
     spec.timeout_s = t;
   }
+  if (fields.expect) {
+    if (fields.expect->empty()) fail("expect", "must not be empty");
+    for (std::size_t i = 0; i < fields.expect->size(); ++i) {
+      const SweepExpectation& e = (*fields.expect)[i];
+      const std::string problem = e.Problem();
+      if (problem.empty()) {
+        if (!e.scenario.empty() && std::find(spec.scenarios.begin(), spec.scenarios.end(),
+                                             e.scenario) == spec.scenarios.end()) {
+          fail(JoinIndex("expect", i) + ".scenario",
+               "'" + e.scenario + "' is not among the sweep's scenarios");
+        }
+        continue;
+      }
+      const std::size_t colon = problem.find(": ");
+      fail(JoinIndex("expect", i) + "." + problem.substr(0, colon), problem.substr(colon + 2));
+    }
+    spec.expect = *fields.expect;
+  }
   return spec;
 }
 
@@ -376,6 +396,7 @@ std::string SweepToYaml(const SweepSpec& spec) {
     axis.replicate = a.replicate;
   }
   fields.timeout_s = spec.timeout_s;
+  if (!spec.expect.empty()) fields.expect = spec.expect;
 
   Node node = archive::Write(fields);
   const auto quote = [](Node& n) { n.set_style(Node::Style::kDoubleQuoted); };

@@ -12,8 +12,8 @@ packages=(
   pybind11-dev python3-dev python3-numpy libzstd-dev zlib1g-dev
 )
 # `--tests`: what the test suite needs beyond the build (node and npm run the
-# independent MCAP readers, tests/mcap/).
-[ "${1:-}" = "--tests" ] && packages+=(nodejs npm)
+# independent MCAP readers, tests/mcap/; xmllint checks JUnit XML).
+[ "${1:-}" = "--tests" ] && packages+=(nodejs npm libxml2-utils)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

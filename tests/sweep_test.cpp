@@ -188,7 +188,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadSweep{"- a\n", "test.yaml: expected a map of sweep keys, got a list"},
         BadSweep{kOk + "seed: 1\n",
                  "test.yaml: seed: unknown key (expected one of: name, base_dir, scenarios, "
-                 "seeds, set, vary, timeout_s)"},
+                 "seeds, set, vary, timeout_s, expect)"},
         BadSweep{"seeds: [1]\n", "test.yaml: scenarios: missing (a list of scenario files)"},
         BadSweep{"scenarios: []\nseeds: [1]\n", "test.yaml: scenarios: must not be empty"},
         BadSweep{"scenarios: [nav_paper_left.yaml, ./nav_paper_left.yaml]\nseeds: [1]\n",
@@ -236,7 +236,29 @@ INSTANTIATE_TEST_SUITE_P(
         BadSweep{kOk + "vary: [{key: duration_s, values: [1], replicate: maybe}]\n",
                  "test.yaml: vary[0].replicate: expected true or false, got 'maybe'"},
         BadSweep{kOk + "timeout_s: 0\n", "test.yaml: timeout_s: must be > 0"},
-        BadSweep{kOk + "name: [a]\n", "test.yaml: name: expected a string, got a list"}));
+        BadSweep{kOk + "name: [a]\n", "test.yaml: name: expected a string, got a list"},
+        BadSweep{kOk + "expect: []\n", "test.yaml: expect: must not be empty"},
+        BadSweep{kOk + "expect: [{max: 1}]\n", "test.yaml: expect[0].metric: missing"},
+        BadSweep{kOk + "expect: [{metric: m, maxx: 1}]\n",
+                 "test.yaml: expect[0].maxx: unknown key (expected one of: metric, min, max, "
+                 "over, order, scenario)"},
+        BadSweep{kOk + "expect: [{metric: m}]\n",
+                 "test.yaml: expect[0].min, max: a bound needs at least one (or give `order`)"},
+        BadSweep{kOk + "expect: [{metric: m, min: 2, max: 1}]\n",
+                 "test.yaml: expect[0].max: must be >= min"},
+        BadSweep{kOk + "expect: [{metric: m, max: 1, over: group}]\n",
+                 "test.yaml: expect[0].over: must be cell or mean (got 'group')"},
+        BadSweep{kOk + "expect: [{metric: m, order: [fused]}]\n",
+                 "test.yaml: expect[0].order: name at least two estimators"},
+        BadSweep{kOk + "expect: [{metric: m, order: [fused, fused]}]\n",
+                 "test.yaml: expect[0].order: 'fused' named twice"},
+        BadSweep{kOk + "expect: [{metric: m, order: [a, b], max: 1}]\n",
+                 "test.yaml: expect[0].order: an ordering takes no min or max"},
+        BadSweep{kOk + "expect: [{metric: m, max: x}]\n",
+                 "test.yaml: expect[0].max: expected a number, got 'x'"},
+        BadSweep{kOk + "expect: [{metric: m, max: 1, scenario: other.yaml}]\n",
+                 "test.yaml: expect[0].scenario: 'other.yaml' is not among the sweep's "
+                 "scenarios"}));
 
 TEST(SweepFileTest, MissingScenarioAndSyntaxErrorsNameTheFile) {
   const std::string missing = ErrorOf("scenarios: [nope.yaml]\nseeds: [1]\n");

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "trackbed/common/durable_file.h"
+#include "trackbed/experiments/sweep_expectation.h"
 #include "trackbed/scenario/scenario_yaml.h"
 
 namespace trackbed::experiments {
@@ -69,6 +70,8 @@ struct SweepSpec {
   std::vector<SweepAxis> vary;
   /// Wall-clock limit of one cell [s]; none: no limit.
   std::optional<double> timeout_s;
+  /// What the cells' metrics must show (sweep_expectation.h).
+  std::vector<SweepExpectation> expect;
 };
 
 /// Reads and validates a sweep file: unknown keys, wrong types, empty or duplicate
@@ -115,6 +118,7 @@ struct SweepPlan {
   std::vector<std::string> vary_keys;
   std::vector<std::string> replicate_keys;  ///< the vary_keys whose axes are replicates
   std::vector<SweepCell> cells;
+  std::vector<SweepExpectation> expect;
 
   /// vary_keys without replicate_keys: what tells groups of one scenario apart.
   std::vector<std::string> GroupKeys() const;

@@ -23,6 +23,7 @@ using SweepClock = std::chrono::steady_clock;
 constexpr int kExitAllOk = 0;
 constexpr int kExitSomeFailed = 1;
 constexpr int kExitBadInput = 2;
+constexpr int kExitExpectationFailed = 3;  ///< every cell ok, an expectation failed
 
 /// This machine's host name ("" when unknown).
 std::string Hostname();
