@@ -6,6 +6,7 @@
 #include <zlib.h>
 #include <zstd.h>
 
+#include <memory>
 #include <stdexcept>
 
 namespace trackbed::recording {
@@ -79,11 +80,14 @@ McapWriter::~McapWriter() {
   }
 }
 
-void McapWriter::Emit(const std::string& bytes) {
-  out_.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+void McapWriter::Emit(const std::string& bytes) { Emit(bytes.data(), bytes.size()); }
+
+void McapWriter::Emit(const char* bytes, std::size_t n) {
+  out_.write(bytes, static_cast<std::streamsize>(n));
   if (!out_) throw std::runtime_error(path_ + ": write failed");
-  offset_ += bytes.size();
-  data_crc_ = Crc32(data_crc_, bytes);
+  offset_ += n;
+  data_crc_ = static_cast<std::uint32_t>(
+      crc32(data_crc_, reinterpret_cast<const Bytef*>(bytes), static_cast<uInt>(n)));
 }
 
 std::string McapWriter::SchemaRecord(const Schema& s) {
@@ -136,10 +140,12 @@ void McapWriter::Write(std::uint16_t channel_id, std::uint64_t log_time_ns,
   start_ns_ = std::min(start_ns_, log_time_ns);
   end_ns_ = std::max(end_ns_, log_time_ns);
   chunk_index_[channel_id].emplace_back(log_time_ns, chunk_.size());
-  Fields m;
-  m.U16(channel_id).U32(c.next_sequence++).U64(log_time_ns).U64(publish_time_ns);
-  m.Raw(std::string(data.begin(), data.end()));
-  chunk_ += Record(kMessage, m);
+  // The record written in place (the data may be an image: no copies on the way).
+  Fields head;
+  head.U8(kMessage).U64(2 + 4 + 8 + 8 + data.size());
+  head.U16(channel_id).U32(c.next_sequence++).U64(log_time_ns).U64(publish_time_ns);
+  chunk_ += head.bytes();
+  chunk_.append(reinterpret_cast<const char*>(data.data()), data.size());
   ++c.message_count;
   ++message_count_;
   if (chunk_.size() >= options_.chunk_size_bytes) FlushChunk();
@@ -147,16 +153,18 @@ void McapWriter::Write(std::uint16_t channel_id, std::uint64_t log_time_ns,
 
 void McapWriter::FlushChunk() {
   if (chunk_.empty()) return;
-  std::string compressed(ZSTD_compressBound(chunk_.size()), '\0');
-  const std::size_t n = ZSTD_compress(compressed.data(), compressed.size(), chunk_.data(),
-                                      chunk_.size(), options_.zstd_level);
+  const std::size_t bound = ZSTD_compressBound(chunk_.size());
+  const std::unique_ptr<char[]> compressed(new char[bound]);
+  const std::size_t n =
+      ZSTD_compress(compressed.get(), bound, chunk_.data(), chunk_.size(), options_.zstd_level);
   if (ZSTD_isError(n)) throw std::runtime_error(path_ + ": zstd: " + ZSTD_getErrorName(n));
-  compressed.resize(n);
   ChunkIndex index{chunk_start_ns_, chunk_end_ns_, offset_, 0, {}, 0, n, chunk_.size()};
-  Fields content;
-  content.U64(chunk_start_ns_).U64(chunk_end_ns_).U64(chunk_.size()).U32(Crc32(0, chunk_));
-  content.String("zstd").U64(compressed.size()).Raw(compressed);
-  Emit(Record(kChunk, content));
+  Fields head;  // the Chunk record up to its compressed records, which follow as they are
+  head.U8(kChunk).U64(8 + 8 + 8 + 4 + (4 + 4) + 8 + n);
+  head.U64(chunk_start_ns_).U64(chunk_end_ns_).U64(chunk_.size()).U32(Crc32(0, chunk_));
+  head.String("zstd").U64(n);
+  Emit(head.bytes());
+  Emit(compressed.get(), n);
   index.length = offset_ - index.offset;
   const std::uint64_t indexes_start = offset_;
   for (const auto& [channel, entries] : chunk_index_) {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <functional>
 #include <sstream>
@@ -273,6 +274,60 @@ rec::CameraInfo CameraInfoOf(const calibration::StereoCalibration& given, int ca
   return c;
 }
 
+// camera/times.txt: one time [s] per line.
+std::vector<double> ReadTimes(const fs::path& file) {
+  std::ifstream in(file);
+  std::vector<double> t;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    char* end = nullptr;
+    t.push_back(std::strtod(line.c_str(), &end));
+    if (line.empty() || *end != '\0') {
+      throw std::runtime_error(file.string() + ":" + std::to_string(number) + ": not a time: '" +
+                               line + "'");
+    }
+  }
+  return t;
+}
+
+std::vector<std::uint8_t> ReadBytes(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary | std::ios::ate);
+  if (!in) throw std::runtime_error(file.string() + ": cannot open");
+  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(in.tellg()));
+  in.seekg(0);
+  if (!in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()))) {
+    throw std::runtime_error(file.string() + ": cannot read");
+  }
+  return bytes;
+}
+
+// One camera's topics: with the frames saved (camera/), its images as PNG and a
+// camera_info per frame, stamped alike; without, camera_info once, latched.
+void AddCameraStreams(const calibration::StereoCalibration& given, int c, const fs::path& camera,
+                      const std::vector<double>& frames, std::vector<Stream>* streams) {
+  const std::string side = c == 0 ? "left" : "right";
+  const rec::CameraInfo info = CameraInfoOf(given, c);
+  if (frames.empty()) {
+    streams->push_back(MakeStream<rec::CameraInfo>(
+        "/stereo/" + side + "/camera_info", {0.0}, [info](std::size_t) { return info; }, true));
+    return;
+  }
+  streams->push_back(MakeStream<rec::CompressedImage>(
+      "/stereo/" + side + "/image_raw/compressed", frames,
+      [frames, info, dir = camera / side](std::size_t k) {
+        char name[16];
+        std::snprintf(name, sizeof(name), "%06zu.png", k);
+        return rec::CompressedImage{At(frames[k], info.header.frame_id), "png",
+                                    ReadBytes(dir / name)};
+      }));
+  streams->push_back(MakeStream<rec::CameraInfo>(
+      "/stereo/" + side + "/camera_info", frames, [frames, info](std::size_t k) {
+        rec::CameraInfo i = info;
+        i.header.stamp = rec::Time::FromSeconds(frames[k]);
+        return i;
+      }));
+}
+
 // rosbag2's metadata.yaml (version 5, which ROS 2 Humble and later read) for one MCAP
 // file holding every topic.
 std::string MetadataYaml(const std::vector<Stream>& streams,
@@ -321,15 +376,15 @@ std::vector<Stream> RunStreams(const fs::path& dir, const scenario::Scenario& sc
   if (!physics) return streams;
   streams.push_back(ImuStream(dir / "imu.csv"));
   streams.push_back(JointStream(dir / "encoders.csv", scenario.robot.encoders.ticks_per_rev));
-  const bool camera = fs::exists(dir / calibration::kStereoFile);
-  const calibration::RobotCalibration given = calibration::ReadCalibrationFolder(dir, camera);
+  const bool has_camera = fs::exists(dir / calibration::kStereoFile);
+  const calibration::RobotCalibration given = calibration::ReadCalibrationFolder(dir, has_camera);
   streams.push_back(StaticTfStream(given, scenario));
   if (given.stereo) {
+    const fs::path camera = dir / "camera";
+    const std::vector<double> frames =
+        fs::exists(camera / "times.txt") ? ReadTimes(camera / "times.txt") : std::vector<double>{};
     for (int c = 0; c < 2; ++c) {
-      const rec::CameraInfo info = CameraInfoOf(*given.stereo, c);
-      streams.push_back(MakeStream<rec::CameraInfo>(
-          std::string("/stereo/") + (c == 0 ? "left" : "right") + "/camera_info", {0.0},
-          [info](std::size_t) { return info; }, true));
+      AddCameraStreams(*given.stereo, c, camera, frames, &streams);
     }
   }
   return streams;

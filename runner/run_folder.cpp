@@ -16,6 +16,7 @@
 #include "trackbed/perception/kitti_sequence.h"
 #include "trackbed/perception/opencv_views.h"
 #include "trackbed/perception/stereo_rectifier.h"
+#include "trackbed/runner/camera_frame_log.h"
 #include "trackbed/runner/log_file.h"
 #include "trackbed/runner/navigation_log.h"
 #include "trackbed/runner/navigation_scenario.h"
@@ -329,7 +330,8 @@ struct RunFolderWriter::Files {
   Eigen::Isometry3d T_world_cam0 = Eigen::Isometry3d::Identity();
   std::unique_ptr<LogFile> navigation_csv;
   std::vector<navigation::NavigationLogEntry> navigation_log;
-  std::unique_ptr<LogFile> exposure_csv;  // with the auto-exposure
+  std::unique_ptr<LogFile> exposure_csv;   // with the auto-exposure
+  std::unique_ptr<CameraFrameLog> camera;  // with outputs.mcap_images
 };
 
 RunFolderWriter::RunFolderWriter(const scenario::Scenario& scenario, const fs::path& dir)
@@ -344,6 +346,8 @@ RunFolderWriter::RunFolderWriter(const scenario::Scenario& scenario, const fs::p
     files_->navigation_csv =
         std::make_unique<LogFile>(dir / "navigation.csv", kNavigationCsvHeader);
   }
+  if (scenario.outputs.mcap_images)
+    files_->camera = std::make_unique<CameraFrameLog>(dir / "camera");
   if (scenario.robot.stereo.enabled && scenario.robot.stereo.auto_exposure.enabled) {
     files_->exposure_csv =
         std::make_unique<LogFile>(dir / "camera_exposure.csv", "t,exposure_time_s,gain");
@@ -376,11 +380,12 @@ void RunFolderWriter::WriteCalibration(const scenario::Scenario& scenario,
 RunObservers RunFolderWriter::observers() {
   Files& f = *files_;
   RunObservers o;
-  // Only with an image export or the auto-exposure's log: a run that looks at no image
-  // on the main thread lets the sensor model run on the localization thread
-  // (closed_loop.cpp).
-  if (f.kitti || f.exposure_csv) {
+  // Only with an image export, the bag's images or the auto-exposure's log: a run that
+  // looks at no image on the main thread lets the sensor model run on the localization
+  // thread (closed_loop.cpp).
+  if (f.kitti || f.exposure_csv || f.camera) {
     o.on_stereo = [&f](const StereoFrame& s) {
+      if (f.camera) f.camera->Add(s.t_s, *s.left, *s.right);
       if (f.exposure_csv) {
         char line[96];
         std::snprintf(line, sizeof(line), "%.6f,%.9g,%.6g", s.t_s, s.exposure_time_s, s.gain);
@@ -435,6 +440,7 @@ void RunFolderWriter::Close(const scenario::Scenario& scenario, const RunMetrics
   }
   f.logs.Close();
   if (f.kitti) f.kitti->Close();
+  if (f.camera) f.camera->Close();
   f.plots.Write(dir_, scenario.scene.name);
   if (scenario.outputs.mcap) WriteRunBag(dir_);
   WriteMetricsJson(metrics, dir_);

@@ -300,6 +300,10 @@ void Scenario::Validate(DriveSource drive_source) const {
   if (outputs.save_images == "kitti" && !robot.stereo.enabled) {
     throw OptionError("outputs.save_images", "kitti needs robot.stereo.enabled: true");
   }
+  if (outputs.mcap_images && !(outputs.mcap && robot.stereo.enabled)) {
+    throw OptionError("outputs.mcap_images",
+                      "needs outputs.mcap: true and robot.stereo.enabled: true");
+  }
 }
 
 Scenario WithRealismResolved(Scenario scenario) {

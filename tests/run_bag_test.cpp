@@ -1,11 +1,12 @@
 // A run as a ROS 2 bag (runner/run_bag.h, docs/mcap.md), read by independent readers
-// (tests/mcap_readers.h): the corridor and the park each write run.mcap and
-// metadata.yaml; every record and CRC is valid; topics, types and frames are the
+// (tests/mcap_readers.h): the corridor and the park, with the images, each write
+// run.mcap and metadata.yaml; every record and CRC is valid; topics, types and frames are the
 // documented ones; each topic has one message per row of the file it mirrors, and its
 // last message equals that row; `trackbed export-mcap` on the folder writes the same
 // bytes, and refuses a folder that is not a run's.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <zlib.h>
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.h"
@@ -59,8 +61,11 @@ void ExpectPose(const json& position, const json& orientation, const std::vector
 
 void CheckRunBag(const std::string& scene, const std::string& tag) {
   const fs::path out = trackbed::testing_cli::FreshTempDir("trackbed_run_bag_test_", tag);
-  const auto r = trackbed::testing_cli::RunTrackbed(
-      "run " + scene + " --set duration_s=6 --out " + (out / "run").string(), out / "io");
+  const auto r = trackbed::testing_cli::RunTrackbed("run " + scene +
+                                                        " --set duration_s=6 --set "
+                                                        "outputs.mcap_images=true --out " +
+                                                        (out / "run").string(),
+                                                    out / "io");
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
   const fs::path run = out / "run";
   const json bag = trackbed::testing_mcap::ReadWithIndependentReaders((run / "run.mcap").string());
@@ -80,7 +85,9 @@ void CheckRunBag(const std::string& scene, const std::string& tag) {
       {"/imu", "sensor_msgs/msg/Imu"},
       {"/joint_states", "sensor_msgs/msg/JointState"},
       {"/stereo/left/camera_info", "sensor_msgs/msg/CameraInfo"},
-      {"/stereo/right/camera_info", "sensor_msgs/msg/CameraInfo"}};
+      {"/stereo/right/camera_info", "sensor_msgs/msg/CameraInfo"},
+      {"/stereo/left/image_raw/compressed", "sensor_msgs/msg/CompressedImage"},
+      {"/stereo/right/image_raw/compressed", "sensor_msgs/msg/CompressedImage"}};
   for (const auto& [topic, type] : topics) {
     ASSERT_TRUE(c.contains(topic)) << topic;
     EXPECT_EQ(c[topic]["schema"], type) << topic;
@@ -133,6 +140,27 @@ void CheckRunBag(const std::string& scene, const std::string& tag) {
   EXPECT_EQ(info["width"], calib["width_px"]);
   EXPECT_DOUBLE_EQ(info["k"][0], calib["fx"]);
   EXPECT_DOUBLE_EQ(info["k"][5], calib["cy"]);
+  // The images as the stack received them: one per frame, the PNG's bytes, stamped as
+  // their camera_info.
+  const auto frames = Rows(run / "camera/times.txt", ' ');
+  ASSERT_GT(frames.size(), 50u);
+  for (const char* side : {"left", "right"}) {
+    const std::string topic = std::string("/stereo/") + side;
+    const json& image = c[topic + "/image_raw/compressed"];
+    EXPECT_EQ(image["count"], frames.size());
+    EXPECT_EQ(c[topic + "/camera_info"]["count"], frames.size());
+    EXPECT_EQ(image["last"]["format"], "png");
+    EXPECT_EQ(image["last"]["header"]["frame_id"], std::string(side) + "_camera_optical");
+    EXPECT_NEAR(Seconds(image["last"]["header"]["stamp"]), frames.back()[0], 1e-9);
+    EXPECT_EQ(image["last"]["header"]["stamp"],
+              c[topic + "/camera_info"]["last"]["header"]["stamp"]);
+    char name[16];
+    std::snprintf(name, sizeof(name), "%06zu.png", frames.size() - 1);
+    const std::string png = Slurp(run / "camera" / side / name);
+    EXPECT_EQ(image["last"]["data"]["bytes"], png.size());
+    EXPECT_EQ(image["last"]["data"]["crc32"],
+              crc32(0, reinterpret_cast<const Bytef*>(png.data()), static_cast<uInt>(png.size())));
+  }
   const json& statics = c["/tf_static"]["last"]["transforms"];
   EXPECT_EQ(statics[0]["child_frame_id"], "left_camera_optical");
   EXPECT_DOUBLE_EQ(statics[0]["transform"]["translation"]["x"], calib["T_body_left"][0][3]);

@@ -210,6 +210,16 @@ TEST(ScenarioYamlTest, RegionRejectsKeysOfTheOtherShape) {
             "'disc')");
 }
 
+TEST(ScenarioYamlTest, TheBagsImagesNeedTheBagAndTheCamera) {
+  const std::string m = kMinimal;
+  const std::string why =
+      "test.yaml: outputs.mcap_images: needs outputs.mcap: true and robot.stereo.enabled: true";
+  EXPECT_EQ(ErrorOf(m + "outputs: {mcap: false, mcap_images: true}\n"), why);
+  EXPECT_EQ(ErrorOf(m + "robot: {stereo: {enabled: false}}\noutputs: {mcap_images: true}\n"), why);
+  EXPECT_EQ(ErrorOf(m + "outputs: {mcap: maybe}\n"),
+            "test.yaml: outputs.mcap: expected true or false, got 'maybe'");
+}
+
 TEST(ScenarioYamlTest, WrongTypeNamesKeyAndExpectation) {
   const std::string m = kMinimal;
   EXPECT_EQ(ErrorOf(m + "duration_s: fast\n"),

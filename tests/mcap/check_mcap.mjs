@@ -3,7 +3,8 @@
 // CRC checks and seeking through the summary and chunk indexes; the data section's and
 // the summary's CRC-32 recomputed (@foxglove/crc); every message decoded from its
 // channel's ros2msg schema (@foxglove/rosmsg parses it, @foxglove/rosmsg2-serialization
-// decodes the CDR) and required to end exactly where its bytes end.
+// decodes the CDR) and required to end exactly where its bytes end. Byte fields over
+// 4 KiB (images) print as {bytes, crc32}.
 //   node tests/mcap/check_mcap.mjs FILE.mcap   (modules from NODE_PATH or beside it)
 import { readFile } from "node:fs/promises";
 import { createRequire } from "node:module";
@@ -83,5 +84,6 @@ console.log(JSON.stringify({
   chunkIndexes: reader.chunkIndexes.length,
   channels,
 }, (key, value) => (typeof value === "bigint" ? value.toString()
-  : value instanceof Uint8Array || value instanceof Int8Array ? Array.from(value)
+  // Large byte fields (images) as their length and CRC-32, small ones element by element.
+  : value instanceof Uint8Array && value.length > 4096 ? { bytes: value.length, crc32: crc32(value) }
   : ArrayBuffer.isView(value) ? Array.from(value) : value), 1));

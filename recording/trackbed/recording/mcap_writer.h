@@ -72,6 +72,7 @@ class McapWriter {
   };
 
   void Emit(const std::string& bytes);  // to the file, counting offset and CRCs
+  void Emit(const char* bytes, std::size_t n);
   void FlushChunk();
   void WriteSummary();
   static std::string SchemaRecord(const Schema& s);

@@ -437,6 +437,9 @@ struct OutputsSpec {
   /// Whether the run folder gets run.mcap and metadata.yaml: the run as a ROS 2 bag
   /// (runner/run_bag.h, docs/mcap.md).
   bool mcap = true;
+  /// Whether the bag also holds the camera images (PNG, as the stack receives them),
+  /// which the run then saves in camera/ (needs mcap and robot.stereo.enabled).
+  bool mcap_images = false;
 
   void Validate() const;
 
@@ -446,6 +449,7 @@ struct OutputsSpec {
   void Serialize(Archive* a) {
     a->Visit("save_images", &save_images);
     a->Visit("mcap", &mcap);
+    a->Visit("mcap_images", &mcap_images);
   }
 };
 
