@@ -12,8 +12,13 @@ packages=(
   pybind11-dev python3-dev python3-numpy libzstd-dev zlib1g-dev
 )
 # `--tests`: what the test suite needs beyond the build (node and npm run the
-# independent MCAP readers, tests/mcap/; xmllint checks JUnit XML).
-[ "${1:-}" = "--tests" ] && packages+=(nodejs npm libxml2-utils)
+# independent MCAP readers, tests/mcap/; xmllint checks JUnit XML), each unless its
+# command is there already (a node installed another way brings its own npm).
+if [ "${1:-}" = "--tests" ]; then
+  command -v node >/dev/null || packages+=(nodejs)
+  command -v npm >/dev/null || packages+=(npm)
+  command -v xmllint >/dev/null || packages+=(libxml2-utils)
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
