@@ -5,6 +5,7 @@
 #include "trackbed/runner/run_bag.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -118,19 +119,24 @@ Stream MakeStream(const std::string& topic, std::vector<double> t_s,
   return s;
 }
 
-// An estimate's (or the ground truth's) poses as Odometry; `twist` may be empty.
-Stream OdometryStream(const std::string& topic, const fs::path& tum, const std::string& frame,
-                      const std::string& child, std::shared_ptr<const CsvTable> twist,
-                      const fs::path& twist_file) {
-  auto poses = std::make_shared<const estimation::Trajectory>(
+using Poses = std::shared_ptr<const estimation::Trajectory>;
+
+Poses ReadTum(const fs::path& tum) {
+  return std::make_shared<const estimation::Trajectory>(
       estimation::ReadTrajectory(tum, estimation::TrajectoryFormat::kTum).poses);
-  if (twist && twist->rows.size() != poses->size()) {
-    throw std::runtime_error(twist_file.string() + ": " + std::to_string(twist->rows.size()) +
-                             " rows, " + tum.string() + " has " + std::to_string(poses->size()));
-  }
+}
+
+std::vector<double> TimesOf(const estimation::Trajectory& poses) {
   std::vector<double> t;
-  for (const auto& p : *poses) t.push_back(p.t_s);
-  return MakeStream<rec::Odometry>(topic, t, [=](std::size_t k) {
+  for (const auto& p : poses) t.push_back(p.t_s);
+  return t;
+}
+
+// An estimate's (or the ground truth's) poses as Odometry; `twist` (rows as the poses)
+// may be empty.
+Stream OdometryStream(const std::string& topic, Poses poses, const std::string& frame,
+                      const std::string& child, std::shared_ptr<const CsvTable> twist) {
+  return MakeStream<rec::Odometry>(topic, TimesOf(*poses), [=](std::size_t k) {
     rec::Odometry o;
     o.header = At((*poses)[k].t_s, frame);
     o.child_frame_id = child;
@@ -163,12 +169,8 @@ Stream ClockStream(const std::vector<double>& t) {
 
 // /tf: map → odom, the identity (this stack has no map), and odom → base_link from the
 // fused estimate, at its rate.
-Stream TfStream(const fs::path& fused) {
-  auto poses = std::make_shared<const estimation::Trajectory>(
-      estimation::ReadTrajectory(fused, estimation::TrajectoryFormat::kTum).poses);
-  std::vector<double> t;
-  for (const auto& p : *poses) t.push_back(p.t_s);
-  return MakeStream<rec::TFMessage>("/tf", t, [poses](std::size_t k) {
+Stream TfStream(Poses poses) {
+  return MakeStream<rec::TFMessage>("/tf", TimesOf(*poses), [poses](std::size_t k) {
     const double t_s = (*poses)[k].t_s;
     return rec::TFMessage{{{At(t_s, "map"), "odom", rec::Pose{}},
                            {At(t_s, "odom"), "base_link", ToPose((*poses)[k].T_world_body)}}};
@@ -177,18 +179,20 @@ Stream TfStream(const fs::path& fused) {
 
 Stream ImuStream(const fs::path& file) {
   auto imu = std::make_shared<const CsvTable>(ReadCsv(file));
-  for (const char* c : {"t", "gyro_x_radps", "gyro_z_radps", "accel_x_mps2", "accel_z_mps2"}) {
-    imu->Column(file, c);
-  }
+  std::array<std::size_t, 7> c;  // t, then the gyro's and the accelerometer's x, y, z
+  const char* names[] = {
+      "t",           "gyro_x_radps", "gyro_y_radps", "gyro_z_radps", "accel_x_mps2", "accel_y_mps2",
+      "accel_z_mps2"};
+  for (std::size_t i = 0; i < c.size(); ++i) c[i] = imu->Column(file, names[i]);
   std::vector<double> t;
-  for (const auto& r : imu->rows) t.push_back(r[0]);
-  return MakeStream<rec::Imu>("/imu", t, [imu](std::size_t k) {
+  for (const auto& r : imu->rows) t.push_back(r[c[0]]);
+  return MakeStream<rec::Imu>("/imu", t, [imu, c](std::size_t k) {
     const std::vector<double>& r = imu->rows[k];
     rec::Imu m;
-    m.header = At(r[0], "imu_link");
+    m.header = At(r[c[0]], "imu_link");
     m.orientation_covariance[0] = -1.0;  // no orientation estimate (REP-145)
-    m.angular_velocity = {r[1], r[2], r[3]};
-    m.linear_acceleration = {r[4], r[5], r[6]};
+    m.angular_velocity = {r[c[1]], r[c[2]], r[c[3]]};
+    m.linear_acceleration = {r[c[4]], r[c[5]], r[c[6]]};
     return m;
   });
 }
@@ -246,7 +250,8 @@ Stream StaticTfStream(const calibration::RobotCalibration& given,
 // camera_info of one camera (0 left, 1 right), latched at the start: K and D the
 // given calibration's, R and P the rectification the stack computes from it (OpenCV's
 // stereoRectify, alpha 0), P of the right camera carrying −fx·baseline.
-rec::CameraInfo CameraInfoOf(const calibration::StereoCalibration& given, int camera) {
+rec::CameraInfo CameraInfoOf(const calibration::StereoCalibration& given,
+                             const perception::StereoRectifier& rectifier, int camera) {
   const calibration::CameraIntrinsics& k = camera == 0 ? given.left : given.right;
   rec::CameraInfo c;
   c.header = At(0.0, camera == 0 ? "left_camera_optical" : "right_camera_optical");
@@ -261,7 +266,6 @@ rec::CameraInfo CameraInfoOf(const calibration::StereoCalibration& given, int ca
     c.distortion_model = "plumb_bob";
     c.d = {lens.k1, lens.k2, lens.p1, lens.p2, lens.k3};
   }
-  const perception::StereoRectifier rectifier(given);
   const geometry::PinholeCamera& r = rectifier.camera().left;
   const Eigen::Matrix3d R_body_camera =
       (camera == 0 ? given.T_body_left : given.T_body_right).linear();
@@ -303,10 +307,9 @@ std::vector<std::uint8_t> ReadBytes(const fs::path& file) {
 
 // One camera's topics: with the frames saved (camera/), its images as PNG and a
 // camera_info per frame, stamped alike; without, camera_info once, latched.
-void AddCameraStreams(const calibration::StereoCalibration& given, int c, const fs::path& camera,
+void AddCameraStreams(const rec::CameraInfo& info, int c, const fs::path& camera,
                       const std::vector<double>& frames, std::vector<Stream>* streams) {
   const std::string side = c == 0 ? "left" : "right";
-  const rec::CameraInfo info = CameraInfoOf(given, c);
   if (frames.empty()) {
     streams->push_back(MakeStream<rec::CameraInfo>(
         "/stereo/" + side + "/camera_info", {0.0}, [info](std::size_t) { return info; }, true));
@@ -356,22 +359,27 @@ std::string MetadataYaml(const std::vector<Stream>& streams,
 // The topics a run folder holds, in the bag's channel order.
 std::vector<Stream> RunStreams(const fs::path& dir, const scenario::Scenario& scenario) {
   std::vector<Stream> streams;
-  const fs::path gt = dir / "ground_truth.tum";
   const bool physics = fs::exists(dir / "encoders.csv");
-  std::vector<double> gt_t;
-  for (const auto& p : estimation::ReadTrajectory(gt, estimation::TrajectoryFormat::kTum).poses) {
-    gt_t.push_back(p.t_s);
-  }
-  streams.push_back(ClockStream(gt_t));
-  if (fs::exists(dir / "fused.tum")) streams.push_back(TfStream(dir / "fused.tum"));
+  const Poses gt = ReadTum(dir / "ground_truth.tum");
+  streams.push_back(ClockStream(TimesOf(*gt)));
+  std::map<std::string, Poses> estimates;  // each file read once
+  for (const std::string& name : EstimateNames(dir))
+    estimates[name] = ReadTum(dir / (name + ".tum"));
+  if (estimates.count("fused")) streams.push_back(TfStream(estimates["fused"]));
   std::shared_ptr<const CsvTable> twist;
-  if (physics) twist = std::make_shared<const CsvTable>(ReadCsv(dir / "ground_truth_twist.csv"));
-  streams.push_back(OdometryStream("/ground_truth/odom", gt, "map", "base_link_ground_truth", twist,
-                                   dir / "ground_truth_twist.csv"));
-  for (const std::string& name : EstimateNames(dir)) {
-    streams.push_back(OdometryStream("/" + name + "/odom", dir / (name + ".tum"), "odom",
-                                     name == "fused" ? "base_link" : "base_link_" + name, nullptr,
-                                     {}));
+  if (physics) {
+    const fs::path file = dir / "ground_truth_twist.csv";
+    twist = std::make_shared<const CsvTable>(ReadCsv(file));
+    if (twist->rows.size() != gt->size()) {
+      throw std::runtime_error(file.string() + ": " + std::to_string(twist->rows.size()) +
+                               " rows, ground_truth.tum has " + std::to_string(gt->size()));
+    }
+  }
+  streams.push_back(
+      OdometryStream("/ground_truth/odom", gt, "map", "base_link_ground_truth", twist));
+  for (const auto& [name, poses] : estimates) {
+    streams.push_back(OdometryStream("/" + name + "/odom", poses, "odom",
+                                     name == "fused" ? "base_link" : "base_link_" + name, nullptr));
   }
   if (!physics) return streams;
   streams.push_back(ImuStream(dir / "imu.csv"));
@@ -383,8 +391,9 @@ std::vector<Stream> RunStreams(const fs::path& dir, const scenario::Scenario& sc
     const fs::path camera = dir / "camera";
     const std::vector<double> frames =
         fs::exists(camera / "times.txt") ? ReadTimes(camera / "times.txt") : std::vector<double>{};
+    const perception::StereoRectifier rectifier(*given.stereo);  // the maps built once
     for (int c = 0; c < 2; ++c) {
-      AddCameraStreams(*given.stereo, c, camera, frames, &streams);
+      AddCameraStreams(CameraInfoOf(*given.stereo, rectifier, c), c, camera, frames, &streams);
     }
   }
   return streams;
