@@ -97,18 +97,25 @@ std::string Xml(const std::string& text) {
 std::vector<ExpectationCheck> CheckExpectations(const SweepPlan& plan,
                                                 const std::vector<CellResult>& cells) {
   std::vector<ExpectationCheck> checks;
+  std::vector<nlohmann::json> metrics(cells.size());  // each ok cell's, parsed once
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const CellResult& r = cells[i];
+    if (r.outcome.status == CellStatus::kOk && r.metrics_json) {
+      metrics[i] = nlohmann::json::parse(*r.metrics_json, nullptr, false);
+    }
+  }
   for (std::size_t k = 0; k < plan.expect.size(); ++k) {
     const SweepExpectation& e = plan.expect[k];
     // Per cell, or the values of each group's ok cells gathered for their mean.
     std::map<std::string, std::vector<std::vector<double>>> groups;
     std::map<std::string, std::string> missing_in_group;
-    for (const CellResult& r : cells) {
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      const CellResult& r = cells[i];
       if (!e.scenario.empty() && r.cell.scenario != e.scenario) continue;
       groups[r.cell.group];
       if (r.outcome.status != CellStatus::kOk || !r.metrics_json) continue;
-      const nlohmann::json metrics = nlohmann::json::parse(*r.metrics_json, nullptr, false);
       std::string missing;
-      const std::optional<std::vector<double>> v = Values(e, metrics, &missing);
+      const std::optional<std::vector<double>> v = Values(e, metrics[i], &missing);
       if (e.over == "mean") {
         if (v) groups[r.cell.group].push_back(*v);
         if (!v) missing_in_group[r.cell.group] = r.cell.name + ": " + missing;
@@ -207,35 +214,21 @@ std::string ExpectationsMarkdown(const SweepPlan& plan,
   return md.str() + "\n";
 }
 
-ExpectationSummary WriteExpectationReport(const std::filesystem::path& sweep_dir) {
+SweepVerdict ReportSweep(const std::filesystem::path& sweep_dir) {
   const std::filesystem::path dir = std::filesystem::absolute(sweep_dir).lexically_normal();
   const SweepPlan plan = ReadSweepPlan(dir);
   const std::vector<CellResult> cells = ReadSweepResults(dir, plan);
   const std::vector<ExpectationCheck> checks = CheckExpectations(plan, cells);
+  SweepVerdict v;
+  v.cells = WriteSweepReport(dir, plan, cells, ExpectationsMarkdown(plan, checks));
   WriteFileAtomically(dir / "junit.xml", JunitXml(plan, cells, checks));
-  ExpectationSummary summary;
-  summary.checked = checks.size();
+  v.expectations.checked = checks.size();
   for (const ExpectationCheck& c : checks) {
     if (!c.passed) {
-      summary.failed.push_back(c.subject + ": " + plan.expect[c.expectation].Text() +
-                               ": measured " + c.detail);
+      v.expectations.failed.push_back(c.subject + ": " + plan.expect[c.expectation].Text() +
+                                      ": measured " + c.detail);
     }
   }
-  // The section goes before the report's first section, after its opening counts.
-  const std::string section = ExpectationsMarkdown(plan, checks);
-  if (!section.empty() && std::filesystem::exists(dir / "report.md")) {
-    std::string md = ReadTextFile(dir / "report.md");
-    const std::size_t at = md.find("\n## ");
-    md.insert(at == std::string::npos ? md.size() : at + 1, section);
-    WriteFileAtomically(dir / "report.md", md);
-  }
-  return summary;
-}
-
-SweepVerdict ReportSweep(const std::filesystem::path& sweep_dir) {
-  SweepVerdict v;
-  v.cells = WriteSweepReport(sweep_dir);
-  v.expectations = WriteExpectationReport(sweep_dir);
   return v;
 }
 

@@ -648,7 +648,11 @@ std::string SweepReportMarkdown(const SweepPlan& plan, const SweepSummary& summa
 SweepCounts WriteSweepReport(const fs::path& sweep_dir) {
   const fs::path dir = fs::absolute(sweep_dir).lexically_normal();
   const SweepPlan plan = ReadSweepPlan(dir);
-  const std::vector<CellResult> results = ReadSweepResults(dir, plan);
+  return WriteSweepReport(dir, plan, ReadSweepResults(dir, plan), "");
+}
+
+SweepCounts WriteSweepReport(const fs::path& dir, const SweepPlan& plan,
+                             const std::vector<CellResult>& results, const std::string& section) {
   const SweepSummary summary = BuildSweepSummary(plan, results, dir);
   const std::vector<GroupStats> groups = AggregateSweep(plan, summary);
 
@@ -712,6 +716,8 @@ SweepCounts WriteSweepReport(const fs::path& sweep_dir) {
     }
   }
   std::string md = SweepReportMarkdown(plan, summary, groups, plots);
+  const std::size_t first_section = md.find("\n## ");
+  md.insert(first_section == std::string::npos ? md.size() : first_section + 1, section);
   if (!examples.empty()) {
     if (md.size() < 2 || md.compare(md.size() - 2, 2, "\n\n") != 0) md += "\n";
     md += "## Example runs\n\nThe first ok cell of each group, with its run's own plots.\n\n" +

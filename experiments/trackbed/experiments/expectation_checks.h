@@ -36,16 +36,11 @@ std::vector<ExpectationCheck> CheckExpectations(const SweepPlan& plan,
 std::string JunitXml(const SweepPlan& plan, const std::vector<CellResult>& cells,
                      const std::vector<ExpectationCheck>& checks);
 
-/// What WriteExpectationReport found.
+/// What the expectations' checks found.
 struct ExpectationSummary {
   std::size_t checked = 0;
   std::vector<std::string> failed;  ///< one line per failed check: `subject: text: measured …`
 };
-
-/// Checks the sweep folder's expectations on its cells, writes junit.xml and inserts
-/// the "Expectations" section into report.md (written before by WriteSweepReport).
-/// Throws SweepError when `sweep_dir` is not a sweep folder.
-ExpectationSummary WriteExpectationReport(const std::filesystem::path& sweep_dir);
 
 /// A sweep's outcome once its cells ran: the cells' counts and the expectations'.
 struct SweepVerdict {
@@ -53,7 +48,9 @@ struct SweepVerdict {
   ExpectationSummary expectations;
 };
 
-/// WriteSweepReport, then WriteExpectationReport.
+/// Reads the sweep folder once, checks its expectations on its cells, writes the report
+/// (WriteSweepReport, with the "Expectations" section) and junit.xml. Throws SweepError
+/// when `sweep_dir` is not a sweep folder.
 SweepVerdict ReportSweep(const std::filesystem::path& sweep_dir);
 
 /// `trackbed sweep`'s exit status for a sweep whose cells all ran (not interrupted): 0

@@ -139,5 +139,9 @@ std::string SweepReportMarkdown(const SweepPlan& plan, const SweepSummary& summa
 /// first ok cell.
 /// Throws SweepError when `sweep_dir` is not a sweep folder.
 SweepCounts WriteSweepReport(const std::filesystem::path& sweep_dir);
+/// The same from the plan and results already read from `sweep_dir` (absolute), with
+/// `section` (Markdown, may be empty) placed after the report's opening counts.
+SweepCounts WriteSweepReport(const std::filesystem::path& sweep_dir, const SweepPlan& plan,
+                             const std::vector<CellResult>& results, const std::string& section);
 
 }  // namespace trackbed::experiments
