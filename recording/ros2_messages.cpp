@@ -77,25 +77,6 @@ const std::map<std::string, MsgFile>& MsgFiles() {
   return files;
 }
 
-// `package/Type` as a schema: `package/msg/Type` and the definition with every type it
-// uses, depth first, each once.
-MessageSchema Compose(const std::string& type) {
-  const auto& files = MsgFiles();
-  std::string text = files.at(type).text;
-  std::set<std::string> seen{type};
-  std::vector<std::string> stack(files.at(type).uses.rbegin(), files.at(type).uses.rend());
-  while (!stack.empty()) {
-    const std::string dep = stack.back();
-    stack.pop_back();
-    if (!seen.insert(dep).second) continue;
-    const MsgFile& f = files.at(dep);
-    text += std::string(80, '=') + "\nMSG: " + dep + "\n" + f.text;
-    for (auto it = f.uses.rbegin(); it != f.uses.rend(); ++it) stack.push_back(*it);
-  }
-  const std::size_t slash = type.find('/');
-  return {type.substr(0, slash) + "/msg" + type.substr(slash), text};
-}
-
 void Put(CdrWriter& w, const Time& t) { w.Int32(t.sec).UInt32(t.nanosec); }
 void Put(CdrWriter& w, const Header& h) {
   Put(w, h.stamp);
@@ -120,44 +101,21 @@ std::uint64_t Time::Nanoseconds() const {
   return static_cast<std::uint64_t>(sec) * 1000000000ULL + nanosec;
 }
 
-const MessageSchema& SchemaOf(const Clock&) {
-  static const MessageSchema schema = Compose("rosgraph_msgs/Clock");
-  return schema;
-}
-
-const MessageSchema& SchemaOf(const TFMessage&) {
-  static const MessageSchema schema = Compose("tf2_msgs/TFMessage");
-  return schema;
-}
-
-const MessageSchema& SchemaOf(const Odometry&) {
-  static const MessageSchema schema = Compose("nav_msgs/Odometry");
-  return schema;
-}
-
-const MessageSchema& SchemaOf(const Imu&) {
-  static const MessageSchema schema = Compose("sensor_msgs/Imu");
-  return schema;
-}
-
-const MessageSchema& SchemaOf(const JointState&) {
-  static const MessageSchema schema = Compose("sensor_msgs/JointState");
-  return schema;
-}
-
-const MessageSchema& SchemaOf(const LaserScan&) {
-  static const MessageSchema schema = Compose("sensor_msgs/LaserScan");
-  return schema;
-}
-
-const MessageSchema& SchemaOf(const CompressedImage&) {
-  static const MessageSchema schema = Compose("sensor_msgs/CompressedImage");
-  return schema;
-}
-
-const MessageSchema& SchemaOf(const CameraInfo&) {
-  static const MessageSchema schema = Compose("sensor_msgs/CameraInfo");
-  return schema;
+MessageSchema ComposeSchema(const std::string& type) {
+  const auto& files = MsgFiles();
+  std::string text = files.at(type).text;
+  std::set<std::string> seen{type};
+  std::vector<std::string> stack(files.at(type).uses.rbegin(), files.at(type).uses.rend());
+  while (!stack.empty()) {
+    const std::string dep = stack.back();
+    stack.pop_back();
+    if (!seen.insert(dep).second) continue;
+    const MsgFile& f = files.at(dep);
+    text += std::string(80, '=') + "\nMSG: " + dep + "\n" + f.text;
+    for (auto it = f.uses.rbegin(); it != f.uses.rend(); ++it) stack.push_back(*it);
+  }
+  const std::size_t slash = type.find('/');
+  return {type.substr(0, slash) + "/msg" + type.substr(slash), text};
 }
 
 std::vector<std::uint8_t> Serialize(const Clock& m) {

@@ -662,6 +662,7 @@ void ClosedLoop::Impl::Scan(const robot::ChassisState& truth, StepResult* out) {
     return range_sensor_->Scan(*world_, truth.T_world_body, clock_->now_s(), scan_index_++);
   });
   out->scans.push_back(scan);
+  if (observers_.on_scan) observers_.on_scan(scan);
   commander_->AddScan(scan);
 }
 

@@ -223,6 +223,34 @@ Stream JointStream(const fs::path& file, int ticks_per_rev) {
   });
 }
 
+// /scan from scan.csv: the beams fan counter-clockwise from straight ahead over a full
+// turn, all taken at the scan's time (the simulated sensor does not spin during a
+// scan), +inf where no return (REP-117).
+Stream ScanStream(const fs::path& file, const robot::RangeSensorOptions& sensor) {
+  auto scans = std::make_shared<const CsvTable>(ReadCsv(file));
+  const std::size_t beams = static_cast<std::size_t>(sensor.beams);
+  if (scans->columns.size() != beams + 1) {
+    throw std::runtime_error(file.string() + ": " + std::to_string(scans->columns.size() - 1) +
+                             " ranges per row, the scenario's range sensor has " +
+                             std::to_string(beams) + " beams");
+  }
+  std::vector<double> t;
+  for (const auto& r : scans->rows) t.push_back(r[0]);
+  rec::LaserScan shape;
+  shape.angle_increment = static_cast<float>(2.0 * M_PI / sensor.beams);
+  shape.angle_max = static_cast<float>(2.0 * M_PI * (sensor.beams - 1) / sensor.beams);
+  shape.scan_time = static_cast<float>(1.0 / sensor.rate_hz);
+  shape.range_min = static_cast<float>(sensor.min_range_m);
+  shape.range_max = static_cast<float>(sensor.max_range_m);
+  return MakeStream<rec::LaserScan>("/scan", t, [scans, shape](std::size_t k) {
+    const std::vector<double>& r = scans->rows[k];
+    rec::LaserScan m = shape;
+    m.header = At(r[0], "range_sensor");
+    m.ranges.assign(r.begin() + 1, r.end());
+    return m;
+  });
+}
+
 // /tf_static, once at the start: the cameras' optical frames (OpenCV axes, REP-103's
 // `_optical`) and the IMU's axes, as the calibration the stack was given has them (the
 // IMU's file gives no position: its origin is the body's), and the range sensor's mount.
@@ -387,6 +415,9 @@ std::vector<Stream> RunStreams(const fs::path& dir, const scenario::Scenario& sc
   const bool has_camera = fs::exists(dir / calibration::kStereoFile);
   const calibration::RobotCalibration given = calibration::ReadCalibrationFolder(dir, has_camera);
   streams.push_back(StaticTfStream(given, scenario));
+  if (scenario.robot.range_sensor.enabled && fs::exists(dir / "scan.csv")) {  // older runs lack it
+    streams.push_back(ScanStream(dir / "scan.csv", scenario.robot.range_sensor));
+  }
   if (given.stereo) {
     const fs::path camera = dir / "camera";
     const std::vector<double> frames =

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -113,6 +114,12 @@ class RunLogs {
              "t,gyro_x_radps,gyro_y_radps,gyro_z_radps,accel_x_mps2,accel_y_mps2,accel_z_mps2"),
         twist_(dir / "ground_truth_twist.csv",
                "t,v_x_mps,v_y_mps,v_z_mps,omega_x_radps,omega_y_radps,omega_z_radps") {
+    if (scenario.robot.range_sensor.enabled) {
+      std::string header = "t";
+      for (int k = 0; k < scenario.robot.range_sensor.beams; ++k)
+        header += ",range_" + std::to_string(k) + "_m";
+      scan_csv_ = std::make_unique<LogFile>(dir / "scan.csv", header);
+    }
     if (!scenario.estimation.enabled) return;
     wheel_tum_ = std::make_unique<LogFile>(dir / "wheel_odometry.tum", "");
     noslip_tum_ = std::make_unique<LogFile>(dir / "wheel_odometry_noslip.tum", "");
@@ -129,6 +136,7 @@ class RunLogs {
   void Sample(const RunSample& s);
   void Frame(const LocalizationFrame& f);
   void Imu(const robot::ImuSample& s);
+  void Scan(const robot::RangeScanSample& s);
   // An estimate reported from outside the loop: a line of `<name>.tum`.
   void External(const fs::path& dir, const ExternalEstimate& e) {
     std::unique_ptr<LogFile>& tum = external_tum_[*e.name];
@@ -137,7 +145,8 @@ class RunLogs {
   }
   void Close() {
     for (LogFile* f : {&truth_, &twist_, &encoders_, &slip_, &tracks_, &imu_}) f->Close();
-    for (auto* f : {&wheel_tum_, &noslip_tum_, &ekf_tum_, &fused_tum_, &vo_tum_, &fusion_csv_}) {
+    for (auto* f :
+         {&wheel_tum_, &noslip_tum_, &ekf_tum_, &fused_tum_, &vo_tum_, &fusion_csv_, &scan_csv_}) {
       if (*f) (*f)->Close();
     }
     for (auto& [name, f] : external_tum_) f->Close();
@@ -145,7 +154,8 @@ class RunLogs {
 
  private:
   LogFile truth_, encoders_, slip_, tracks_, imu_, twist_;
-  std::unique_ptr<LogFile> wheel_tum_, noslip_tum_, ekf_tum_, fused_tum_, vo_tum_, fusion_csv_;
+  std::unique_ptr<LogFile> wheel_tum_, noslip_tum_, ekf_tum_, fused_tum_, vo_tum_, fusion_csv_,
+      scan_csv_;
   std::map<std::string, std::unique_ptr<LogFile>> external_tum_;  // reported estimators
   char line_[512];
 };
@@ -206,6 +216,17 @@ void RunLogs::Imu(const robot::ImuSample& s) {
                 s.gyro_radps.y(), s.gyro_radps.z(), s.accel_mps2.x(), s.accel_mps2.y(),
                 s.accel_mps2.z());
   imu_.Line(line_);
+}
+
+// A scan's ranges in beam order, `inf` where no return.
+void RunLogs::Scan(const robot::RangeScanSample& s) {
+  std::string row(line_,
+                  static_cast<std::size_t>(std::snprintf(line_, sizeof(line_), "%.6f", s.t_s)));
+  for (double r : s.ranges_m) {
+    row += ',';
+    row.append(line_, static_cast<std::size_t>(std::snprintf(line_, sizeof(line_), "%.7g", r)));
+  }
+  scan_csv_->Line(row.c_str());
 }
 
 }  // namespace
@@ -412,6 +433,7 @@ RunObservers RunFolderWriter::observers() {
     f.logs.Frame(l);
   };
   o.on_imu = [&f](const robot::ImuSample& s) { f.logs.Imu(s); };
+  o.on_scan = [&f](const robot::RangeScanSample& s) { f.logs.Scan(s); };
   o.on_external_estimate = [&f, dir = dir_](const ExternalEstimate& e) {
     f.plots.estimates[*e.name].push_back({e.t_s, e.T_world_body});
     f.logs.External(dir, e);

@@ -1,9 +1,9 @@
 // A run as a ROS 2 bag (runner/run_bag.h, docs/mcap.md), read by independent readers
 // (tests/mcap_readers.h): the corridor and the park, with the images, each write
-// run.mcap and metadata.yaml; every record and CRC is valid; topics, types and frames are the
-// documented ones; each topic has one message per row of the file it mirrors, and its
-// last message equals that row; `trackbed export-mcap` on the folder writes the same
-// bytes, and refuses a folder that is not a run's.
+// run.mcap and metadata.yaml (the corridor with its range sensor on); every record and CRC is
+// valid; topics, types and frames are the documented ones; each topic has one message per row of
+// the file it mirrors, and its last message equals that row; `trackbed export-mcap` on the folder
+// writes the same bytes, and refuses a folder that is not a run's.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -59,13 +59,55 @@ void ExpectPose(const json& position, const json& orientation, const std::vector
   }
 }
 
-void CheckRunBag(const std::string& scene, const std::string& tag) {
+// scan.csv's rows, `inf` included (which the stream parse above refuses).
+std::vector<std::vector<double>> ScanRows(const fs::path& file) {
+  std::istringstream in(Slurp(file));
+  std::vector<std::vector<double>> rows;
+  std::string line;
+  std::getline(in, line);  // the header
+  while (std::getline(in, line)) {
+    std::vector<double> row;
+    std::istringstream fields(line);
+    for (std::string f; std::getline(fields, f, ',');)
+      row.push_back(std::strtod(f.c_str(), nullptr));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// /scan against scan.csv: one message per row, the last one's ranges the row's as
+// float32, the fan and limits the scenario's.
+void CheckScan(const json& c, const fs::path& run) {
+  const auto scans = ScanRows(run / "scan.csv");
+  ASSERT_GT(scans.size(), 10u);
+  const json& scan = c["/scan"];
+  EXPECT_EQ(scan["schema"], "sensor_msgs/msg/LaserScan");
+  EXPECT_EQ(scan["count"], scans.size());
+  const json& m = scan["last"];
+  EXPECT_EQ(m["header"]["frame_id"], "range_sensor");
+  EXPECT_NEAR(Seconds(m["header"]["stamp"]), scans.back()[0], 1e-9);
+  ASSERT_EQ(m["ranges"].size(), 360u);
+  EXPECT_FLOAT_EQ(m["angle_increment"].get<float>(), static_cast<float>(2 * M_PI / 360));
+  EXPECT_FLOAT_EQ(m["range_max"].get<float>(), 8.0f);
+  int returns = 0;
+  for (std::size_t k = 0; k < 360; ++k) {
+    const double csv = scans.back()[k + 1];
+    if (std::isinf(csv)) {
+      EXPECT_TRUE(m["ranges"][k].is_null()) << k;  // JSON.stringify writes Infinity as null
+      continue;
+    }
+    ++returns;
+    EXPECT_EQ(m["ranges"][k].get<float>(), static_cast<float>(csv)) << k;
+  }
+  EXPECT_GT(returns, 90);  // the corridor's walls on both sides
+}
+
+void CheckRunBag(const std::string& scene, const std::string& tag, const std::string& sets) {
   const fs::path out = trackbed::testing_cli::FreshTempDir("trackbed_run_bag_test_", tag);
-  const auto r = trackbed::testing_cli::RunTrackbed("run " + scene +
-                                                        " --set duration_s=6 --set "
-                                                        "outputs.mcap_images=true --out " +
-                                                        (out / "run").string(),
-                                                    out / "io");
+  const auto r = trackbed::testing_cli::RunTrackbed(
+      "run " + scene + " --set duration_s=6 --set outputs.mcap_images=true" + sets + " --out " +
+          (out / "run").string(),
+      out / "io");
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
   const fs::path run = out / "run";
   const json bag = trackbed::testing_mcap::ReadWithIndependentReaders((run / "run.mcap").string());
@@ -161,6 +203,11 @@ void CheckRunBag(const std::string& scene, const std::string& tag) {
     EXPECT_EQ(image["last"]["data"]["crc32"],
               crc32(0, reinterpret_cast<const Bytef*>(png.data()), static_cast<uInt>(png.size())));
   }
+  if (!sets.empty()) {
+    CheckScan(c, run);
+  } else {
+    EXPECT_FALSE(c.contains("/scan"));
+  }
   const json& statics = c["/tf_static"]["last"]["transforms"];
   EXPECT_EQ(statics[0]["child_frame_id"], "left_camera_optical");
   EXPECT_DOUBLE_EQ(statics[0]["transform"]["translation"]["x"], calib["T_body_left"][0][3]);
@@ -183,11 +230,11 @@ void CheckRunBag(const std::string& scene, const std::string& tag) {
 }
 
 TEST(RunBagTest, TheCorridorsBagHoldsEveryTopicAsItsFilesHaveIt) {
-  CheckRunBag("scenes/corridor.yaml", "corridor");
+  CheckRunBag("scenes/corridor.yaml", "corridor", " --set robot.range_sensor.enabled=true");
 }
 
 TEST(RunBagTest, TheParksBagHoldsEveryTopicAsItsFilesHaveIt) {
-  CheckRunBag("scenes/outdoor.yaml", "outdoor");
+  CheckRunBag("scenes/outdoor.yaml", "outdoor", "");
 }
 
 TEST(RunBagTest, ExportRefusesAFolderThatIsNotARunsAndAMalformedFile) {

@@ -98,14 +98,26 @@ struct MessageSchema {
   std::string definition;
 };
 
-const MessageSchema& SchemaOf(const Clock&);
-const MessageSchema& SchemaOf(const TFMessage&);
-const MessageSchema& SchemaOf(const Odometry&);
-const MessageSchema& SchemaOf(const Imu&);
-const MessageSchema& SchemaOf(const JointState&);
-const MessageSchema& SchemaOf(const LaserScan&);
-const MessageSchema& SchemaOf(const CompressedImage&);
-const MessageSchema& SchemaOf(const CameraInfo&);
+/// Each message's ROS 2 type as its .msg file is named: `package/Type`.
+inline const char* TypeOf(const Clock&) { return "rosgraph_msgs/Clock"; }
+inline const char* TypeOf(const TFMessage&) { return "tf2_msgs/TFMessage"; }
+inline const char* TypeOf(const Odometry&) { return "nav_msgs/Odometry"; }
+inline const char* TypeOf(const Imu&) { return "sensor_msgs/Imu"; }
+inline const char* TypeOf(const JointState&) { return "sensor_msgs/JointState"; }
+inline const char* TypeOf(const LaserScan&) { return "sensor_msgs/LaserScan"; }
+inline const char* TypeOf(const CompressedImage&) { return "sensor_msgs/CompressedImage"; }
+inline const char* TypeOf(const CameraInfo&) { return "sensor_msgs/CameraInfo"; }
+
+/// The schema of `package/Type`: `package/msg/Type` and the definition with every type
+/// it uses, depth first, each once.
+MessageSchema ComposeSchema(const std::string& type);
+
+/// The schema of message type M, composed once.
+template <class M>
+const MessageSchema& SchemaOf(const M& m) {
+  static const MessageSchema schema = ComposeSchema(TypeOf(m));
+  return schema;
+}
 
 std::vector<std::uint8_t> Serialize(const Clock& m);
 std::vector<std::uint8_t> Serialize(const TFMessage& m);

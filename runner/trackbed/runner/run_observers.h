@@ -1,6 +1,6 @@
 // Observers of a closed-loop run: one handler per rate (encoder samples, stereo
-// pairs, the localization stack's frames, IMU samples, navigation control steps,
-// estimates reported from outside).
+// pairs, the localization stack's frames, IMU samples, range scans, navigation control
+// steps, estimates reported from outside).
 // Whatever consumes sensor data or results while a run goes — the run folder's
 // logs, an image export, a teach pass, a test — is a set of these.
 #pragma once
@@ -10,6 +10,7 @@
 
 #include "trackbed/navigation/navigation_metrics.h"
 #include "trackbed/robot/imu.h"
+#include "trackbed/robot/range_sensor.h"
 #include "trackbed/runner/run_sample.h"
 
 namespace trackbed::runner {
@@ -25,6 +26,8 @@ struct RunObservers {
   std::function<void(const RunSample&)> on_sample;
   /// Every IMU sample.
   std::function<void(const robot::ImuSample&)> on_imu;
+  /// Every range scan (when robot.range_sensor.enabled).
+  std::function<void(const robot::RangeScanSample&)> on_scan;
   /// Every control step of closed-loop navigation (ground-truth pose, command, target).
   std::function<void(const navigation::NavigationLogEntry&)> on_navigation_step;
   /// Every estimate reported from outside the loop (ClosedLoop::ReportEstimate).
@@ -40,6 +43,7 @@ RunObservers CombineObservers(const RunObservers& a, const RunObservers& b, F&& 
   out.on_stereo = f(a.on_stereo, b.on_stereo);
   out.on_sample = f(a.on_sample, b.on_sample);
   out.on_imu = f(a.on_imu, b.on_imu);
+  out.on_scan = f(a.on_scan, b.on_scan);
   out.on_navigation_step = f(a.on_navigation_step, b.on_navigation_step);
   out.on_external_estimate = f(a.on_external_estimate, b.on_external_estimate);
   return out;
