@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
+#include "real_data.h"
 #include "trackbed/common/option_error.h"
 #include "trackbed/perception/kitti_sequence.h"
 
@@ -234,11 +235,9 @@ TEST(HarrisCornersTest, BucketedKeepsAtMostPerCellAndCoversEveryCell) {
   EXPECT_EQ(DetectHarrisCornersBucketed(noise, options, cols, rows, per_cell).size(), 7u);
 }
 
-TEST(HarrisCornersTest, RealKittiImageHasCornersSpreadOverTheImage) {
-  const std::filesystem::path dir = std::filesystem::path(TRACKBED_DATA_DIR) / "kitti06";
-  if (!std::filesystem::exists(dir)) {
-    GTEST_SKIP() << "real KITTI data not found at " << dir << ": set TRACKBED_DATA_DIR";
-  }
+TEST(HarrisCornersRealDataTest, KittiImageHasCornersSpreadOverTheImage) {
+  const std::filesystem::path dir = trackbed::testing_data::RealData("kitti06");
+  TRACKBED_NEEDS_REAL_DATA(dir);
   const KittiSequence sequence(dir);
   const cv::Mat image = sequence.LoadLeft(0);
   HarrisOptions options;

@@ -17,18 +17,14 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
+#include "real_data.h"
+
 namespace trackbed::perception {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path RealKittiDir() { return fs::path(TRACKBED_DATA_DIR) / "kitti06"; }
-
-#define SKIP_WITHOUT_REAL_DATA()                                      \
-  if (!fs::exists(RealKittiDir())) {                                  \
-    GTEST_SKIP() << "real KITTI data not found at " << RealKittiDir() \
-                 << ": set TRACKBED_DATA_DIR";                        \
-  }
+fs::path RealKittiDir() { return trackbed::testing_data::RealData("kitti06"); }
 
 /// A rectified pair with these intrinsics [px] and baseline [m] (no image size).
 geometry::StereoCamera Camera(double fx, double fy, double cx, double cy, double baseline_m) {
@@ -119,8 +115,11 @@ class KittiSequenceTest : public ::testing::Test {
   geometry::StereoCamera calibration_ = Camera(400.125, 401.5, 319.75, 239.25, 0.12);
 };
 
-TEST_F(KittiSequenceTest, RealKitti06Reads) {
-  SKIP_WITHOUT_REAL_DATA();
+// The same, on the real KITTI 06 excerpt (tests/real_data.h).
+class KittiSequenceRealDataTest : public KittiSequenceTest {};
+
+TEST_F(KittiSequenceRealDataTest, Kitti06Reads) {
+  TRACKBED_NEEDS_REAL_DATA(RealKittiDir());
   const KittiSequence sequence(RealKittiDir());
   ASSERT_EQ(sequence.size(), 51u);
   EXPECT_EQ(sequence.image_size(), cv::Size(1226, 370));
@@ -163,8 +162,8 @@ TEST_F(KittiSequenceTest, RealKitti06Reads) {
   EXPECT_THROW(sequence.LoadLeft(51), std::out_of_range);
 }
 
-TEST_F(KittiSequenceTest, PosesInASeparateFileAsRealKittiKeepsThem) {
-  SKIP_WITHOUT_REAL_DATA();
+TEST_F(KittiSequenceRealDataTest, PosesInASeparateFileAsKittiKeepsThem) {
+  TRACKBED_NEEDS_REAL_DATA(RealKittiDir());
   const fs::path poses_file = dir_ / "poses" / "06.txt";
   fs::create_directories(poses_file.parent_path());
   fs::copy_file(RealKittiDir() / "poses.txt", poses_file);

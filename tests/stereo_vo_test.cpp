@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
+#include "real_data.h"
 #include "stereo_test_rig.h"
 #include "trackbed/common/option_error.h"
 #include "trackbed/estimation/absolute_orientation.h"
@@ -439,12 +440,10 @@ TEST(StereoVisualOdometryTest, InvalidOptionsNameTheDottedField) {
 // ---------------------------------------------------------------------------------------
 // Real data: KITTI odometry sequence 06, frames 0–50 (59.9 m, almost straight).
 
-fs::path RealKittiDir() { return fs::path(TRACKBED_DATA_DIR) / "kitti06"; }
+fs::path RealKittiDir() { return trackbed::testing_data::RealData("kitti06"); }
 
-TEST(StereoVisualOdometryTest, Kitti06EndPointErrorWithinOneAndAHalfPercent) {
-  if (!fs::exists(RealKittiDir())) {
-    GTEST_SKIP() << "real KITTI data not found at " << RealKittiDir() << ": set TRACKBED_DATA_DIR";
-  }
+TEST(StereoVisualOdometryRealDataTest, Kitti06EndPointErrorWithinOneAndAHalfPercent) {
+  TRACKBED_NEEDS_REAL_DATA(RealKittiDir());
   const perception::KittiSequence sequence(RealKittiDir());
   ASSERT_TRUE(sequence.has_poses());
   std::vector<cv::Mat> left, right;

@@ -12,6 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include "real_data.h"
+
 namespace trackbed::estimation {
 namespace {
 
@@ -31,13 +33,7 @@ fs::path WriteText(const std::string& name, const std::string& text) {
   return p;
 }
 
-fs::path RealTrajectories() { return fs::path(TRACKBED_DATA_DIR) / "trajectories"; }
-
-#define SKIP_WITHOUT_REAL_DATA()                                            \
-  if (!fs::exists(RealTrajectories())) {                                    \
-    GTEST_SKIP() << "real trajectories not found at " << RealTrajectories() \
-                 << ": set TRACKBED_DATA_DIR";                              \
-  }
+fs::path RealTrajectories() { return trackbed::testing_data::RealData("trajectories"); }
 
 Trajectory RandomTrajectory(std::mt19937& rng, int n) {
   std::normal_distribution<double> g(0.0, 1.0);
@@ -130,8 +126,8 @@ TEST(TrajectoryIoTest, DetectsFormatsFromContent) {
             std::string::npos);
 }
 
-TEST(TrajectoryIoTest, DetectsTheRealBenchmarkFiles) {
-  SKIP_WITHOUT_REAL_DATA();
+TEST(TrajectoryIoRealDataTest, DetectsTheBenchmarkFiles) {
+  TRACKBED_NEEDS_REAL_DATA(RealTrajectories());
   const fs::path d = RealTrajectories();
   EXPECT_EQ(DetectFormat(d / "KITTI_00_gt.txt"), TrajectoryFormat::kKitti);
   EXPECT_EQ(DetectFormat(d / "KITTI_00_SPTAM.txt"), TrajectoryFormat::kKitti);

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "real_data.h"
 #include "trackbed/common/option_error.h"
 #include "trackbed/estimation/trajectory_io.h"
 
@@ -20,13 +21,7 @@ namespace fs = std::filesystem;
 
 constexpr double kPi = 3.14159265358979323846;
 
-fs::path RealTrajectories() { return fs::path(TRACKBED_DATA_DIR) / "trajectories"; }
-
-#define SKIP_WITHOUT_REAL_DATA()                                            \
-  if (!fs::exists(RealTrajectories())) {                                    \
-    GTEST_SKIP() << "real trajectories not found at " << RealTrajectories() \
-                 << ": set TRACKBED_DATA_DIR";                              \
-  }
+fs::path RealTrajectories() { return trackbed::testing_data::RealData("trajectories"); }
 
 // ---------------------------------------------------------------------------------------
 // Real data
@@ -37,7 +32,7 @@ Association LoadKitti(const char* estimate) {
 }
 
 TEST(TrajectoryMetricsRealDataTest, Kitti00OrbSlam2MatchesPublishedFigures) {
-  SKIP_WITHOUT_REAL_DATA();
+  TRACKBED_NEEDS_REAL_DATA(RealTrajectories());
   const Association a = LoadKitti("KITTI_00_ORB.txt");
   EXPECT_TRUE(a.by_index);  // KITTI without times
   ASSERT_EQ(a.gt.size(), 4541u);
@@ -52,7 +47,7 @@ TEST(TrajectoryMetricsRealDataTest, Kitti00OrbSlam2MatchesPublishedFigures) {
 }
 
 TEST(TrajectoryMetricsRealDataTest, Kitti00SptamMatchesPublishedFigures) {
-  SKIP_WITHOUT_REAL_DATA();
+  TRACKBED_NEEDS_REAL_DATA(RealTrajectories());
   const Association a = LoadKitti("KITTI_00_SPTAM.txt");
   const SegmentDrift kitti = KittiOdometryError(a.gt, a.est);
   EXPECT_NEAR(kitti.t_rel_pct, 1.487, 0.01);           // measured 1.4870
@@ -60,7 +55,7 @@ TEST(TrajectoryMetricsRealDataTest, Kitti00SptamMatchesPublishedFigures) {
 }
 
 TEST(TrajectoryMetricsRealDataTest, KittiTimesFileGivesTheSameAsIndexAssociation) {
-  SKIP_WITHOUT_REAL_DATA();
+  TRACKBED_NEEDS_REAL_DATA(RealTrajectories());
   const fs::path d = RealTrajectories();
   const LoadedTrajectory gt =
       ReadTrajectory(d / "KITTI_00_gt.txt", std::nullopt, d / "KITTI_00_gt_times.txt");
@@ -75,7 +70,7 @@ TEST(TrajectoryMetricsRealDataTest, KittiTimesFileGivesTheSameAsIndexAssociation
 }
 
 TEST(TrajectoryMetricsRealDataTest, TumFr2DeskIsAssociatedByTimestamp) {
-  SKIP_WITHOUT_REAL_DATA();
+  TRACKBED_NEEDS_REAL_DATA(RealTrajectories());
   const fs::path d = RealTrajectories();
   const LoadedTrajectory gt = ReadTrajectory(d / "fr2_desk_groundtruth.txt");
   const LoadedTrajectory est = ReadTrajectory(d / "fr2_desk_ORB.txt");
@@ -111,7 +106,7 @@ TEST(TrajectoryMetricsRealDataTest, TumFr2DeskIsAssociatedByTimestamp) {
 }
 
 TEST(TrajectoryMetricsRealDataTest, EurocV102AgainstAslCsvGroundTruth) {
-  SKIP_WITHOUT_REAL_DATA();
+  TRACKBED_NEEDS_REAL_DATA(RealTrajectories());
   const fs::path d = RealTrajectories();
   const LoadedTrajectory gt = ReadTrajectory(d / "V102_groundtruth.csv");
   const LoadedTrajectory est = ReadTrajectory(d / "V102.txt");
