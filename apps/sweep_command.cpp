@@ -433,9 +433,10 @@ void AddSweepCommand(CLI::App& app) {
                   "slurm: follow the job until every cell has ended (progress as the local "
                   "backend's), then write the summary and report");
   sweep->footer(
-      "Exit status: 0 every cell ok (slurm without --wait: submitted); 1 some cell failed or "
-      "timed out; 2 bad input or Slurm refused the job; 130/143 interrupted by SIGINT/SIGTERM "
-      "(rerun the same command to resume; a Slurm job goes on).");
+      "Exit status: 0 every cell ok and every expectation held (slurm without --wait: "
+      "submitted); 1 some cell failed or timed out; 2 bad input or Slurm refused the job; 3 "
+      "every cell ran and an expectation failed; 130/143 interrupted by SIGINT/SIGTERM (rerun "
+      "the same command to resume; a Slurm job goes on).");
   sweep->callback([args]() {
     int status = kExitBadInput;
     try {

@@ -2,9 +2,11 @@
 #include "trackbed/common/durable_file.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 #include <system_error>
@@ -18,6 +20,21 @@ DurableStepHook step_hook = nullptr;
 
 void Step(const char* step, const fs::path& path) {
   if (step_hook) step_hook(step, path);
+}
+
+// The kill point of durable_file.h: POINT:SUFFIX from the environment.
+void KillPoint(const char* point, const fs::path& path) {
+  static const char* const spec = std::getenv(kKillAtVariable);
+  if (!spec) return;
+  const std::string s(spec), target = path.string();
+  const std::size_t colon = s.find(':');
+  if (colon == std::string::npos || s.compare(0, colon, point) != 0) return;
+  const std::string suffix = s.substr(colon + 1);
+  if (target.size() < suffix.size() ||
+      target.compare(target.size() - suffix.size(), suffix.size(), suffix) != 0) {
+    return;
+  }
+  ::kill(::getpid(), SIGKILL);
 }
 
 [[noreturn]] void Fail(const fs::path& path, const char* what) {
@@ -66,8 +83,10 @@ void WriteFileAtomically(const fs::path& path, const std::string& text) {
   }
   Step("sync", tmp);
   if (::close(fd) != 0) Fail(tmp, "close");
+  KillPoint("before_rename", path);
   fs::rename(tmp, path);
   Step("rename", path);
+  KillPoint("after_rename", path);
   Sync(path.parent_path().empty() ? fs::path(".") : path.parent_path(), true);
 }
 

@@ -24,6 +24,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.h"
+#include "process_control.h"
 
 namespace {
 
@@ -34,6 +35,10 @@ const fs::path kSource = TRACKBED_SOURCE_DIR;
 using Result = trackbed::testing_cli::CliResult;
 using trackbed::testing_cli::DeterministicColumns;
 using trackbed::testing_cli::Slurp;
+using trackbed::testing_process::ProcessesMentioning;
+using trackbed::testing_process::Spawn;
+using trackbed::testing_process::WaitForFile;
+using trackbed::testing_process::Within;
 
 fs::path TempDir(const std::string& name) {
   return trackbed::testing_cli::FreshTempDir("trackbed_sweep_cli_test_", name);
@@ -238,40 +243,6 @@ TEST(SweepCliTest, ACellOverItsTimeLimitIsKilledAndReported) {
   EXPECT_NE(Slurp(out / "summary.csv").find(",timed_out,no result within"), std::string::npos);
 }
 
-// Starts `trackbed ARGS...` (the binary at `binary`) without a shell so that the test
-// can signal it.
-pid_t Spawn(const std::vector<std::string>& args, const fs::path& io,
-            const std::string& binary = TRACKBED_BINARY) {
-  fs::create_directories(io);
-  std::vector<std::string> all = {binary};
-  all.insert(all.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (std::string& a : all) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  const std::string out = (io / "out").string(), err = (io / "err").string();
-  posix_spawn_file_actions_t files;
-  posix_spawn_file_actions_init(&files);
-  posix_spawn_file_actions_addopen(&files, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&files, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  pid_t pid = -1;
-  const int rc = posix_spawn(&pid, binary.c_str(), &files, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&files);
-  EXPECT_EQ(rc, 0);
-  return pid;
-}
-
-// Polls for `file` while `pid` runs; false if the process ended first or the file has
-// not appeared after 10 minutes of polling (a hang, not a timing judgement).
-bool WaitForFile(const fs::path& file, pid_t pid) {
-  for (int polls = 0; polls < 120000; ++polls) {
-    if (fs::exists(file)) return true;
-    int status = 0;
-    if (waitpid(pid, &status, WNOHANG) == pid) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  return false;
-}
-
 // A sweep's cells run the binary the sweep started with, even when the file is
 // replaced while it runs (a rebuild during a long sweep): every cell of one summary comes
 // from one build. Until 2026-12-03 the cells started whatever the path then held, and
@@ -376,31 +347,6 @@ TEST(SweepCliTest, AnInterruptedSweepResumesToTheSameSummaryAsAnUninterruptedOne
   EXPECT_NE(report.find("## Localization: ATE [m] per estimator"), std::string::npos);
   EXPECT_NE(report.find("plots/ate_corridor.png"), std::string::npos);
   EXPECT_TRUE(fs::exists(whole / "plots/ate_outdoor.png"));
-}
-
-// The pids of the processes whose command line mentions `text` (none for zombies,
-// whose command line is empty).
-std::vector<pid_t> ProcessesMentioning(const std::string& text) {
-  std::vector<pid_t> pids;
-  for (const auto& entry : fs::directory_iterator("/proc")) {
-    const std::string name = entry.path().filename().string();
-    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
-    std::string cmdline = Slurp(entry.path() / "cmdline");
-    std::replace(cmdline.begin(), cmdline.end(), '\0', ' ');
-    if (cmdline.find(text) != std::string::npos) pids.push_back(std::stoi(name));
-  }
-  return pids;
-}
-
-// Polls `done` every 5 ms for up to `limit`; whether it came true.
-template <class F>
-bool Within(std::chrono::seconds limit, F done) {
-  const auto end = std::chrono::steady_clock::now() + limit;
-  while (std::chrono::steady_clock::now() < end) {
-    if (done()) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  return done();
 }
 
 // A sweep killed with SIGKILL (which it cannot catch) takes its running cell with it,

@@ -25,4 +25,12 @@ void SyncFolder(const std::filesystem::path& dir);
 using DurableStepHook = void (*)(const char* step, const std::filesystem::path& path);
 void SetDurableStepHookForTesting(DurableStepHook hook);
 
+/// For tests of what a crash leaves: with TRACKBED_TEST_KILL_AT=POINT:SUFFIX in the
+/// environment, the process kills itself with SIGKILL (as a crash or `kill -9` would,
+/// nothing flushed or cleaned up) when WriteFileAtomically reaches POINT —
+/// `before_rename` (the temporary file complete and synced, the target not yet
+/// replaced) or `after_rename` (replaced, its folder not yet synced) — for a target
+/// whose path ends in SUFFIX. Unset (normal use): nothing.
+inline constexpr const char* kKillAtVariable = "TRACKBED_TEST_KILL_AT";
+
 }  // namespace trackbed
