@@ -64,6 +64,15 @@ std::string Sanitize(const std::string& raw) {
   return s;
 }
 
+// A name ExpandSweep could have made: a single safe folder name under cells/.
+bool IsCellName(const std::string& name) {
+  const bool safe = std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '+' ||
+           c == '_';
+  });
+  return safe && !name.empty() && name.size() <= kMaxCellNameLength && name != "." && name != "..";
+}
+
 // A value as part of a cell name: itself when it is safe and short, else its
 // sanitized (and shortened) text and a hash of the original.
 std::string ValueToken(const std::string& raw) {
@@ -322,10 +331,22 @@ SweepPlan ParseSweepPlan(const std::string& json_text, const std::string& source
       throw SweepError(source_name, archive::JoinIndex("expect", i), problem);
     }
   }
+  std::map<std::string, std::size_t> index_of_name;
   for (std::size_t i = 0; i < fields.cells.size(); ++i) {
     const CellFields& c = fields.cells[i];
     const std::string where = archive::JoinIndex("cells", i);
     if (c.index != i) throw SweepError(source_name, where + ".index", "out of order");
+    // The name is the cell's folder under cells/: only what ExpandSweep makes, and once.
+    if (!IsCellName(c.name)) {
+      throw SweepError(source_name, where + ".name",
+                       "not a cell name (1 to " + std::to_string(kMaxCellNameLength) +
+                           " of [A-Za-z0-9._+-], not . or ..): '" + c.name + "'");
+    }
+    if (const auto [it, fresh] = index_of_name.emplace(c.name, i); !fresh) {
+      throw SweepError(
+          source_name, where + ".name",
+          "'" + c.name + "' is also the name of cells[" + std::to_string(it->second) + "]");
+    }
     SweepCell cell;
     cell.index = i;
     cell.name = c.name;

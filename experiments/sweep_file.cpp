@@ -29,6 +29,10 @@ using archive::Node;
 constexpr archive::Wording kWording = archive::Wording::kBrief;
 // Most values a range or a seed range may expand to.
 constexpr std::size_t kMaxRangeValues = 10000;
+// Most cells a sweep may expand to (days of runs already): a few long ranges crossed
+// would otherwise make billions of cells, minutes and gigabytes of ExpandSweep before
+// anything is said.
+constexpr std::size_t kMaxCells = 10000;
 
 // ---------------------------------------------------------------------------
 // The file's form. Optional fields tell a missing key from an empty value.
@@ -110,12 +114,58 @@ class Failer {
   std::string source_;
 };
 
+// Whether `text` is well-formed UTF-8 (RFC 3629: no overlong forms, surrogates or code
+// points above U+10FFFF), as the JSON writer requires.
+bool IsUtf8(const std::string& text) {
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const auto byte = [&text](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+    const unsigned char b = byte(i);
+    const std::size_t n = b < 0x80   ? 1
+                          : b < 0xC2 ? 0
+                          : b < 0xE0 ? 2
+                          : b < 0xF0 ? 3
+                          : b < 0xF5 ? 4
+                                     : 0;
+    if (n == 0 || i + n > text.size()) return false;
+    for (std::size_t k = 1; k < n; ++k) {
+      if ((byte(i + k) & 0xC0) != 0x80) return false;
+    }
+    const unsigned char second = n > 1 ? byte(i + 1) : 0x80;
+    if ((b == 0xE0 && second < 0xA0) || (b == 0xED && second > 0x9F) ||
+        (b == 0xF0 && second < 0x90) || (b == 0xF4 && second > 0x8F)) {
+      return false;
+    }
+    i += n;
+  }
+  return true;
+}
+
+// The dotted key of the first key or scalar in `node` that is not UTF-8. Every string of
+// a sweep file ends up in cells.json and summary.json, whose writer would throw on it
+// long after the file was accepted; raw bytes and escapes (`"\uD800"`) alike.
+std::optional<std::string> NonUtf8Key(const Node& node, const std::string& path) {
+  if (node.IsScalar()) return IsUtf8(node.text()) ? std::nullopt : std::optional(path);
+  for (std::size_t i = 0; i < node.items().size(); ++i) {
+    if (auto bad = NonUtf8Key(node.items()[i], JoinIndex(path, i))) return bad;
+  }
+  for (const auto& [key, value] : node.entries()) {
+    const std::string where = archive::JoinKey(path, key);
+    if (!IsUtf8(key)) return where;
+    if (auto bad = NonUtf8Key(value, where)) return bad;
+  }
+  return std::nullopt;
+}
+
 SweepFileFields ReadSweepFile(const std::string& yaml_text, const Failer& fail) {
   SweepFileFields fields;
   try {
     const Node root = archive::ParseYaml(yaml_text);
     if (!root.IsMap()) {
       fail("", "expected a map of sweep keys, got " + archive::Describe(root, kWording));
+    }
+    if (const std::optional<std::string> key = NonUtf8Key(root, "")) {
+      fail(*key, "not UTF-8 text");
     }
     archive::Read(root, "", kWording, &fields);
   } catch (const archive::SyntaxError& e) {
@@ -145,11 +195,14 @@ std::string ValueText(const Node& node) {
 
 // Checks `key=value` syntax of a key the way `--set` would, without a value.
 void CheckKey(const Failer& fail, const std::string& key, const std::string& where) {
+  // A key with '=' would split there: `--set a=b=0` sets `a` to `b=0`.
+  bool valid = key.find('=') == std::string::npos;
   try {
     scenario::ParseOverride(key + "=0");
   } catch (const std::invalid_argument&) {
-    fail(where, "'" + key + "' is not a dotted scenario key");
+    valid = false;
   }
+  if (!valid) fail(where, "'" + key + "' is not a dotted scenario key");
   if (key == "seed") fail(where, "the seed comes from `seeds`, not from an override");
 }
 
@@ -235,7 +288,10 @@ std::vector<std::uint64_t> Seeds(const Node& node, const Failer& fail) {
       if (*range.to - *range.from >= kMaxRangeValues) {
         fail("seeds", "more than " + std::to_string(kMaxRangeValues) + " seeds");
       }
-      for (std::uint64_t s = *range.from; s <= *range.to; ++s) seeds.push_back(s);
+      // Counted rather than `s <= to`, which never ends when `to` is the largest uint64.
+      for (std::uint64_t k = 0; k <= *range.to - *range.from; ++k) {
+        seeds.push_back(*range.from + k);
+      }
       return seeds;
     }
     if (!node.IsList()) {
@@ -314,6 +370,22 @@ SweepAxis Axis(const AxisFields& fields, const std::string& where, const SweepSp
   return axis;
 }
 
+// Scenarios × each axis's values × seeds, counted without overflow, at most kMaxCells.
+void CheckCellCount(const SweepSpec& spec, const Failer& fail) {
+  std::size_t cells = spec.scenarios.size() * spec.seeds.size();
+  bool too_many = cells > kMaxCells;
+  for (const SweepAxis& a : spec.vary) {
+    if (too_many || a.values.empty()) break;
+    too_many = cells > kMaxCells / a.values.size();
+    cells *= a.values.size();
+  }
+  if (too_many || cells > kMaxCells) {
+    fail(spec.vary.empty() ? "seeds" : "vary",
+         "the sweep expands to more than " + std::to_string(kMaxCells) +
+             " cells (scenarios x values of each varied key x seeds)");
+  }
+}
+
 }  // namespace
 
 SweepSpec ParseSweep(const std::string& yaml_text, const std::string& source_name,
@@ -335,6 +407,7 @@ SweepSpec ParseSweep(const std::string& yaml_text, const std::string& source_nam
       spec.vary.push_back(Axis((*fields.vary)[i], JoinIndex("vary", i), spec, fail));
     }
   }
+  CheckCellCount(spec, fail);
   if (fields.timeout_s) {
     const double t = *fields.timeout_s;
     if (!std::isfinite(t)) {

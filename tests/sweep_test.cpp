@@ -2,10 +2,12 @@
 // cell names, the strict reader's messages, the folder's JSON round trips, the
 // summary's column rules, and the statistics of the aggregates.
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <regex>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -258,7 +260,26 @@ INSTANTIATE_TEST_SUITE_P(
                  "test.yaml: expect[0].max: expected a number, got 'x'"},
         BadSweep{kOk + "expect: [{metric: m, max: 1, scenario: other.yaml}]\n",
                  "test.yaml: expect[0].scenario: 'other.yaml' is not among the sweep's "
-                 "scenarios"}));
+                 "scenarios"},
+        // Found by fuzzing (tests/fuzz_corpus/sweep): a key that `--set` would split at
+        // its '=', bytes the JSON files cannot hold, and crossed ranges of billions of
+        // cells.
+        BadSweep{kOk + "vary: [{key: 'robot.a=b', values: [1]}]\n",
+                 "test.yaml: vary[0].key: 'robot.a=b' is not a dotted scenario key"},
+        BadSweep{kOk + "name: a\xce b\n", "test.yaml: name: not UTF-8 text"},
+        BadSweep{"scenarios: [nav_paper_left.yaml]\nseeds: {from: 0, to: 999}\n"
+                 "vary: [{key: duration_s, range: {from: 1, to: 20}}]\n",
+                 "test.yaml: vary: the sweep expands to more than 10000 cells (scenarios x "
+                 "values of each varied key x seeds)"}));
+
+// A seed range ending at the largest seed expands (the loop once wrapped and never
+// ended: tests/fuzz_corpus/sweep).
+TEST(SweepFileTest, ASeedRangeEndingAtTheLargestSeedEnds) {
+  const SweepSpec spec = Parse(
+      "scenarios: [nav_paper_left.yaml]\nseeds: {from: 18446744073709551614, to: "
+      "18446744073709551615}\n");
+  EXPECT_EQ(spec.seeds, (std::vector<std::uint64_t>{18446744073709551614u, 18446744073709551615u}));
+}
 
 TEST(SweepFileTest, MissingScenarioAndSyntaxErrorsNameTheFile) {
   const std::string missing = ErrorOf("scenarios: [nope.yaml]\nseeds: [1]\n");
@@ -378,6 +399,20 @@ TEST(SweepCellTest, FolderJsonIsReadAsStrictlyAsSweepFiles) {
     EXPECT_EQ(e.key(), "cells[0].grupo");
     EXPECT_EQ(e.reason().rfind("unknown key (expected one of: index, name, group, ", 0), 0u)
         << e.reason();
+  }
+  // A cell's name is its folder under cells/: one ExpandSweep could make, and once.
+  for (const auto& [from, to, reason] : {std::tuple<std::string, std::string, std::string>{
+           plan.cells[0].name, "../../escape",
+           "not a cell name (1 to 200 of [A-Za-z0-9._+-], not . or ..): '../../escape'"}}) {
+    std::string bad = SweepPlanJson(plan);
+    bad.replace(bad.find("\"" + from + "\""), from.size() + 2, "\"" + to + "\"");
+    try {
+      ParseSweepPlan(bad, "cells.json");
+      FAIL() << "no error for " << to;
+    } catch (const SweepError& e) {
+      EXPECT_EQ(e.key(), "cells[0].name");
+      EXPECT_EQ(e.reason(), reason);
+    }
   }
   const SweepCell cell = plan.cells[0];
   CellOutcome o;

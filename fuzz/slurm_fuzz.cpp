@@ -1,0 +1,86 @@
+// Fuzzes what the Slurm backend reads back from the sweep folder (slurm_backend.h): the
+// input as slurm/jobs.json text (ParseSlurmJobs; what parses is written with SlurmJobsJson
+// and must read back to the same submissions), and as a submission's list file, written to
+// a temporary file (one per process) and read line by line with CellIndexFromList.
+// squeue's, sacct's and scontrol's output is parsed inside slurm_backend.cpp (QueryTasks,
+// SlurmStopOutcome, in an anonymous namespace, straight from the programs' output): not
+// reachable from here.
+//
+// Finding: a crash, a sanitizer report, a hang, an exception other than SweepError from
+// ParseSlurmJobs or std::runtime_error from CellIndexFromList, or jobs.json that does not
+// read back.
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include <unistd.h>
+
+#include "trackbed/experiments/slurm_backend.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace ex = trackbed::experiments;
+
+[[noreturn]] void Finding(const std::string& what) {
+  std::fprintf(stderr, "slurm_fuzz: FINDING: %s\n", what.c_str());
+  std::abort();
+}
+
+// This process's list file, removed at exit.
+struct TempFile {
+  fs::path path =
+      fs::temp_directory_path() / ("trackbed_fuzz_slurm_" + std::to_string(::getpid()) + ".cells");
+  ~TempFile() {
+    std::error_code ec;
+    fs::remove(path, ec);
+  }
+};
+
+void FuzzJobs(const std::string& text) {
+  std::vector<ex::SlurmSubmission> jobs;
+  try {
+    jobs = ex::ParseSlurmJobs(text, "jobs.json");
+  } catch (const ex::SweepError&) {
+    return;
+  }
+  try {
+    const std::vector<ex::SlurmSubmission> again =
+        ex::ParseSlurmJobs(ex::SlurmJobsJson(jobs), "written.json");
+    bool same = again.size() == jobs.size();
+    for (std::size_t k = 0; same && k < jobs.size(); ++k) {
+      same = again[k].job_id == jobs[k].job_id && again[k].cells == jobs[k].cells &&
+             again[k].list == jobs[k].list && again[k].submitted_utc == jobs[k].submitted_utc;
+    }
+    if (!same) Finding("jobs.json reads back differently");
+  } catch (const ex::SweepError& e) {
+    Finding(std::string("written jobs.json does not read back: ") + e.what());
+  }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  static const TempFile list;
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  FuzzJobs(text);
+  {
+    std::ofstream out(list.path, std::ios::binary | std::ios::trunc);
+    out << text;
+    if (!out.flush()) Finding("cannot write " + list.path.string());
+  }
+  for (std::size_t line = 0; line < 4; ++line) {
+    try {
+      ex::CellIndexFromList(list.path, line);
+    } catch (const std::runtime_error&) {
+    }
+  }
+  return 0;
+}

@@ -1,0 +1,93 @@
+// Fuzzes teach maps on disk (teach_map.h): the input up to its first NUL byte is map.json,
+// the rest patches.bin (absent without a NUL byte), written into a temporary map folder
+// (one per process, rewritten for each input) whose key_images/ holds four 32x24 grey PNGs
+// written once at start-up (milestones 0-3 of a map whose camera is 32x24). A map that
+// loads is saved into a second folder and loaded again.
+//
+// Finding: a crash, a sanitizer report, a hang or an out-of-memory, an exception other
+// than std::runtime_error from LoadTeachMap, or a loaded map that cannot be saved and
+// loaded again.
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+
+#include <unistd.h>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "trackbed/teach_repeat/teach_map.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace tr = trackbed::teach_repeat;
+
+[[noreturn]] void Finding(const std::string& what) {
+  std::fprintf(stderr, "teach_map_fuzz: FINDING: %s\n", what.c_str());
+  std::abort();
+}
+
+// This process's map folders, removed at exit.
+struct MapDirs {
+  fs::path root =
+      fs::temp_directory_path() / ("trackbed_fuzz_teach_map_" + std::to_string(::getpid()));
+  fs::path map = root / "map";
+  fs::path saved = root / "saved";
+  MapDirs() {
+    fs::create_directories(map / "key_images");
+    cv::Mat image(24, 32, CV_8UC1);
+    for (int k = 0; k < 4; ++k) {
+      cv::randu(image, 0, 256);
+      char name[32];
+      std::snprintf(name, sizeof name, "%06d.png", k);
+      if (!cv::imwrite((map / "key_images" / name).string(), image)) {
+        Finding("cannot write key images");
+      }
+    }
+  }
+  ~MapDirs() {
+    std::error_code ec;
+    fs::remove_all(root, ec);
+  }
+};
+
+void Write(const fs::path& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out << bytes;
+  if (!out.flush()) Finding("cannot write " + path.string());
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  static const MapDirs dirs;
+  const std::string input(reinterpret_cast<const char*>(data), size);
+  const std::size_t nul = input.find('\0');
+  Write(dirs.map / "map.json", input.substr(0, nul));
+  std::error_code ec;
+  if (nul != std::string::npos) {
+    Write(dirs.map / "patches.bin", input.substr(nul + 1));
+  } else {
+    fs::remove(dirs.map / "patches.bin", ec);
+  }
+  tr::TeachMap map;
+  try {
+    map = tr::LoadTeachMap(dirs.map.string());
+  } catch (const std::runtime_error&) {
+    return 0;
+  }
+  try {
+    tr::SaveTeachMap(map, dirs.saved.string());
+    const tr::TeachMap again = tr::LoadTeachMap(dirs.saved.string());
+    if (again.feature_count() != map.feature_count()) Finding("saved map reads back differently");
+  } catch (const std::exception& e) {
+    Finding(std::string("loaded map does not save and load again: ") + e.what());
+  }
+  return 0;
+}
