@@ -59,12 +59,6 @@ void WriteSubmissions(const fs::path& dir, const std::vector<SlurmSubmission>& s
   experiments::WriteFileAtomically(JobsFile(dir), SlurmJobsJson(subs));
 }
 
-// What Slurm says of one array task.
-struct TaskState {
-  std::string state;   ///< PENDING, RUNNING, COMPLETED, TIMEOUT, CANCELLED, …
-  std::string reason;  ///< squeue's %r: TimeLimit, JobArrayTaskLimit, None, …
-};
-
 // PENDING, RUNNING and the other states of a task that has not ended.
 bool IsActive(const std::string& state) {
   static const std::set<std::string> kActive = {
@@ -93,38 +87,15 @@ std::string Trim(const std::string& s) {
 // cluster with accounting). Tasks neither knows are absent. Nothing when squeue fails
 // for another reason than not knowing the job (slurmctld busy or down): the caller
 // then asks again later rather than take the tasks for gone.
-std::optional<std::map<std::size_t, TaskState>> QueryTasks(const std::string& job_id) {
-  std::map<std::size_t, TaskState> tasks;
+std::optional<std::map<std::size_t, SlurmTaskState>> QueryTasks(const std::string& job_id) {
   const ProgramResult q =
       RunProgram({"squeue", "-h", "-r", "-t", "all", "-j", job_id, "-o", "%K|%T|%r"});
   if (q.exit_code != 0 && q.err.find("Invalid job id") == std::string::npos) return std::nullopt;
-  if (q.exit_code == 0) {
-    for (const std::string& line : Split(q.out, '\n')) {
-      const std::vector<std::string> f = Split(Trim(line), '|');
-      if (f.size() < 3 || f[0].empty() || f[0] == "N/A") continue;
-      try {
-        tasks[std::stoul(f[0])] = TaskState{f[1], f[2]};
-      } catch (const std::exception&) {
-      }
-    }
-  }
+  std::map<std::size_t, SlurmTaskState> tasks;
+  if (q.exit_code == 0) tasks = ParseSqueueTasks(q.out);
   const ProgramResult a =
       RunProgram({"sacct", "-n", "-P", "-X", "-j", job_id, "-o", "JobID,State,Reason"});
-  if (a.exit_code == 0) {
-    for (const std::string& line : Split(a.out, '\n')) {
-      const std::vector<std::string> f = Split(Trim(line), '|');
-      if (f.size() < 2) continue;
-      const std::size_t us = f[0].find('_');
-      if (us == std::string::npos) continue;
-      try {
-        const std::size_t task = std::stoul(f[0].substr(us + 1));
-        // "CANCELLED by 0" -> "CANCELLED".
-        const std::string state = Split(f[1], ' ').empty() ? f[1] : Split(f[1], ' ')[0];
-        if (!tasks.count(task)) tasks[task] = TaskState{state, f.size() > 2 ? f[2] : ""};
-      } catch (const std::exception&) {
-      }
-    }
-  }
+  if (a.exit_code == 0) AddSacctTasks(a.out, &tasks);
   return tasks;
 }
 
@@ -200,7 +171,7 @@ fs::path WriteBatchScript(const fs::path& dir, const SweepPlan& plan, const Slur
 // The outcome to record for a cell whose task Slurm ended (or no longer knows) before
 // the cell recorded a final result. The sweep-cell task itself (on SIGTERM) and the
 // follower both word it here, so the reason reads the same whoever wrote it.
-CellOutcome OutcomeFromSlurm(const std::optional<TaskState>& st, CellOutcome o) {
+CellOutcome OutcomeFromSlurm(const std::optional<SlurmTaskState>& st, CellOutcome o) {
   if (!st) {
     o.status = CellStatus::kFailed;
     o.reason =
@@ -241,7 +212,7 @@ int Follow(const fs::path& dir, const SweepPlan& plan, const std::vector<SlurmSu
   std::set<std::size_t> open = watch;
   while (!open.empty()) {
     if (const int sig = signals.TakeInterrupt()) return sig;
-    std::map<std::string, std::optional<std::map<std::size_t, TaskState>>> states;
+    std::map<std::string, std::optional<std::map<std::size_t, SlurmTaskState>>> states;
     std::size_t running = 0;
     for (auto it = open.begin(); it != open.end();) {
       const std::size_t cell_index = *it;
@@ -253,8 +224,8 @@ int Follow(const fs::path& dir, const SweepPlan& plan, const std::vector<SlurmSu
       }
       const auto& tasks = *states[sub->job_id];
       const auto found = tasks.find(task);
-      const std::optional<TaskState> st =
-          found == tasks.end() ? std::nullopt : std::optional<TaskState>(found->second);
+      const std::optional<SlurmTaskState> st =
+          found == tasks.end() ? std::nullopt : std::optional<SlurmTaskState>(found->second);
       if (st && IsActive(st->state)) {
         if (st->state != "PENDING") ++running;
         ++it;
@@ -335,17 +306,60 @@ std::optional<CellOutcome> SlurmStopOutcome() {
   } catch (const std::exception&) {
     return std::nullopt;
   }
-  const std::vector<std::string> lines = Split(r.out, '\n');
-  if (r.exit_code != 0 || lines.empty()) return std::nullopt;
+  if (r.exit_code != 0) return std::nullopt;
+  const std::optional<SlurmTaskState> job_state = ParseScontrolJob(r.out);
+  if (!job_state) return std::nullopt;
+  const SlurmTaskState& st = *job_state;
+  // Only a stop Slurm explains; anything else (a SIGTERM by hand) stays interrupted.
+  if (st.reason != "TimeLimit" && IsActive(st.state)) return std::nullopt;
+  return OutcomeFromSlurm(st, CellOutcome{});
+}
+
+std::optional<std::size_t> ParseIndex(const std::string& text) {
+  const std::string t = Trim(text);
+  if (t.empty() || t.size() > 19 || t.find_first_not_of("0123456789") != std::string::npos) {
+    return std::nullopt;
+  }
+  return static_cast<std::size_t>(std::stoull(t));
+}
+
+std::map<std::size_t, SlurmTaskState> ParseSqueueTasks(const std::string& out) {
+  std::map<std::size_t, SlurmTaskState> tasks;
+  for (const std::string& line : Split(out, '\n')) {
+    const std::vector<std::string> f = Split(Trim(line), '|');
+    if (f.size() < 3) continue;
+    // A pending array's summary line has no task id (N/A, or a range such as 0-9).
+    if (const std::optional<std::size_t> task = ParseIndex(f[0])) {
+      tasks[*task] = SlurmTaskState{f[1], f[2]};
+    }
+  }
+  return tasks;
+}
+
+void AddSacctTasks(const std::string& out, std::map<std::size_t, SlurmTaskState>* tasks) {
+  for (const std::string& line : Split(out, '\n')) {
+    const std::vector<std::string> f = Split(Trim(line), '|');
+    if (f.size() < 2) continue;
+    const std::size_t us = f[0].find('_');
+    if (us == std::string::npos) continue;
+    const std::optional<std::size_t> task = ParseIndex(f[0].substr(us + 1));
+    if (!task || tasks->count(*task)) continue;
+    // "CANCELLED by 0" -> "CANCELLED".
+    const std::vector<std::string> words = Split(f[1], ' ');
+    (*tasks)[*task] = SlurmTaskState{words.empty() ? f[1] : words[0], f.size() > 2 ? f[2] : ""};
+  }
+}
+
+std::optional<SlurmTaskState> ParseScontrolJob(const std::string& out) {
+  const std::vector<std::string> lines = Split(out, '\n');
+  if (lines.empty()) return std::nullopt;
   std::map<std::string, std::string> fields;
   for (const std::string& word : Split(Trim(lines[0]), ' ')) {
     const std::size_t eq = word.find('=');
     if (eq != std::string::npos) fields[word.substr(0, eq)] = word.substr(eq + 1);
   }
-  const TaskState st{fields["JobState"], fields["Reason"]};
-  // Only a stop Slurm explains; anything else (a SIGTERM by hand) stays interrupted.
-  if (st.reason != "TimeLimit" && IsActive(st.state)) return std::nullopt;
-  return OutcomeFromSlurm(st, CellOutcome{});
+  if (!fields.count("JobState")) return std::nullopt;
+  return SlurmTaskState{fields["JobState"], fields["Reason"]};
 }
 
 std::size_t CellIndexFromList(const fs::path& list_file, std::size_t line) {
@@ -354,12 +368,9 @@ std::size_t CellIndexFromList(const fs::path& list_file, std::size_t line) {
     throw std::runtime_error(list_file.string() + ": no line " + std::to_string(line) + " (" +
                              std::to_string(lines.size()) + " cells listed)");
   }
-  try {
-    return std::stoul(Trim(lines[line]));
-  } catch (const std::exception&) {
-    throw std::runtime_error(list_file.string() + ": line " + std::to_string(line) +
-                             ": not a cell index: '" + lines[line] + "'");
-  }
+  if (const std::optional<std::size_t> index = ParseIndex(lines[line])) return *index;
+  throw std::runtime_error(list_file.string() + ": line " + std::to_string(line) +
+                           ": not a cell index: '" + lines[line] + "'");
 }
 
 int RunSlurmSweep(const fs::path& dir, const SweepPlan& plan, const SlurmOptions& options,

@@ -1,20 +1,20 @@
-// Fuzzes what the Slurm backend reads back from the sweep folder (slurm_backend.h): the
-// input as slurm/jobs.json text (ParseSlurmJobs; what parses is written with SlurmJobsJson
-// and must read back to the same submissions), and as a submission's list file, written to
-// a temporary file (one per process) and read line by line with CellIndexFromList.
-// squeue's, sacct's and scontrol's output is parsed inside slurm_backend.cpp (QueryTasks,
-// SlurmStopOutcome, in an anonymous namespace, straight from the programs' output): not
-// reachable from here.
+// Fuzzes what the Slurm backend reads (slurm_backend.h): the input as slurm/jobs.json
+// text (ParseSlurmJobs; what parses is written with SlurmJobsJson and must read back to
+// the same submissions), as a submission's list file, written to a temporary file (one
+// per process) and read line by line with CellIndexFromList, and as the output of
+// squeue, sacct and scontrol (ParseSqueueTasks, AddSacctTasks, ParseScontrolJob).
 //
-// Finding: a crash, a sanitizer report, a hang, an exception other than SweepError from
-// ParseSlurmJobs or std::runtime_error from CellIndexFromList, or jobs.json that does not
-// read back.
+// Finding: a crash, a sanitizer report, a hang, any exception from the programs' output
+// parsers (they must take whatever a program prints), an exception other than SweepError
+// from ParseSlurmJobs or std::runtime_error from CellIndexFromList, or jobs.json that does
+// not read back.
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -65,12 +65,25 @@ void FuzzJobs(const std::string& text) {
   }
 }
 
+// squeue's, sacct's and scontrol's output: parsed without throwing, whatever it is.
+void FuzzProgramOutput(const std::string& text) {
+  try {
+    std::map<std::size_t, ex::SlurmTaskState> tasks = ex::ParseSqueueTasks(text);
+    ex::AddSacctTasks(text, &tasks);
+    ex::ParseScontrolJob(text);
+    ex::ParseIndex(text);
+  } catch (const std::exception& e) {
+    Finding(std::string("a program output parser threw: ") + e.what());
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const TempFile list;
   const std::string text(reinterpret_cast<const char*>(data), size);
   FuzzJobs(text);
+  FuzzProgramOutput(text);
   {
     std::ofstream out(list.path, std::ios::binary | std::ios::trunc);
     out << text;

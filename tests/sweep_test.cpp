@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <optional>
 #include <regex>
 #include <string>
 #include <tuple>
@@ -498,6 +500,49 @@ TEST(SlurmJobsTest, JobsJsonIsReadAsStrictlyAsTheOtherFolderFiles) {
   EXPECT_EQ(JobsErrorOf(R"({"jobs": {}})"), "slurm/jobs.json: jobs: expected a list, got a map");
   EXPECT_EQ(JobsErrorOf("{}"), "slurm/jobs.json: jobs: missing");
   EXPECT_EQ(JobsErrorOf(R"({"jobs": [)").rfind("slurm/jobs.json: not valid JSON: ", 0), 0u);
+}
+
+// What squeue, sacct and scontrol print, as the backend reads it (real output's layout:
+// `squeue -h -r -t all -o %K|%T|%r`, `sacct -n -P -X -o JobID,State,Reason`,
+// `scontrol -o show job`).
+TEST(SlurmOutputTest, SqueueSacctAndScontrolAreReadAsTheyPrint) {
+  std::map<std::size_t, SlurmTaskState> tasks = ParseSqueueTasks(
+      "0|COMPLETED|None\n2|TIMEOUT|TimeLimit\nN/A|PENDING|JobArrayTaskLimit\n"
+      "3-9|PENDING|JobArrayTaskLimit\n-1|RUNNING|None\n12abc|RUNNING|None\n4|RUNNING\n");
+  ASSERT_EQ(tasks.size(), 2u);  // summary lines, bad ids and short lines skipped
+  EXPECT_EQ(tasks.at(2).state, "TIMEOUT");
+  EXPECT_EQ(tasks.at(2).reason, "TimeLimit");
+  AddSacctTasks("4711_0|FAILED|None\n4711_1|CANCELLED by 0|None\n4711_[4-9]|PENDING|None\n4711\n",
+                &tasks);
+  ASSERT_EQ(tasks.size(), 3u);
+  EXPECT_EQ(tasks.at(0).state, "COMPLETED");  // squeue's word stands
+  EXPECT_EQ(tasks.at(1).state, "CANCELLED");
+  const auto job = ParseScontrolJob(
+      "JobId=4713 ArrayJobId=4711 ArrayTaskId=2 JobState=TIMEOUT Reason=TimeLimit "
+      "TimeLimit=00:01:00\nsecond line ignored JobState=RUNNING\n");
+  ASSERT_TRUE(job.has_value());
+  EXPECT_EQ(job->state, "TIMEOUT");
+  EXPECT_EQ(job->reason, "TimeLimit");
+  EXPECT_FALSE(ParseScontrolJob("slurm_load_jobs error: Invalid job id specified\n"));
+  EXPECT_FALSE(ParseScontrolJob(""));
+  EXPECT_EQ(ParseIndex(" 17\r"), std::optional<std::size_t>(17));
+  for (const char* bad : {"", "-1", "12abc", "+3", "1 2", "99999999999999999999"}) {
+    EXPECT_FALSE(ParseIndex(bad)) << bad;
+  }
+}
+
+TEST(SlurmOutputTest, AListFileLineMustBeAnIndex) {
+  const fs::path list = fs::path(::testing::TempDir()) / "slurm_output_test.cells";
+  std::ofstream(list) << "4\n-1\n12abc\n";
+  EXPECT_EQ(CellIndexFromList(list, 0), 4u);
+  for (std::size_t line : {1u, 2u}) {
+    try {
+      CellIndexFromList(list, line);
+      FAIL() << line;
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(": not a cell index: '"), std::string::npos) << e.what();
+    }
+  }
 }
 
 // A sweep folder of three seeds of one cell, the last failed, built by hand.

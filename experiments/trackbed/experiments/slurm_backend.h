@@ -19,6 +19,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -92,7 +93,29 @@ std::string CurrentSlurmJob();
 std::optional<experiments::CellOutcome> SlurmStopOutcome();
 
 /// The cell index on line `line` (0-based) of a submission's list file. Throws
-/// std::runtime_error naming the file when it cannot be read or has no such line.
+/// std::runtime_error naming the file when it cannot be read, has no such line or the
+/// line is not a decimal index.
 std::size_t CellIndexFromList(const std::filesystem::path& list_file, std::size_t line);
+
+/// A whole decimal number (surrounding blanks allowed, no sign), or nothing.
+std::optional<std::size_t> ParseIndex(const std::string& text);
+
+/// What Slurm says of one array task.
+struct SlurmTaskState {
+  std::string state;   ///< PENDING, RUNNING, COMPLETED, TIMEOUT, CANCELLED, …
+  std::string reason;  ///< squeue's %r: TimeLimit, JobArrayTaskLimit, None, …
+};
+
+/// Task id -> state from `squeue -h -r -t all -o %K|%T|%r` output; lines without a task
+/// id (a pending array's summary) or with too few fields are skipped.
+std::map<std::size_t, SlurmTaskState> ParseSqueueTasks(const std::string& out);
+
+/// Adds the tasks of `sacct -n -P -X -o JobID,State,Reason` output (JobID
+/// `ARRAYJOB_TASK`; "CANCELLED by 0" read as CANCELLED) that `tasks` lacks.
+void AddSacctTasks(const std::string& out, std::map<std::size_t, SlurmTaskState>* tasks);
+
+/// The job's state and reason from `scontrol -o show job` output (its first line's
+/// JobState= and Reason=), or nothing without a JobState.
+std::optional<SlurmTaskState> ParseScontrolJob(const std::string& out);
 
 }  // namespace trackbed::experiments
