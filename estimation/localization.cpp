@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "trackbed/common/option_error.h"
 #include "trackbed/common/se3.h"
@@ -70,21 +71,68 @@ LocalizationStack::LocalizationStack(const LocalizationOptions& options,
 
 LocalizationStack::~LocalizationStack() = default;
 
-void LocalizationStack::AddImuSample(double t_s, const Eigen::Vector3d& gyro_radps,
-                                     const Eigen::Vector3d& accel_mps2) {
-  AddGyroSample(t_s, imu_.BodyRate(gyro_radps, accel_mps2));
+const char* ToString(InputStatus status) {
+  switch (status) {
+    case InputStatus::kUsed:
+      return "used";
+    case InputStatus::kTimeNotFinite:
+      return "time_not_finite";
+    case InputStatus::kTimeNotIncreasing:
+      return "time_not_increasing";
+    case InputStatus::kValueNotFinite:
+      return "value_not_finite";
+    case InputStatus::kImageInvalid:
+      return "image_invalid";
+  }
+  return "?";
 }
 
-void LocalizationStack::AddEncoderSample(double t_s, std::int64_t left_ticks,
-                                         std::int64_t right_ticks) {
+namespace {
+
+// A stamp's status against the stream's last used one (`has_last` false: none yet).
+InputStatus StampStatus(double t_s, bool has_last, double last_s) {
+  if (!std::isfinite(t_s)) return InputStatus::kTimeNotFinite;
+  if (has_last && !(t_s > last_s)) return InputStatus::kTimeNotIncreasing;
+  return InputStatus::kUsed;
+}
+
+}  // namespace
+
+InputStatus LocalizationStack::AddImuSample(double t_s, const Eigen::Vector3d& gyro_radps,
+                                            const Eigen::Vector3d& accel_mps2) {
+  if (!gyro_radps.allFinite() || !accel_mps2.allFinite()) {
+    ++rejected_.gyro;
+    return InputStatus::kValueNotFinite;
+  }
+  return AddGyroSample(t_s, imu_.BodyRate(gyro_radps, accel_mps2));
+}
+
+InputStatus LocalizationStack::AddEncoderSample(double t_s, std::int64_t left_ticks,
+                                                std::int64_t right_ticks) {
+  const InputStatus status = StampStatus(t_s, has_encoder_, t_encoder_);
+  if (status != InputStatus::kUsed) {
+    ++rejected_.encoder;
+    return status;
+  }
+  has_encoder_ = true;
+  t_encoder_ = t_s;
   wheel_.AddEncoderSample(t_s, left_ticks, right_ticks);
   wheel_noslip_.AddEncoderSample(t_s, left_ticks, right_ticks);
   ekf_.AddWheelTwist(t_s, wheel_noslip_.forward_mps(), wheel_noslip_.yaw_rate_radps());
+  return InputStatus::kUsed;
 }
 
-void LocalizationStack::AddGyroSample(double t_s, const Eigen::Vector3d& rate_radps) {
+InputStatus LocalizationStack::AddGyroSample(double t_s, const Eigen::Vector3d& rate_radps) {
+  InputStatus status = StampStatus(t_s, has_gyro_, t_gyro_);
+  if (status == InputStatus::kUsed && !rate_radps.allFinite()) {
+    status = InputStatus::kValueNotFinite;
+  }
+  if (status != InputStatus::kUsed) {
+    ++rejected_.gyro;
+    return status;
+  }
   ekf_.AddGyro(t_s, rate_radps.z());
-  if (has_gyro_ && t_s > t_gyro_) {
+  if (has_gyro_) {
     // The rate held over the interval since the last sample (body frame: right-multiplied).
     const Eigen::Vector3d phi = rate_radps * (t_s - t_gyro_);
     const double angle = phi.norm();
@@ -95,11 +143,37 @@ void LocalizationStack::AddGyroSample(double t_s, const Eigen::Vector3d& rate_ra
   }
   has_gyro_ = true;
   t_gyro_ = t_s;
+  return InputStatus::kUsed;
+}
+
+InputStatus LocalizationStack::CheckStereoFrame(double t_s, const cv::Mat& left,
+                                                const cv::Mat& right) const {
+  const InputStatus status = StampStatus(t_s, has_frame_, t_frame_);
+  if (status != InputStatus::kUsed) return status;
+  const cv::Size size =
+      rectifier_ ? cv::Size(rectifier_->camera().left.width_px, rectifier_->camera().left.height_px)
+                 : cv::Size(vo_->camera().left.width_px, vo_->camera().left.height_px);
+  for (const cv::Mat* image : {&left, &right}) {
+    if (image->empty() || image->type() != CV_8UC1 || image->size() != size) {
+      return InputStatus::kImageInvalid;
+    }
+  }
+  return InputStatus::kUsed;
 }
 
 LocalizationFrameReport LocalizationStack::AddStereoFrame(double t_s, const cv::Mat& left,
                                                           const cv::Mat& right) {
   if (!vo_) throw std::logic_error("LocalizationStack: stereo frame without a camera calibration");
+  LocalizationFrameReport report;
+  report.input = CheckStereoFrame(t_s, left, right);
+  if (report.input != InputStatus::kUsed) {
+    ++rejected_.stereo;
+    report.vo.status = VoStatus::kNotProcessed;
+    report.vo.reason = std::string("input set aside: ") + ToString(report.input);
+    report.slip = wheel_.slip();
+    report.slip_velocity_mps = report.slip.max_abs_mps();
+    return report;
+  }
   if (rectifier_) {
     rectifier_->Rectify(left, right, &rectified_left_, &rectified_right_);
     return ProcessStereoFrame(t_s, rectified_left_, rectified_right_);

@@ -69,6 +69,8 @@ const char* ToString(VoStatus status) {
       return "implausible_motion";
     case VoStatus::kInconsistentMotion:
       return "inconsistent_motion";
+    case VoStatus::kNotProcessed:
+      return "not_processed";
   }
   return "unknown";
 }

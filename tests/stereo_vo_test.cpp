@@ -8,9 +8,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -435,6 +438,72 @@ TEST(StereoVisualOdometryTest, InvalidOptionsNameTheDottedField) {
   o = {};
   o.exhausted_cell_retry_frames = 0;
   EXPECT_EQ(field_of(o), "exhausted_cell_retry_frames");
+}
+
+// Corrupted streams (issue 28): NaN stamps, stamps that go back or repeat, non-finite
+// gyro or accelerometer readings and unusable images are set aside with their reason
+// and counted; every estimate stays finite and ends exactly where the clean streams
+// alone take it.
+TEST(LocalizationStackTest, CorruptedInputsAreSetAsideAndChangeNoEstimate) {
+  const SyntheticScene scene;
+  const geometry::StereoCamera calibration = SyntheticScene::Calibration();
+  Eigen::Isometry3d T_body_left = Eigen::Isometry3d::Identity();
+  T_body_left.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;  // camera looking along body x
+  LocalizationStack clean(LocalizationOptions{}, &calibration, T_body_left,
+                          Eigen::Isometry3d::Identity());
+  LocalizationStack dirty(LocalizationOptions{}, &calibration, T_body_left,
+                          Eigen::Isometry3d::Identity());
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  const cv::Mat blank;
+  for (int k = 0; k < 5; ++k) {
+    for (int j = 1; j <= 10; ++j) {  // 10 encoder and IMU samples a frame
+      const double t = 0.1 * k + 0.01 * j;
+      const std::int64_t ticks = static_cast<std::int64_t>(400 * t);
+      const Eigen::Vector3d gyro(0.0, 0.0, 0.05), accel(0.0, 0.0, 9.81);
+      for (LocalizationStack* s : {&clean, &dirty}) {
+        EXPECT_EQ(s->AddEncoderSample(t, ticks, ticks + j), InputStatus::kUsed);
+        EXPECT_EQ(s->AddImuSample(t, gyro, accel), InputStatus::kUsed);
+      }
+      EXPECT_EQ(dirty.AddEncoderSample(nan, 1, 1), InputStatus::kTimeNotFinite);
+      EXPECT_EQ(dirty.AddEncoderSample(t, 99999, 0), InputStatus::kTimeNotIncreasing);
+      EXPECT_EQ(dirty.AddEncoderSample(t - 0.05, 0, 0), InputStatus::kTimeNotIncreasing);
+      EXPECT_EQ(dirty.AddImuSample(inf, gyro, accel), InputStatus::kTimeNotFinite);
+      EXPECT_EQ(dirty.AddImuSample(t, gyro, accel), InputStatus::kTimeNotIncreasing);
+      EXPECT_EQ(dirty.AddImuSample(t + 0.001, Eigen::Vector3d(nan, 0, 0), accel),
+                InputStatus::kValueNotFinite);
+      EXPECT_EQ(dirty.AddGyroSample(t + 0.002, Eigen::Vector3d(0, inf, 0)),
+                InputStatus::kValueNotFinite);
+    }
+    const Eigen::Isometry3d T_scene_cam = SyntheticScene::TruePose(k);
+    const cv::Mat left = scene.Render(T_scene_cam, false), right = scene.Render(T_scene_cam, true);
+    const double t = 0.1 * k + 0.1;
+    EXPECT_EQ(clean.AddStereoFrame(t, left, right).input, InputStatus::kUsed);
+    EXPECT_EQ(dirty.AddStereoFrame(t, left, right).input, InputStatus::kUsed);
+    const LocalizationFrameReport again = dirty.AddStereoFrame(t, left, right);
+    EXPECT_EQ(again.input, InputStatus::kTimeNotIncreasing);
+    EXPECT_EQ(again.vo.status, VoStatus::kNotProcessed);
+    EXPECT_EQ(again.vo.reason, "input set aside: time_not_increasing");
+    EXPECT_EQ(dirty.AddStereoFrame(nan, left, right).input, InputStatus::kTimeNotFinite);
+    EXPECT_EQ(dirty.AddStereoFrame(t + 0.05, blank, right).input, InputStatus::kImageInvalid);
+    cv::Mat half;
+    cv::resize(left, half, cv::Size(), 0.5, 0.5);
+    EXPECT_EQ(dirty.AddStereoFrame(t + 0.05, half, half).input, InputStatus::kImageInvalid);
+  }
+  EXPECT_EQ(dirty.rejected().encoder, 150u);
+  EXPECT_EQ(dirty.rejected().gyro, 200u);
+  EXPECT_EQ(dirty.rejected().stereo, 20u);
+  EXPECT_EQ(clean.rejected().encoder + clean.rejected().gyro + clean.rejected().stereo, 0u);
+  for (const auto& [name, a, b] :
+       {std::tuple{"wheel", clean.wheel_odometry(), dirty.wheel_odometry()},
+        std::tuple{"no-slip", clean.wheel_odometry_noslip(), dirty.wheel_odometry_noslip()},
+        std::tuple{"vo", clean.visual_odometry(), dirty.visual_odometry()},
+        std::tuple{"fused", clean.fused(), dirty.fused()},
+        std::tuple{"ekf", clean.ekf(), dirty.ekf()}}) {
+    EXPECT_TRUE(b.matrix().allFinite()) << name;
+    EXPECT_TRUE(a.matrix() == b.matrix()) << name;
+  }
+  EXPECT_GT(clean.wheel_odometry().translation().norm(), 0.0);
 }
 
 // ---------------------------------------------------------------------------------------

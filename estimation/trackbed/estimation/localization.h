@@ -5,6 +5,8 @@
 // logged real data.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -57,8 +59,32 @@ struct LocalizationOptions {
   void Validate() const;
 };
 
+/// Whether the stack used a sensor input, or why it set it aside. Streams from real
+/// hardware and logs carry NaN stamps, stamps that go back (a driver's clock jump, a
+/// message reordered in transport) and non-finite readings: each such input is dropped
+/// and counted, so that no estimate takes a NaN or integrates over a negative interval
+/// from it, and the caller hears why.
+enum class InputStatus : std::uint8_t {
+  kUsed,
+  kTimeNotFinite,      ///< the stamp is NaN or infinite
+  kTimeNotIncreasing,  ///< the stamp is not after the stream's last used one
+  kValueNotFinite,     ///< a reading is NaN or infinite
+  kImageInvalid,       ///< an image is empty, not 8-bit grey or not the calibration's size
+};
+
+/// Short lower-case name ("used", "time_not_finite", "time_not_increasing",
+/// "value_not_finite", "image_invalid").
+const char* ToString(InputStatus status);
+
+/// Inputs set aside so far, per stream.
+struct RejectedInputs {
+  std::size_t encoder = 0, gyro = 0, stereo = 0;
+};
+
 /// What one stereo frame did to the estimates.
 struct LocalizationFrameReport {
+  /// Whether the frame was used; a frame set aside changes no estimate.
+  InputStatus input = InputStatus::kUsed;
   VoFrameResult vo;
   bool vo_valid = false;           ///< VO produced a motion (enough inliers).
   bool vo_coasted = false;         ///< VO failed; its pose went on at the last velocity.
@@ -87,17 +113,20 @@ class LocalizationStack {
   LocalizationStack(const LocalizationStack&) = delete;
   LocalizationStack& operator=(const LocalizationStack&) = delete;
 
-  void AddEncoderSample(double t_s, std::int64_t left_ticks, std::int64_t right_ticks);
+  /// Each Add* uses its input or sets it aside (InputStatus): stamps must be finite and
+  /// increase within each stream, readings finite, images 8-bit grey of the calibration's
+  /// size.
+  InputStatus AddEncoderSample(double t_s, std::int64_t left_ticks, std::int64_t right_ticks);
   /// The IMU gyro's rates about the body axes [rad/s]: z for the EKF baseline; all
   /// three, integrated from one stereo frame to the next, are the rotation prior that
   /// vets visual odometry's consensus (StereoVisualOdometryOptions::
   /// max_rotation_prior_error_deg). Only VO frames with gyro samples since the last
   /// frame get a prior.
-  void AddGyroSample(double t_s, const Eigen::Vector3d& rate_radps);
+  InputStatus AddGyroSample(double t_s, const Eigen::Vector3d& rate_radps);
   /// An IMU reading in the IMU's own axes: turned into the body's rate with the given
   /// calibration (LocalizationOptions::imu), then as AddGyroSample.
-  void AddImuSample(double t_s, const Eigen::Vector3d& gyro_radps,
-                    const Eigen::Vector3d& accel_mps2);
+  InputStatus AddImuSample(double t_s, const Eigen::Vector3d& gyro_radps,
+                           const Eigen::Vector3d& accel_mps2);
   LocalizationFrameReport AddStereoFrame(double t_s, const cv::Mat& left, const cv::Mat& right);
 
   /// Current estimates of T_world_body.
@@ -107,6 +136,8 @@ class LocalizationStack {
   Eigen::Isometry3d fused() const;
   Eigen::Isometry3d ekf() const;
   const TrackSlip& slip() const { return wheel_.slip(); }
+  /// Inputs set aside so far.
+  const RejectedInputs& rejected() const { return rejected_; }
 
  private:
   LocalizationStack(const LocalizationOptions& options,
@@ -114,6 +145,8 @@ class LocalizationStack {
                     const Eigen::Isometry3d& T_world_body0);
   // A rectified pair's frame.
   LocalizationFrameReport ProcessStereoFrame(double t_s, const cv::Mat& left, const cv::Mat& right);
+  // Why a frame at t_s with these images is set aside, or kUsed.
+  InputStatus CheckStereoFrame(double t_s, const cv::Mat& left, const cv::Mat& right) const;
 
   LocalizationOptions options_;
   // Rectifies each pair when the given one is not rectified; null otherwise.
@@ -142,6 +175,10 @@ class LocalizationStack {
   Eigen::Matrix3d R_gyro_since_frame_ = Eigen::Matrix3d::Identity();
   double t_gyro_ = 0.0;
   bool has_gyro_ = false, gyro_since_frame_ = false;
+  // The last used encoder stamp; inputs set aside.
+  double t_encoder_ = 0.0;
+  bool has_encoder_ = false;
+  RejectedInputs rejected_;
 };
 
 }  // namespace trackbed::estimation

@@ -135,6 +135,7 @@ enum class VoStatus {
   kRansacFailed,        ///< every sample was degenerate
   kImplausibleMotion,   ///< the motion exceeds the per-frame bounds (a wrong consensus)
   kInconsistentMotion,  ///< breaks the dynamics bounds, as does the second consensus
+  kNotProcessed,        ///< the frame was set aside before VO saw it (LocalizationStack)
 };
 
 /// "ok", "first_frame", "too_few_features", "too_few_inliers", "ransac_failed",
