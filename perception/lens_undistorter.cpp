@@ -43,7 +43,7 @@ void LensUndistorter::Undistort(const cv::Mat& image, cv::Mat* out) const {
     *out = image;
     return;
   }
-  cv::remap(image, *out, map_x_, map_y_, cv::INTER_LINEAR, cv::BORDER_CONSTANT, 0);
+  cv::remap(image, *out, map_x_, map_y_, kRemapInterpolation, cv::BORDER_CONSTANT, 0);
 }
 
 }  // namespace trackbed::perception

@@ -75,8 +75,9 @@ void StereoRectifier::Rectify(const cv::Mat& left, const cv::Mat& right, cv::Mat
     *right_out = right;
     return;
   }
-  cv::remap(left, *left_out, map_left_x_, map_left_y_, cv::INTER_LINEAR, cv::BORDER_CONSTANT, 0);
-  cv::remap(right, *right_out, map_right_x_, map_right_y_, cv::INTER_LINEAR, cv::BORDER_CONSTANT,
+  // Bicubic (lens_undistorter.h says why).
+  cv::remap(left, *left_out, map_left_x_, map_left_y_, kRemapInterpolation, cv::BORDER_CONSTANT, 0);
+  cv::remap(right, *right_out, map_right_x_, map_right_y_, kRemapInterpolation, cv::BORDER_CONSTANT,
             0);
 }
 

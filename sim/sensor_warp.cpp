@@ -30,6 +30,50 @@ inline float Bilinear(const std::uint8_t* image, int w, int h, float u, float v)
   return (1.0f - b) * ((1.0f - a) * p[0] + a * p[1]) + b * ((1.0f - a) * p[w] + a * p[w + 1]);
 }
 
+// The summed-area table of a w × h image: (w + 1) × (h + 1) sums, entry (j, i) the sum
+// of the pixels left of column edge i and above row edge j.
+void BuildSummedArea(const GrayImage& image, std::vector<std::uint32_t>* sat) {
+  const int w = image.width, h = image.height;
+  const std::size_t row = static_cast<std::size_t>(w) + 1;
+  sat->assign(row * (static_cast<std::size_t>(h) + 1), 0u);
+  for (int j = 0; j < h; ++j) {
+    std::uint32_t line = 0;
+    const std::uint8_t* p = image.pixels.data() + static_cast<std::size_t>(j) * w;
+    std::uint32_t* above = sat->data() + static_cast<std::size_t>(j) * row;
+    std::uint32_t* here = above + row;
+    for (int i = 0; i < w; ++i) {
+      line += p[i];
+      here[i + 1] = above[i + 1] + line;
+    }
+  }
+}
+
+// The image's integral over [−0.5, x] × [−0.5, y] (pixel k spans [k − 0.5, k + 0.5]),
+// x and y clamped to the image: the table bilinear at the edge coordinates (x + 0.5,
+// y + 0.5), which is exact for an image constant over each pixel.
+inline double AreaSum(const std::uint32_t* sat, int w, int h, double x, double y) {
+  const double ex = std::min(std::max(x + 0.5, 0.0), static_cast<double>(w));
+  const double ey = std::min(std::max(y + 0.5, 0.0), static_cast<double>(h));
+  const int i = std::min(static_cast<int>(ex), w - 1), j = std::min(static_cast<int>(ey), h - 1);
+  const double a = ex - i, b = ey - j;
+  const std::size_t row = static_cast<std::size_t>(w) + 1;
+  const std::uint32_t* s = sat + static_cast<std::size_t>(j) * row + i;
+  return (1.0 - b) * ((1.0 - a) * s[0] + a * s[1]) + b * ((1.0 - a) * s[row] + a * s[row + 1]);
+}
+
+// The mean grey level over the box of half-sizes (hu, hv) about (u, v) [render px], the
+// part inside the render; where none is inside, the nearest edge pixel's (bilinear).
+inline float BoxMean(const std::uint8_t* image, const std::uint32_t* sat, int w, int h, float u,
+                     float v, float hu, float hv) {
+  const double x0 = std::max(u - hu, -0.5f), x1 = std::min(u + hu, w - 0.5f);
+  const double y0 = std::max(v - hv, -0.5f), y1 = std::min(v + hv, h - 0.5f);
+  const double area = (x1 - x0) * (y1 - y0);
+  if (!(x1 > x0 && y1 > y0 && area > 1e-6)) return Bilinear(image, w, h, u, v);
+  const double sum = AreaSum(sat, w, h, x1, y1) - AreaSum(sat, w, h, x0, y1) -
+                     AreaSum(sat, w, h, x1, y0) + AreaSum(sat, w, h, x0, y0);
+  return static_cast<float>(sum / area);
+}
+
 // A rigid motion in single precision, applied to points (finite depth) or rays.
 struct Motion {
   float R[9], t[3];
@@ -161,49 +205,64 @@ SensorWarp::SensorWarp(const geometry::PinholeCamera& sensor, const geometry::Pi
   map_v_.resize(map_u_.size());
   for (int v = 0; v < h; ++v) {
     for (int u = 0; u < w; ++u) {
-      const Eigen::Vector2d d((u - sensor_.cx) / sensor_.fx, (v - sensor_.cy) / sensor_.fy);
-      const Eigen::Vector2d xy = sensor_.distortion.Undistort(d);
-      const double ru = render_.fx * xy.x() + render_.cx, rv = render_.fy * xy.y() + render_.cy;
+      const Eigen::Vector2d r = RenderPoint(u, v);
       constexpr double kSlack = 1e-6;  // rounding in the render camera's principal point
-      if (!(ru >= -kSlack && rv >= -kSlack && ru <= render_.width_px - 1 + kSlack &&
-            rv <= render_.height_px - 1 + kSlack)) {
+      if (!(r.x() >= -kSlack && r.y() >= -kSlack && r.x() <= render_.width_px - 1 + kSlack &&
+            r.y() <= render_.height_px - 1 + kSlack)) {
         throw std::invalid_argument("SensorWarp: the render does not cover sensor pixel (" +
                                     std::to_string(u) + ", " + std::to_string(v) + ")");
       }
-      map_u_[static_cast<std::size_t>(v) * w + u] = static_cast<float>(ru);
-      map_v_[static_cast<std::size_t>(v) * w + u] = static_cast<float>(rv);
+      map_u_[static_cast<std::size_t>(v) * w + u] = static_cast<float>(r.x());
+      map_v_[static_cast<std::size_t>(v) * w + u] = static_cast<float>(r.y());
     }
   }
-  BuildLensTable();
+  BuildFootprints();
 }
 
-void SensorWarp::BuildLensTable() {
-  // Bilinear as Bilinear() samples, its weights rounded to 1/256 of a pixel (at most
-  // 1/512 px off the ray).
-  lens_index_.resize(map_u_.size());
-  lens_a_.resize(map_u_.size());
-  lens_b_.resize(map_u_.size());
-  for (std::size_t i = 0; i < map_u_.size(); ++i) {
-    float a = 0.0f, b = 0.0f;
-    lens_index_[i] = static_cast<std::uint32_t>(
-        BilinearTap(render_.width_px, render_.height_px, map_u_[i], map_v_[i], &a, &b));
-    lens_a_[i] = static_cast<std::uint16_t>(std::lround(a * 256.0f));
-    lens_b_[i] = static_cast<std::uint16_t>(std::lround(b * 256.0f));
+Eigen::Vector2d SensorWarp::RenderPoint(double u, double v) const {
+  const Eigen::Vector2d d((u - sensor_.cx) / sensor_.fx, (v - sensor_.cy) / sensor_.fy);
+  const Eigen::Vector2d xy = sensor_.distortion.Undistort(d);
+  return {render_.fx * xy.x() + render_.cx, render_.fy * xy.y() + render_.cy};
+}
+
+void SensorWarp::BuildFootprints() {
+  // The render points of the sensor pixels' corners, a (w + 1) × (h + 1) grid; each
+  // pixel's footprint is the box spanned by its four.
+  const int w = sensor_.width_px, h = sensor_.height_px;
+  std::vector<Eigen::Vector2d> corners(static_cast<std::size_t>(w + 1) * (h + 1));
+  for (int v = 0; v <= h; ++v) {
+    for (int u = 0; u <= w; ++u) {
+      corners[static_cast<std::size_t>(v) * (w + 1) + u] = RenderPoint(u - 0.5, v - 0.5);
+    }
+  }
+  half_u_.resize(map_u_.size());
+  half_v_.resize(map_u_.size());
+  for (int v = 0; v < h; ++v) {
+    for (int u = 0; u < w; ++u) {
+      const std::size_t c = static_cast<std::size_t>(v) * (w + 1) + u;
+      const Eigen::Vector2d& a = corners[c];
+      const Eigen::Vector2d& b = corners[c + 1];
+      const Eigen::Vector2d& d = corners[c + w + 1];
+      const Eigen::Vector2d& e = corners[c + w + 2];
+      const std::size_t i = static_cast<std::size_t>(v) * w + u;
+      half_u_[i] = static_cast<float>(
+          0.5 * (std::max({a.x(), b.x(), d.x(), e.x()}) - std::min({a.x(), b.x(), d.x(), e.x()})));
+      half_v_[i] = static_cast<float>(
+          0.5 * (std::max({a.y(), b.y(), d.y(), e.y()}) - std::min({a.y(), b.y(), d.y(), e.y()})));
+    }
   }
 }
 
-void SensorWarp::ApplyLens(const GrayImage& rendered, GrayImage* out) const {
-  const int w = sensor_.width_px, h = sensor_.height_px, rw = rendered.width;
+void SensorWarp::ApplyLens(const GrayImage& rendered, GrayImage* out) {
+  const int w = sensor_.width_px, h = sensor_.height_px;
   out->width = w;
   out->height = h;
   out->pixels.resize(static_cast<std::size_t>(w) * h);
-  const std::uint8_t* src = rendered.pixels.data();
+  BuildSummedArea(rendered, &sat_);
   for (std::size_t i = 0; i < out->pixels.size(); ++i) {
-    const std::uint8_t* p = src + lens_index_[i];
-    const std::uint32_t a = lens_a_[i], b = lens_b_[i];
-    const std::uint32_t top = (256 - a) * p[0] + a * p[1];
-    const std::uint32_t bottom = (256 - a) * p[rw] + a * p[rw + 1];
-    out->pixels[i] = static_cast<std::uint8_t>(((256 - b) * top + b * bottom + 32768) >> 16);
+    const float mean = BoxMean(rendered.pixels.data(), sat_.data(), rendered.width, rendered.height,
+                               map_u_[i], map_v_[i], half_u_[i], half_v_[i]);
+    out->pixels[i] = static_cast<std::uint8_t>(std::min(mean + 0.5f, 255.0f));
   }
 }
 
@@ -233,6 +292,7 @@ void SensorWarp::Apply(const GrayImage& rendered, const DepthImage* depth,
   for (std::size_t i = 0; i < inverse_depth_.size(); ++i) {
     inverse_depth_[i] = 1.0f / depth->depth_m[i];  // +infinity (sky) gives 0
   }
+  BuildSummedArea(rendered, &sat_);
   sum_.assign(map_u_.size(), 0.0f);
   q_u_ = map_u_;
   q_v_ = map_v_;
@@ -256,8 +316,8 @@ void SensorWarp::Apply(const GrayImage& rendered, const DepthImage* depth,
         }
         Solve(k, m, inverse_depth_.data(), render_.width_px, render_.height_px, map_u_[i],
               map_v_[i], steps, &q_u_[i], &q_v_[i]);
-        sum_[i] +=
-            Bilinear(rendered.pixels.data(), rendered.width, rendered.height, q_u_[i], q_v_[i]);
+        sum_[i] += BoxMean(rendered.pixels.data(), sat_.data(), rendered.width, rendered.height,
+                           q_u_[i], q_v_[i], half_u_[i], half_v_[i]);
       }
     }
   }

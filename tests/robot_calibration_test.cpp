@@ -198,26 +198,33 @@ TEST(RobotCalibrationTest, TheImuCorrectionInvertsTheImuAsBuilt) {
   EXPECT_GT((datasheet.BodyRate(s.gyro_radps, s.accel_mps2) - body_rate).norm(), 1e-3);
 }
 
-// An 8-bit image, black but for a Gaussian spot (σ 1.5 px) centred at `uv`.
+// An 8-bit image, grey (kBackground) but for a Gaussian spot (σ 3 px) centred at `uv`.
+// On grey, the undershoot a bicubic resampling rings around the spot is kept rather
+// than clipped at 0; a spot several pixels wide keeps the centroid below within a few
+// hundredths of a pixel whatever the resampling's sub-pixel phase.
+constexpr double kBackground = 50.0;
 cv::Mat Spot(int width, int height, const Eigen::Vector2d& uv) {
-  cv::Mat image(height, width, CV_8UC1, cv::Scalar(0));
+  cv::Mat image(height, width, CV_8UC1, cv::Scalar(kBackground));
   for (int v = 0; v < height; ++v) {
     for (int u = 0; u < width; ++u) {
       const double r2 = (u - uv.x()) * (u - uv.x()) + (v - uv.y()) * (v - uv.y());
-      if (r2 < 100.0)
-        image.at<unsigned char>(v, u) =
-            cv::saturate_cast<unsigned char>(200.0 * std::exp(-r2 / (2.0 * 1.5 * 1.5)));
+      if (r2 < 400.0)
+        image.at<unsigned char>(v, u) = cv::saturate_cast<unsigned char>(
+            kBackground + 200.0 * std::exp(-r2 / (2.0 * 3.0 * 3.0)));
     }
   }
   return image;
 }
 
-// The intensity-weighted centre of an image.
+// The centre of an image's intensity above the background within 16 px of its
+// brightest pixel (the rectified view's edges, which resampling darkens, left out).
 Eigen::Vector2d Centroid(const cv::Mat& image) {
+  cv::Point peak;
+  cv::minMaxLoc(image, nullptr, nullptr, nullptr, &peak);
   double sum = 0.0, su = 0.0, sv = 0.0;
-  for (int v = 0; v < image.rows; ++v) {
-    for (int u = 0; u < image.cols; ++u) {
-      const double w = image.at<unsigned char>(v, u);
+  for (int v = std::max(peak.y - 16, 0); v <= std::min(peak.y + 16, image.rows - 1); ++v) {
+    for (int u = std::max(peak.x - 16, 0); u <= std::min(peak.x + 16, image.cols - 1); ++u) {
+      const double w = image.at<unsigned char>(v, u) - kBackground;
       sum += w, su += w * u, sv += w * v;
     }
   }

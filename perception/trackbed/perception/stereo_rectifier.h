@@ -28,7 +28,7 @@ class StereoRectifier {
   /// The rectified left camera in the body frame.
   const Eigen::Isometry3d& T_body_left() const { return T_body_left_; }
   /// Rectifies a pair of 8-bit grey images of the calibration's size into *left_out
-  /// and *right_out (bilinear; outside the source image: black, which alpha = 0
+  /// and *right_out (bicubic, kRemapInterpolation; outside the source image: black, which alpha = 0
   /// keeps out of the rectified view). With identity(), the outputs share the inputs'
   /// pixels.
   void Rectify(const cv::Mat& left, const cv::Mat& right, cv::Mat* left_out,

@@ -10,7 +10,12 @@
 //     find q in the render with  project(A(t_k) · X(q)) = p0,
 //     where X(q) is the rendered point at q (its ray at the depth buffer's depth) and
 //     A(t) the camera's motion from the render's instant to t;
-//   pixel = the mean over k of the render, bilinear at q.
+//   pixel = the mean over k of the render's mean over s's footprint about q.
+//
+// The footprint is the box the pixel's four corners span in the render through the
+// lens: a real pixel integrates the light over its area, so where the lens compresses
+// the view a pixel averages several render pixels rather than picking one, which
+// aliases (a summed-area table of the render makes each mean four lookups).
 //
 // q is found by the fixed-point iteration q ← q + p0 − project(A · X(q)): one step from
 // the left neighbour's shift for the first instant (three at a row's start), one from
@@ -87,17 +92,21 @@ class SensorWarp {
              const SensorTiming& timing, GrayImage* out);
 
  private:
-  void BuildLensTable();
-  void ApplyLens(const GrayImage& rendered, GrayImage* out) const;
+  // Sensor pixel (u, v) [px, may be fractional] as a point of the render.
+  Eigen::Vector2d RenderPoint(double u, double v) const;
+  void BuildFootprints();
+  void ApplyLens(const GrayImage& rendered, GrayImage* out);
 
   geometry::PinholeCamera sensor_, render_;
   bool identity_ = false;
   // Each sensor pixel's ray as a render pixel (row-major, sensor size).
   std::vector<float> map_u_, map_v_;
-  // The same for the lens alone in fixed point: the index of the render pixel at the
-  // top left of the ray's 2 × 2 neighbourhood, and its bilinear weights in 1/256 px.
-  std::vector<std::uint32_t> lens_index_;
-  std::vector<std::uint16_t> lens_a_, lens_b_;  // in [0, 256]
+  // Each sensor pixel's footprint in the render: the half-sizes [render px] of the box
+  // its four corners span (0.5, one render pixel, near the centre of a lens drawn at
+  // the sensor's focal length; more where the lens compresses the view).
+  std::vector<float> half_u_, half_v_;
+  // The render's summed-area table (BuildSummedArea in the source).
+  std::vector<std::uint32_t> sat_;
   std::vector<float> sum_, inverse_depth_;
   std::vector<float> q_u_, q_v_;
 };
