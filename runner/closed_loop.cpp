@@ -285,6 +285,8 @@ class ClosedLoop::Impl {
   std::unique_ptr<robot::Imu> imu_;
   Commander* commander_ = nullptr;
   std::int64_t last_ticks_[2] = {0, 0};
+  // Encoder dropouts: the shaft's count at the last sample, and the counts lost so far.
+  std::int64_t last_shaft_ticks_[2] = {0, 0}, lost_ticks_[2] = {0, 0};
   std::optional<robot::StereoRig> rig_;
   std::unique_ptr<sim::Renderer> renderer_;
   GrayImage left_image_, right_image_;
@@ -479,10 +481,15 @@ bool ClosedLoop::Impl::SampleEncoders(const robot::ChassisState& truth, StepResu
   RunSample s;
   s.t_s = clock_->now_s();
   s.chassis = truth;
+  const robot::EncoderOptions& encoders = scenario_.robot.encoders;
   for (int side = 0; side < 2; ++side) {
     s.tracks[side] = vehicle_->track(static_cast<robot::Side>(side));
-    s.ticks[side] = robot::EncoderTicks(s.tracks[side].sprocket_angle_rad,
-                                        scenario_.robot.encoders.ticks_per_rev);
+    // In a dropout the count freezes, and what the shaft turns meanwhile is lost.
+    const std::int64_t shaft =
+        robot::EncoderTicks(s.tracks[side].sprocket_angle_rad, encoders.ticks_per_rev);
+    if (encoders.InDropout(side, s.t_s)) lost_ticks_[side] += shaft - last_shaft_ticks_[side];
+    last_shaft_ticks_[side] = shaft;
+    s.ticks[side] = shaft - lost_ticks_[side];
   }
   const Eigen::Vector3d p = truth.T_world_body.translation();
   const sim::GroundSample g = world_->terrain().Sample(p.x(), p.y());

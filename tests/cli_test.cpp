@@ -235,6 +235,42 @@ TEST(CliTest, CameraBlackoutMidRunFusionLeansOnWheelsAndTheRunCompletes) {
   EXPECT_LT(m["estimators"]["fused"]["ate_rmse_m"].get<double>(), 0.2);
 }
 
+// An encoder dropout (issue 28): the left track's count freezes from 6 s to 10 s and the
+// motion meanwhile is lost, so the wheels see the robot turn right. VO sees the truth: the
+// slip estimate swells, the fusion's wheel weight falls to the rule base's lowest
+// terms, and the fused pose follows VO, far nearer the truth than the wheels'.
+TEST(CliTest, AnEncoderDropoutFreezesItsCountAndFusionLeansOnVisualOdometry) {
+  const fs::path out = TempDir("dropout");
+  const Result r = Trackbed(
+      "run scenes/outdoor.yaml --set duration_s=14 --set "
+      "\"robot.encoders.dropouts_s=[{track: left, start_s: 6, duration_s: 4}]\" --out " +
+          out.string(),
+      "dropout");
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  std::istringstream encoders(Slurp(out / "encoders.csv"));
+  std::string row;
+  std::getline(encoders, row);
+  long long left_at_6 = -1, left_before_10 = -1, right_at_6 = -1, right_before_10 = -1;
+  while (std::getline(encoders, row)) {
+    double t = 0;
+    long long left = 0, right = 0;
+    ASSERT_EQ(std::sscanf(row.c_str(), "%lf,%lld,%lld", &t, &left, &right), 3) << row;
+    if (std::abs(t - 6.0) < 1e-9) left_at_6 = left, right_at_6 = right;
+    if (std::abs(t - 9.99) < 1e-9) left_before_10 = left, right_before_10 = right;
+  }
+  EXPECT_EQ(left_before_10, left_at_6);           // frozen
+  EXPECT_GT(right_before_10 - right_at_6, 1000);  // the right track counts on
+  const nlohmann::json m = Metrics(out);
+  EXPECT_EQ(m["status"], "completed");
+  const double wheels = m["estimators"]["wheel_odometry_noslip"]["ate_rmse_m"].get<double>();
+  const double fused = m["estimators"]["fused"]["ate_rmse_m"].get<double>();
+  const double vo = m["estimators"]["visual_odometry"]["ate_rmse_m"].get<double>();
+  std::printf("dropout: no-slip wheels %.3f m, VO %.3f m, fused %.3f m\n", wheels, vo, fused);
+  EXPECT_LT(3.0 * fused, wheels);
+  EXPECT_LT(fused, 2.0 * vo + 0.05);
+  EXPECT_EQ(Slurp(out / "fused.tum").find("nan"), std::string::npos);
+}
+
 // A 0.8 s blackout while the robot drives and turns: VO's own pose coasts at the last
 // valid velocity (estimation.vo_coast_time_s, 1 s) over its 8 frames and the one after
 // it (nothing to track from a black image), where holding it drops the motion meanwhile.

@@ -322,6 +322,33 @@ TEST(ScenarioYamlTest, MissingFileSaysCannotRead) {
   }
 }
 
+// An encoder dropout names its track and span; a bad one names the entry and field.
+TEST(ScenarioYamlTest, EncoderDropoutsAreReadAndCheckedByEntry) {
+  const Scenario s = ParseScenario(
+      std::string(kMinimal) +
+          "robot: {encoders: {dropouts_s: [{track: left, start_s: 2, duration_s: 1}]}}\n",
+      "d.yaml");
+  ASSERT_EQ(s.robot.encoders.dropouts_s.size(), 1u);
+  EXPECT_TRUE(s.robot.encoders.InDropout(0, 2.5));
+  EXPECT_FALSE(s.robot.encoders.InDropout(1, 2.5));
+  EXPECT_FALSE(s.robot.encoders.InDropout(0, 3.0));
+  for (const auto& [entry, message] : std::vector<std::pair<std::string, std::string>>{
+           {"{track: middle, start_s: 2, duration_s: 1}",
+            "robot.encoders.dropouts_s[0].track: must be left, right or both (got 'middle')"},
+           {"{track: both, start_s: -1, duration_s: 1}",
+            "robot.encoders.dropouts_s[0].start_s: must be >= 0 (got -1)"},
+           {"{track: both, start_s: 1, duration_s: 0}",
+            "robot.encoders.dropouts_s[0].duration_s: must be > 0 (got 0)"}}) {
+    try {
+      ParseScenario(std::string(kMinimal) + "robot: {encoders: {dropouts_s: [" + entry + "]}}\n",
+                    "d.yaml");
+      FAIL() << entry;
+    } catch (const ScenarioError& e) {
+      EXPECT_EQ(std::string(e.what()), "d.yaml: " + message);
+    }
+  }
+}
+
 TEST(ScenarioYamlTest, LoadsFileAndNamesItInErrors) {
   const std::string path = ::testing::TempDir() + "/scenario_yaml_test.yaml";
   std::ofstream(path) << kMinimal << "duration_s: 12\nrobot: {imu: {rate_hz: 0}}\n";

@@ -3,16 +3,42 @@
 
 #include <cmath>
 #include <cstdint>
+#include <string>
+#include <vector>
 
 namespace trackbed::robot {
+
+/// A fault: one track's encoder (or both) stops counting for a while, as a loose
+/// connector or a failed channel does. The count freezes and the motion meanwhile is
+/// lost for good: counting resumes from the frozen value.
+struct EncoderDropout {
+  std::string track = "both";  ///< left, right or both
+  double start_s = 0.0;        ///< when it starts [s], >= 0
+  double duration_s = 0.0;     ///< how long [s], > 0
+
+  /// Whether the dropout holds track `side` (0 left, 1 right) at `t_s`: start_s <= t_s <
+  /// start_s + duration_s.
+  bool Holds(int side, double t_s) const;
+
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("track", &track);
+    a->Visit("start_s", &start_s);
+    a->Visit("duration_s", &duration_s);
+  }
+};
 
 struct EncoderOptions {
   /// Counts per sprocket revolution (after quadrature decoding), >= 1.
   int ticks_per_rev = 4096;
   /// Sampling rate [Hz], >= 100 (docs/scenario_format.md, `robot.encoders.rate_hz`).
   double rate_hz = 100.0;
+  /// Faults: spans in which a track's count freezes (EncoderDropout). Empty: none.
+  std::vector<EncoderDropout> dropouts_s;
 
   void Validate() const;
+  /// Whether track `side` (0 left, 1 right) is in a dropout at `t_s`.
+  bool InDropout(int side, double t_s) const;
 
   /// The scenario file's keys for these fields (docs/scenario_format.md), read and
   /// written by the config archive (trackbed/common/archive.h).
@@ -20,6 +46,7 @@ struct EncoderOptions {
   void Serialize(Archive* a) {
     a->Visit("ticks_per_rev", &ticks_per_rev);
     a->Visit("rate_hz", &rate_hz);
+    a->Visit("dropouts_s", &dropouts_s);
   }
 };
 
