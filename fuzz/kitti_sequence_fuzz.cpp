@@ -16,17 +16,15 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <system_error>
 #include <vector>
 
-#include <unistd.h>
-
 #include <opencv2/imgcodecs.hpp>
 
+#include "fuzz_support.h"
 #include "trackbed/perception/kitti_sequence.h"
 
 namespace {
@@ -35,14 +33,12 @@ namespace fs = std::filesystem;
 namespace perception = trackbed::perception;
 
 [[noreturn]] void Finding(const std::string& what) {
-  std::fprintf(stderr, "kitti_sequence_fuzz: FINDING: %s\n", what.c_str());
-  std::abort();
+  trackbed::fuzz::Finding("kitti_sequence_fuzz", what);
 }
 
 // This process's sequence folder with its images, removed at exit.
-struct SequenceDir {
-  fs::path path = fs::temp_directory_path() / ("trackbed_fuzz_kitti_" + std::to_string(::getpid()));
-  SequenceDir() {
+struct SequenceDir : trackbed::fuzz::ScratchDir {
+  SequenceDir() : ScratchDir("kitti") {
     const cv::Mat image(8, 16, CV_8UC1, cv::Scalar(128));
     for (const char* folder : {"image_0", "image_1"}) {
       fs::create_directories(path / folder);
@@ -51,16 +47,10 @@ struct SequenceDir {
       }
     }
   }
-  ~SequenceDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
 };
 
 void Write(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out << text;
-  if (!out.flush()) Finding("cannot write " + path.string());
+  trackbed::fuzz::WriteFile("kitti_sequence_fuzz", path, text);
 }
 
 void CheckPoseLines(const std::string& text) {

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "fuzz_support.h"
 #include "trackbed/scenario/scenario_yaml.h"
 
 namespace {
@@ -44,8 +45,7 @@ const std::string& Corridor() {
 }
 
 [[noreturn]] void Finding(const std::string& what) {
-  std::fprintf(stderr, "scenario_fuzz: FINDING: %s\n", what.c_str());
-  std::abort();
+  trackbed::fuzz::Finding("scenario_fuzz", what);
 }
 
 std::vector<Override> ParseOverrideLines(const std::string& text) {

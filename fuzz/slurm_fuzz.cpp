@@ -13,15 +13,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <stdexcept>
 #include <string>
-#include <system_error>
 #include <vector>
 
-#include <unistd.h>
-
+#include "fuzz_support.h"
 #include "trackbed/experiments/slurm_backend.h"
 
 namespace {
@@ -29,20 +26,7 @@ namespace {
 namespace fs = std::filesystem;
 namespace ex = trackbed::experiments;
 
-[[noreturn]] void Finding(const std::string& what) {
-  std::fprintf(stderr, "slurm_fuzz: FINDING: %s\n", what.c_str());
-  std::abort();
-}
-
-// This process's list file, removed at exit.
-struct TempFile {
-  fs::path path =
-      fs::temp_directory_path() / ("trackbed_fuzz_slurm_" + std::to_string(::getpid()) + ".cells");
-  ~TempFile() {
-    std::error_code ec;
-    fs::remove(path, ec);
-  }
-};
+[[noreturn]] void Finding(const std::string& what) { trackbed::fuzz::Finding("slurm_fuzz", what); }
 
 void FuzzJobs(const std::string& text) {
   std::vector<ex::SlurmSubmission> jobs;
@@ -80,18 +64,15 @@ void FuzzProgramOutput(const std::string& text) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  static const TempFile list;
+  static const trackbed::fuzz::ScratchDir dir("slurm");
+  static const fs::path list = dir.path / "submit.cells";
   const std::string text(reinterpret_cast<const char*>(data), size);
   FuzzJobs(text);
   FuzzProgramOutput(text);
-  {
-    std::ofstream out(list.path, std::ios::binary | std::ios::trunc);
-    out << text;
-    if (!out.flush()) Finding("cannot write " + list.path.string());
-  }
+  trackbed::fuzz::WriteFile("slurm_fuzz", list, text);
   for (std::size_t line = 0; line < 4; ++line) {
     try {
-      ex::CellIndexFromList(list.path, line);
+      ex::CellIndexFromList(list, line);
     } catch (const std::runtime_error&) {
     }
   }

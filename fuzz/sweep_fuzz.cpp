@@ -15,16 +15,14 @@
 #include <string>
 #include <vector>
 
+#include "fuzz_support.h"
 #include "trackbed/experiments/sweep.h"
 
 namespace {
 
 namespace ex = trackbed::experiments;
 
-[[noreturn]] void Finding(const std::string& what) {
-  std::fprintf(stderr, "sweep_fuzz: FINDING: %s\n", what.c_str());
-  std::abort();
-}
+[[noreturn]] void Finding(const std::string& what) { trackbed::fuzz::Finding("sweep_fuzz", what); }
 
 // A scenario path a cell may load: a shipped scene, never whatever file the input names.
 bool IsShippedScene(const std::filesystem::path& p) {

@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "fuzz_support.h"
 #include "trackbed/experiments/sweep.h"
 
 namespace {
@@ -20,8 +21,7 @@ namespace {
 namespace ex = trackbed::experiments;
 
 [[noreturn]] void Finding(const std::string& what) {
-  std::fprintf(stderr, "sweep_plan_fuzz: FINDING: %s\n", what.c_str());
-  std::abort();
+  trackbed::fuzz::Finding("sweep_plan_fuzz", what);
 }
 
 void FuzzPlan(const std::string& text) {

@@ -12,15 +12,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <system_error>
 
-#include <unistd.h>
-
 #include <opencv2/imgcodecs.hpp>
 
+#include "fuzz_support.h"
 #include "trackbed/teach_repeat/teach_map.h"
 
 namespace {
@@ -29,17 +27,14 @@ namespace fs = std::filesystem;
 namespace tr = trackbed::teach_repeat;
 
 [[noreturn]] void Finding(const std::string& what) {
-  std::fprintf(stderr, "teach_map_fuzz: FINDING: %s\n", what.c_str());
-  std::abort();
+  trackbed::fuzz::Finding("teach_map_fuzz", what);
 }
 
 // This process's map folders, removed at exit.
-struct MapDirs {
-  fs::path root =
-      fs::temp_directory_path() / ("trackbed_fuzz_teach_map_" + std::to_string(::getpid()));
-  fs::path map = root / "map";
-  fs::path saved = root / "saved";
-  MapDirs() {
+struct MapDirs : trackbed::fuzz::ScratchDir {
+  fs::path map = path / "map";
+  fs::path saved = path / "saved";
+  MapDirs() : ScratchDir("teach_map") {
     fs::create_directories(map / "key_images");
     cv::Mat image(24, 32, CV_8UC1);
     for (int k = 0; k < 4; ++k) {
@@ -51,16 +46,10 @@ struct MapDirs {
       }
     }
   }
-  ~MapDirs() {
-    std::error_code ec;
-    fs::remove_all(root, ec);
-  }
 };
 
 void Write(const fs::path& path, const std::string& bytes) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out << bytes;
-  if (!out.flush()) Finding("cannot write " + path.string());
+  trackbed::fuzz::WriteFile("teach_map_fuzz", path, bytes);
 }
 
 }  // namespace

@@ -13,14 +13,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <system_error>
 
-#include <unistd.h>
-
+#include "fuzz_support.h"
 #include "trackbed/estimation/trajectory_io.h"
 
 namespace {
@@ -28,24 +26,8 @@ namespace {
 namespace fs = std::filesystem;
 using trackbed::estimation::TrajectoryFormat;
 
-// This process's temporary folder, removed at exit.
-struct TempDir {
-  fs::path path =
-      fs::temp_directory_path() / ("trackbed_fuzz_trajectory_" + std::to_string(::getpid()));
-  TempDir() { fs::create_directories(path); }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
-
 void Write(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out << text;
-  if (!out.flush()) {
-    std::fprintf(stderr, "trajectory_fuzz: cannot write %s\n", path.c_str());
-    std::abort();
-  }
+  trackbed::fuzz::WriteFile("trajectory_fuzz", path, text);
 }
 
 void Read(const fs::path& path, std::optional<TrajectoryFormat> format,
@@ -67,7 +49,7 @@ void Read(const fs::path& path, std::optional<TrajectoryFormat> format,
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  static const TempDir dir;
+  static const trackbed::fuzz::ScratchDir dir("trajectory");
   const std::string input(reinterpret_cast<const char*>(data), size);
   const std::size_t nul = input.find('\0');
   const fs::path trajectory = dir.path / "trajectory.txt";
