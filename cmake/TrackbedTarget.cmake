@@ -21,4 +21,17 @@ function(trackbed_settings target)
   if(TRACKBED_WERROR)
     target_compile_options(${target} PRIVATE -Werror)
   endif()
+  # A sanitizer build folder (scripts/sanitize.sh): trackbed's own code instrumented,
+  # every report fatal so that the test reporting it fails; the libraries pass the
+  # link option on to the programs that link them.
+  if(TRACKBED_SANITIZE)
+    target_compile_options(${target} PRIVATE -fsanitize=${TRACKBED_SANITIZE}
+                           -fno-sanitize-recover=all -fno-omit-frame-pointer)
+    target_link_options(${target} PUBLIC -fsanitize=${TRACKBED_SANITIZE})
+  endif()
+  # A unity build includes sources into one another, which gcc takes for headers that
+  # give a type internal linkage.
+  if(CMAKE_UNITY_BUILD)
+    target_compile_options(${target} PRIVATE -Wno-subobject-linkage)
+  endif()
 endfunction()

@@ -119,7 +119,7 @@ std::vector<std::string> AxisLabels(const SweepSpec& spec) {
 // ---------------------------------------------------------------------------
 // The sweep folder's JSON files, read in the archive's brief wording like sweep files.
 
-constexpr archive::Wording kWording = archive::Wording::kBrief;
+constexpr archive::Wording kFolderWording = archive::Wording::kBrief;
 
 /// A cell in cells.json: `vary` maps each varied key to its value, `set` lists the
 /// whole `--set` list as `key=value` texts.
@@ -200,7 +200,7 @@ struct OutcomeFields {
 template <class Fields>
 void ReadJson(const std::string& json_text, const std::string& source, Fields* fields) {
   try {
-    archive::Read(archive::ParseJson(json_text), "", kWording, fields);
+    archive::Read(archive::ParseJson(json_text), "", kFolderWording, fields);
   } catch (const archive::Error& e) {
     throw SweepError(source, e.path(), e.reason());
   }

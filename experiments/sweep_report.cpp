@@ -15,6 +15,7 @@
 #include <boost/math/distributions/students_t.hpp>
 #include <nlohmann/json.hpp>
 
+#include "trackbed/experiments/sweep_support.h"
 #include "trackbed/runner/run_plots.h"
 
 namespace trackbed::experiments {
@@ -38,14 +39,6 @@ std::string Underscored(const std::string& s) {
 
 bool StartsWith(const std::string& s, const std::string& prefix) {
   return s.compare(0, prefix.size(), prefix) == 0;
-}
-
-std::string ReplaceAll(std::string s, const std::string& from, const std::string& to) {
-  if (from.empty()) return s;
-  for (std::size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size())) {
-    s.replace(at, from.size(), to);
-  }
-  return s;
 }
 
 // Shortest text that reads back as exactly `x`; "" for NaN.

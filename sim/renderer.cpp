@@ -50,8 +50,10 @@ namespace {
 
 constexpr int kChunkCells = 16;
 
-// FNV-1a: a stable hash of an appearance name, to derive its texture's seed.
-std::uint64_t HashName(const std::string& s) {
+// A stable hash of an appearance name, to derive its texture's seed: FNV-1a's steps
+// from another offset basis than procedural_texture.cpp's HashName (kept: every
+// texture the renderer draws is seeded through it).
+std::uint64_t TextureNameHash(const std::string& s) {
   std::uint64_t h = 1469598103934665603ULL;
   for (unsigned char c : s) h = (h ^ c) * 1099511628211ULL;
   return h;
@@ -191,7 +193,7 @@ struct Renderer::Gl {
   const GlTexture& Texture(const std::string& name, double fallback_albedo = 0.5) {
     auto it = textures.find(name);
     if (it != textures.end()) return it->second;
-    const std::uint64_t s = seed ^ HashName(name);
+    const std::uint64_t s = seed ^ TextureNameHash(name);
     sim::Texture t = HasTexture(name) ? MakeTexture(name, s, appearance.texture_size_px)
                                       : MakePlainTexture(fallback_albedo, s, 64);
     GlTexture g;
