@@ -600,6 +600,19 @@ void AssignPatches(const std::string& blob, TeachMap* map) {
   }
 }
 
+// A file map.json names (`key` its path there): relative, and inside the map's folder,
+// so that a map read from elsewhere reads nothing outside it.
+fs::path FileInMap(const fs::path& root, const std::string& key, const std::string& file) {
+  const fs::path relative(file);
+  const bool leaves = std::any_of(relative.begin(), relative.end(),
+                                  [](const fs::path& part) { return part == ".."; });
+  if (file.empty() || relative.is_absolute() || leaves) {
+    throw std::runtime_error("LoadTeachMap: " + (root / kMapFile).string() + ": " + key + ": '" +
+                             file + "' is not a file inside the map's folder");
+  }
+  return root / relative;
+}
+
 }  // namespace
 
 TeachMap LoadTeachMap(const std::string& dir) {
@@ -621,10 +634,12 @@ TeachMap LoadTeachMap(const std::string& dir) {
     throw std::runtime_error("LoadTeachMap: " + map_path.string() + ": " + e.what());
   }
   for (std::size_t k = 0; k < map.milestones.size(); ++k) {
-    map.milestones[k].key_image = ReadKeyImage(root / file.milestones[k].key_image,
-                                               archive::JoinIndex("milestones", k), map.camera);
+    const std::string key = archive::JoinIndex("milestones", k);
+    map.milestones[k].key_image = ReadKeyImage(
+        FileInMap(root, key + ".key_image", file.milestones[k].key_image), key, map.camera);
   }
-  AssignPatches(ReadPatchFile(root / file.patches_file, map.feature_count(), map.patch_size_px),
+  AssignPatches(ReadPatchFile(FileInMap(root, "patches_file", file.patches_file),
+                              map.feature_count(), map.patch_size_px),
                 &map);
   try {
     map.Validate();

@@ -296,6 +296,26 @@ TEST(TeachMapTest, InconsistentCountsAndBadValuesAreNamed) {
   fs::remove_all(dir);
 }
 
+// map.json names its files relative to its folder: a map read from elsewhere reads no
+// file outside it.
+TEST(TeachMapTest, FilesOutsideTheMapsFolderAreRefused) {
+  const fs::path dir = Scratch("outside");
+  const std::vector<std::pair<std::string, std::string>> edits = {
+      {"\"key_images/000000.png\"", "\"../000000.png\""},
+      {"\"key_images/000000.png\"", "\"/etc/hostname\""},
+      {"\"key_images/000000.png\"", "\"key_images/../../x.png\""},
+      {"\"patches.bin\"", "\"../patches.bin\""},
+      {"\"patches.bin\"", "\"\""}};
+  for (const auto& [from, to] : edits) {
+    SCOPED_TRACE(to);
+    SaveTeachMap(RandomMap(6), dir.string());
+    Replace(dir / "map.json", from, to);
+    const std::string key = from == "\"patches.bin\"" ? "patches_file" : "milestones[0].key_image";
+    ExpectLoadError(dir, {"map.json", key, "not a file inside the map's folder"});
+  }
+  fs::remove_all(dir);
+}
+
 /// An edit of a saved map.json and what loading it must say.
 struct JsonEdit {
   std::string from, to;
