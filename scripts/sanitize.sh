@@ -51,7 +51,8 @@ esac
 # stacks at a tolerable speed; NDEBUG as in the release build, so that the same code runs.
 # Warnings are not errors here: under instrumentation gcc warns falsely in its own
 # headers (-Wmaybe-uninitialized in <regex>); the release build keeps -Werror. A unity
-# build (each library's sources compiled a few at a time) halves the compile time.
+# build compiles each library's sources a few at a time, parsing their heavy headers
+# (Eigen, OpenCV, Bullet) once per batch.
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -g1 -DNDEBUG" "${launcher[@]}" -DCMAKE_UNITY_BUILD=ON \
   -DTRACKBED_SANITIZE="$sanitize" -DTRACKBED_WERROR=OFF -DTRACKBED_BUILD_BENCH=OFF \
