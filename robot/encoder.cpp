@@ -8,8 +8,8 @@
 namespace trackbed::robot {
 
 bool EncoderDropout::Holds(int side, double t_s) const {
-  const bool track_matches =
-      track == "both" || (track == "left" && side == 0) || (track == "right" && side == 1);
+  const bool track_matches = track == Track::kBoth || (track == Track::kLeft && side == 0) ||
+                             (track == Track::kRight && side == 1);
   return track_matches && t_s >= start_s && t_s < start_s + duration_s;
 }
 
@@ -19,9 +19,6 @@ void EncoderOptions::Validate() const {
   for (std::size_t k = 0; k < dropouts_s.size(); ++k) {
     const EncoderDropout& d = dropouts_s[k];
     const std::string where = "dropouts_s[" + std::to_string(k) + "].";
-    if (d.track != "left" && d.track != "right" && d.track != "both") {
-      throw OptionError(where + "track", "must be left, right or both (got '" + d.track + "')");
-    }
     option_check::NonNegative((where + "start_s").c_str(), d.start_s);
     option_check::Positive((where + "duration_s").c_str(), d.duration_s);
   }

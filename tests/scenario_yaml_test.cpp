@@ -334,7 +334,7 @@ TEST(ScenarioYamlTest, EncoderDropoutsAreReadAndCheckedByEntry) {
   EXPECT_FALSE(s.robot.encoders.InDropout(0, 3.0));
   for (const auto& [entry, message] : std::vector<std::pair<std::string, std::string>>{
            {"{track: middle, start_s: 2, duration_s: 1}",
-            "robot.encoders.dropouts_s[0].track: must be left, right or both (got 'middle')"},
+            "robot.encoders.dropouts_s[0].track: must be one of left, right, both (got 'middle')"},
            {"{track: both, start_s: -1, duration_s: 1}",
             "robot.encoders.dropouts_s[0].start_s: must be >= 0 (got -1)"},
            {"{track: both, start_s: 1, duration_s: 0}",

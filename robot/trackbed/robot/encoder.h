@@ -3,7 +3,6 @@
 
 #include <cmath>
 #include <cstdint>
-#include <string>
 #include <vector>
 
 namespace trackbed::robot {
@@ -12,7 +11,8 @@ namespace trackbed::robot {
 /// connector or a failed channel does. The count freezes and the motion meanwhile is
 /// lost for good: counting resumes from the frozen value.
 struct EncoderDropout {
-  std::string track = "both";  ///< left, right or both
+  enum class Track { kLeft, kRight, kBoth };
+  Track track = Track::kBoth;  ///< left, right or both
   double start_s = 0.0;        ///< when it starts [s], >= 0
   double duration_s = 0.0;     ///< how long [s], > 0
 
@@ -22,7 +22,8 @@ struct EncoderDropout {
 
   template <class Archive>
   void Serialize(Archive* a) {
-    a->Visit("track", &track);
+    a->VisitEnum("track", &track,
+                 {{"left", Track::kLeft}, {"right", Track::kRight}, {"both", Track::kBoth}});
     a->Visit("start_s", &start_s);
     a->Visit("duration_s", &duration_s);
   }
