@@ -310,6 +310,50 @@ Json ToJsonValue(const Node& node) {
   return Json();
 }
 
+// Whether `text` is well-formed UTF-8 (RFC 3629: no overlong forms, surrogates or code
+// points above U+10FFFF), as the JSON writer requires.
+bool IsUtf8(const std::string& text) {
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const auto byte = [&text](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+    const unsigned char b = byte(i);
+    const std::size_t n = b < 0x80   ? 1
+                          : b < 0xC2 ? 0
+                          : b < 0xE0 ? 2
+                          : b < 0xF0 ? 3
+                          : b < 0xF5 ? 4
+                                     : 0;
+    if (n == 0 || i + n > text.size()) return false;
+    for (std::size_t k = 1; k < n; ++k) {
+      if ((byte(i + k) & 0xC0) != 0x80) return false;
+    }
+    const unsigned char second = n > 1 ? byte(i + 1) : 0x80;
+    if ((b == 0xE0 && second < 0xA0) || (b == 0xED && second > 0x9F) ||
+        (b == 0xF0 && second < 0x90) || (b == 0xF4 && second > 0x8F)) {
+      return false;
+    }
+    i += n;
+  }
+  return true;
+}
+
+// The dotted key of the first key or scalar in `node` that is not UTF-8. YAML is UTF-8
+// text, and what is read ends up in JSON files (cells.json, summary.json, metrics.json)
+// and the run folder's scenario.yaml, whose writers would fail or write invalid text long
+// after the file was accepted; raw bytes and escapes (`"\uD800"`) alike.
+std::optional<std::string> NonUtf8Key(const Node& node, const std::string& path) {
+  if (node.IsScalar()) return IsUtf8(node.text()) ? std::nullopt : std::optional(path);
+  for (std::size_t i = 0; i < node.items().size(); ++i) {
+    if (auto bad = NonUtf8Key(node.items()[i], JoinIndex(path, i))) return bad;
+  }
+  for (const auto& [key, value] : node.entries()) {
+    const std::string where = JoinKey(path, key);
+    if (!IsUtf8(key)) return where;
+    if (auto bad = NonUtf8Key(value, where)) return bad;
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 Node ParseYaml(const std::string& text, const std::string& path) {
@@ -325,7 +369,11 @@ Node ParseYaml(const std::string& text, const std::string& path) {
                             : "invalid YAML: " + e.msg,
                       line, column, e.msg);
   }
-  return FromYaml(root, path);
+  Node node = FromYaml(root, path);
+  if (const std::optional<std::string> bad = NonUtf8Key(node, path)) {
+    throw Error(*bad, "not UTF-8 text");
+  }
+  return node;
 }
 
 Node ParseJson(const std::string& text, const std::string& path) {

@@ -114,58 +114,12 @@ class Failer {
   std::string source_;
 };
 
-// Whether `text` is well-formed UTF-8 (RFC 3629: no overlong forms, surrogates or code
-// points above U+10FFFF), as the JSON writer requires.
-bool IsUtf8(const std::string& text) {
-  std::size_t i = 0;
-  while (i < text.size()) {
-    const auto byte = [&text](std::size_t k) { return static_cast<unsigned char>(text[k]); };
-    const unsigned char b = byte(i);
-    const std::size_t n = b < 0x80   ? 1
-                          : b < 0xC2 ? 0
-                          : b < 0xE0 ? 2
-                          : b < 0xF0 ? 3
-                          : b < 0xF5 ? 4
-                                     : 0;
-    if (n == 0 || i + n > text.size()) return false;
-    for (std::size_t k = 1; k < n; ++k) {
-      if ((byte(i + k) & 0xC0) != 0x80) return false;
-    }
-    const unsigned char second = n > 1 ? byte(i + 1) : 0x80;
-    if ((b == 0xE0 && second < 0xA0) || (b == 0xED && second > 0x9F) ||
-        (b == 0xF0 && second < 0x90) || (b == 0xF4 && second > 0x8F)) {
-      return false;
-    }
-    i += n;
-  }
-  return true;
-}
-
-// The dotted key of the first key or scalar in `node` that is not UTF-8. Every string of
-// a sweep file ends up in cells.json and summary.json, whose writer would throw on it
-// long after the file was accepted; raw bytes and escapes (`"\uD800"`) alike.
-std::optional<std::string> NonUtf8Key(const Node& node, const std::string& path) {
-  if (node.IsScalar()) return IsUtf8(node.text()) ? std::nullopt : std::optional(path);
-  for (std::size_t i = 0; i < node.items().size(); ++i) {
-    if (auto bad = NonUtf8Key(node.items()[i], JoinIndex(path, i))) return bad;
-  }
-  for (const auto& [key, value] : node.entries()) {
-    const std::string where = archive::JoinKey(path, key);
-    if (!IsUtf8(key)) return where;
-    if (auto bad = NonUtf8Key(value, where)) return bad;
-  }
-  return std::nullopt;
-}
-
 SweepFileFields ReadSweepFile(const std::string& yaml_text, const Failer& fail) {
   SweepFileFields fields;
   try {
     const Node root = archive::ParseYaml(yaml_text);
     if (!root.IsMap()) {
       fail("", "expected a map of sweep keys, got " + archive::Describe(root, kWording));
-    }
-    if (const std::optional<std::string> key = NonUtf8Key(root, "")) {
-      fail(*key, "not UTF-8 text");
     }
     archive::Read(root, "", kWording, &fields);
   } catch (const archive::SyntaxError& e) {

@@ -197,6 +197,19 @@ TEST(ScenarioYamlTest, UnknownKeyNamesFileAndDottedKey) {
             "height_m, appearance, base_z_m, collides)");
 }
 
+// YAML is UTF-8 text: a name with other bytes is refused where it is read, naming its
+// key, in the file and in `--set` alike (it would otherwise reach metrics.json and the
+// run folder's scenario.yaml as invalid text).
+TEST(ScenarioYamlTest, TextThatIsNotUtf8NamesItsKey) {
+  EXPECT_EQ(ErrorOf(std::string(kMinimal) + "scene: {name: \"bad\xff\"}\n"),
+            "test.yaml: scene.name: not UTF-8 text");
+  EXPECT_EQ(ErrorOf(std::string(kMinimal) + "scene: {objects: [{appearance: \"\xed\xa0\x80\"}]}\n"),
+            "test.yaml: scene.objects[0].appearance: not UTF-8 text");
+  EXPECT_EQ(ErrorOf(kMinimal, {{"scene.name", "bad\xc0\xaf"}}),
+            "--set scene.name=bad\xc0\xaf: scene.name: not UTF-8 text");
+  EXPECT_EQ(ErrorOf(std::string(kMinimal) + "scene: {name: \"caf\xc3\xa9\"}\n"), "");
+}
+
 TEST(ScenarioYamlTest, RegionRejectsKeysOfTheOtherShape) {
   const std::string error = ErrorOf(std::string(kMinimal) +
                                     "scene:\n  terrain:\n    regions:\n"

@@ -122,7 +122,9 @@ class SyntaxError : public Error {
 };
 
 /// Parses YAML (the first document). Throws SyntaxError, or Error for a map key that
-/// is not a scalar or a duplicate key; `path` prefixes the paths in errors.
+/// is not a scalar, a duplicate key, or a key or scalar that is not UTF-8 text (YAML is
+/// UTF-8; checked here once for every file and `--set` value); `path` prefixes the paths
+/// in errors.
 Node ParseYaml(const std::string& text, const std::string& path = "");
 /// Parses JSON. Throws SyntaxError, or Error for a duplicate key.
 Node ParseJson(const std::string& text, const std::string& path = "");
