@@ -338,7 +338,7 @@ bool IsUtf8(const std::string& text) {
 }
 
 // The dotted key of the first key or scalar in `node` that is not UTF-8. YAML is UTF-8
-// text, and what is read ends up in JSON files (cells.json, summary.json, metrics.json)
+// text, and what is read ends up in JSON files (a sweep's cells.json and summary.json)
 // and the run folder's scenario.yaml, whose writers would fail or write invalid text long
 // after the file was accepted; raw bytes and escapes (`"\uD800"`) alike.
 std::optional<std::string> NonUtf8Key(const Node& node, const std::string& path) {

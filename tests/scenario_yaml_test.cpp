@@ -198,7 +198,7 @@ TEST(ScenarioYamlTest, UnknownKeyNamesFileAndDottedKey) {
 }
 
 // YAML is UTF-8 text: a name with other bytes is refused where it is read, naming its
-// key, in the file and in `--set` alike (it would otherwise reach metrics.json and the
+// key, in the file and in `--set` alike (it would otherwise reach the
 // run folder's scenario.yaml as invalid text).
 TEST(ScenarioYamlTest, TextThatIsNotUtf8NamesItsKey) {
   EXPECT_EQ(ErrorOf(std::string(kMinimal) + "scene: {name: \"bad\xff\"}\n"),
