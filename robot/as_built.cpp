@@ -11,6 +11,7 @@
 #include "trackbed/common/random.h"
 #include "trackbed/common/se3.h"
 #include "trackbed/common/units.h"
+#include "trackbed/robot/lens_calibration_error.h"
 
 namespace trackbed::robot {
 namespace {
@@ -30,6 +31,7 @@ Imperfections IdealProfile() {
   p.stereo_rotation_calibration_std_mrad = Eigen::Vector3d::Zero();
   p.camera_mount_calibration_std_deg = 0.0;
   p.distortion_calibration_std = Eigen::Vector4d::Zero();
+  p.distortion_calibration_rms_px = 0.0;
   p.camera_time_offset_s = 0.0;
   return p;
 }
@@ -48,8 +50,9 @@ Imperfections TypicalProfile() {
   p.principal_point_calibration_std_px = 0.3;           // MATLAB 0.26–0.34, Bouguet 0.25–0.27
   p.stereo_translation_calibration_std_mm = Eigen::Vector3d(0.047, 0.038, 0.166);  // Bouguet 5
   p.stereo_rotation_calibration_std_mrad = Eigen::Vector3d(0.90, 1.03, 0.097);     // Bouguet 5
-  // Bouguet's first calibration example (640 × 480, 20 views): kc_error / 3.
-  p.distortion_calibration_std = Eigen::Vector4d(0.003142, 0.012508, 1.694e-4, 1.675e-4) / 3.0;
+  // Bouguet's first calibration example (640 × 480, 20 views): its kc_error / 3 on its
+  // own image (scripts/lens_calibration_rms.py; docs/calibration.md).
+  p.distortion_calibration_rms_px = 0.017;
   p.camera_time_offset_s = 0.3e-3;  // RealSense T265, one device clock (Kalibr)
   return p;
 }
@@ -67,8 +70,9 @@ Imperfections HarshProfile() {
   p.principal_point_calibration_std_px = 1.2;   // ≈1.2 px
   p.stereo_translation_calibration_std_mm = Eigen::Vector3d(0.82, 0.82, 2.89);  // D435i
   p.stereo_rotation_calibration_std_mrad = Eigen::Vector3d(1.26, 1.36, 0.111);  // D435i
-  // A 640 × 480 webcam's Bouguet calibration: kc_error / 3.
-  p.distortion_calibration_std = Eigen::Vector4d(0.0220, 0.0908, 0.0025, 0.0033) / 3.0;
+  // A Kinect v2 infrared camera's Bouguet calibration (512 × 424, 70° across): its
+  // kc_error / 3 on its own image (scripts/lens_calibration_rms.py; docs/calibration.md).
+  p.distortion_calibration_rms_px = 0.22;
   p.camera_time_offset_s = -44.3e-3;  // median of seven unsynchronised rigs (Kalibr)
   return p;
 }
@@ -143,17 +147,21 @@ void PerturbStereo(random::Generator* g, double focal_rel_std, double pp_std_px,
   s->baseline_m = T_lr.translation().norm();
 }
 
-// Each camera's lens coefficients perturbed (k1, k2, p1, p2), drawn whatever the lens;
-// an ideal pinhole stays one.
-void PerturbLenses(random::Generator* g, const Eigen::Vector4d& sigma,
+// Each camera's lens coefficients perturbed (k1, k2, p1, p2): independently by `sigma`,
+// then as a fit over the image to `rms_px` leaves them (lens_calibration_error.h); drawn
+// whatever the lens, and an ideal pinhole stays one.
+void PerturbLenses(random::Generator* g, const Eigen::Vector4d& sigma, double rms_px,
                    calibration::StereoCalibration* s) {
   for (calibration::CameraIntrinsics* k : {&s->left, &s->right}) {
     const Eigen::Vector3d a = Gaussian3(g, sigma.head<3>());
     const double b = sigma[3] * g->Gaussian();
+    const geometry::PinholeCamera camera = s->Camera(*k);
+    const Eigen::Vector4d fitted = DrawLensCalibrationError(g, camera, rms_px);
     if (!k->distortion || k->distortion->model == geometry::LensModel::kNone) continue;
     geometry::LensDistortion& d = *k->distortion;
     d.k1 += a.x(), d.k2 += a.y();
     if (d.model == geometry::LensModel::kRadialTangential) d.p1 += a.z(), d.p2 += b;
+    d = WithCalibrationError(d, fitted);
   }
 }
 
@@ -228,6 +236,7 @@ void Imperfections::Validate() const {
   spread3("stereo_translation_std_mm", stereo_translation_std_mm, 100.0);
   spread3("stereo_rotation_std_mrad", stereo_rotation_std_mrad, 100.0);
   spread("camera_mount_std_deg", camera_mount_std_deg, 10.0);
+  spread("distortion_calibration_rms_px", distortion_calibration_rms_px, 10.0);
   spread("focal_length_calibration_rel_std", focal_length_calibration_rel_std, 0.2);
   spread("principal_point_calibration_std_px", principal_point_calibration_std_px, 100.0);
   spread3("stereo_translation_calibration_std_mm", stereo_translation_calibration_std_mm, 100.0);
@@ -310,7 +319,7 @@ calibration::RobotCalibration DrawGivenCalibration(const calibration::RobotCalib
   PerturbStereo(&g, *p.focal_length_calibration_rel_std, *p.principal_point_calibration_std_px,
                 *p.stereo_translation_calibration_std_mm, *p.stereo_rotation_calibration_std_mrad,
                 *p.camera_mount_calibration_std_deg, &stereo);
-  PerturbLenses(&g, *p.distortion_calibration_std, &stereo);
+  PerturbLenses(&g, *p.distortion_calibration_std, *p.distortion_calibration_rms_px, &stereo);
   if (c.stereo) c.stereo = stereo;
   return c;
 }

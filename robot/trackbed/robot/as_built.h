@@ -75,8 +75,13 @@ struct Imperfections {
   std::optional<Eigen::Vector3d> stereo_rotation_calibration_std_mrad;
   std::optional<double> camera_mount_calibration_std_deg;
   /// Each camera's lens coefficients as calibrated about the lens as built: the
-  /// spreads of k1, k2, p1, p2 (k3 and k4 are given as built).
+  /// spreads of k1, k2, p1, p2 (k3 and k4 are given as built), drawn independently.
   std::optional<Eigen::Vector4d> distortion_calibration_std;
+  /// Each camera's lens as calibrated, stated as the RMS over the image of the error in
+  /// where the calibrated lens puts a point [px] (not a spread per coefficient): the
+  /// coefficients' error is drawn correlated, as a fit over the image leaves them
+  /// (lens_calibration_error.h). Adds to `distortion_calibration_std`'s draw.
+  std::optional<double> distortion_calibration_rms_px;
   /// The camera's time offset as built [s] (a constant, not a spread): a frame stamped
   /// t was exposed at t + offset (ImuCalibration::camera_time_offset_s).
   std::optional<double> camera_time_offset_s;
@@ -109,6 +114,7 @@ struct Imperfections {
     a->Visit("stereo_rotation_calibration_std_mrad", &stereo_rotation_calibration_std_mrad, kOpt);
     a->Visit("camera_mount_calibration_std_deg", &camera_mount_calibration_std_deg, kOpt);
     a->Visit("distortion_calibration_std", &distortion_calibration_std, kOpt);
+    a->Visit("distortion_calibration_rms_px", &distortion_calibration_rms_px, kOpt);
     a->Visit("camera_time_offset_s", &camera_time_offset_s, kOpt);
   }
 };
