@@ -49,7 +49,8 @@ double RmsDisplacementError(const geometry::PinholeCamera& built,
 
 // Whether `lens` maps the image's border back and forth (Undistort, then Distort) to
 // 1e-9: a model that is not monotonic inside the image fails at the corners.
-bool InvertibleOverTheImage(const geometry::PinholeCamera& K, const geometry::LensDistortion& lens) {
+bool InvertibleOverTheImage(const geometry::PinholeCamera& K,
+                            const geometry::LensDistortion& lens) {
   const auto ok = [&](double u, double v) {
     const Eigen::Vector2d d((u - K.cx) / K.fx, (v - K.cy) / K.fy);
     const Eigen::Vector2d xy = lens.Undistort(d);
@@ -86,8 +87,8 @@ TEST(LensCalibrationErrorTest, TheCalibratedLensIsOffByTheStatedRmsOverTheImage)
 TEST(LensCalibrationErrorTest, TheRadialTermsErrorsAreStronglyAnticorrelated) {
   const Eigen::Matrix4d C = LensCalibrationCovariance(LensCamera(), 0.22);
   const double rho = C(0, 1) / std::sqrt(C(0, 0) * C(1, 1));
-  std::printf("k1 sd %.3g, k2 sd %.3g, correlation %.3f\n", std::sqrt(C(0, 0)),
-              std::sqrt(C(1, 1)), rho);
+  std::printf("k1 sd %.3g, k2 sd %.3g, correlation %.3f\n", std::sqrt(C(0, 0)), std::sqrt(C(1, 1)),
+              rho);
   EXPECT_LT(rho, -0.9);
   // The spread scales with the stated accuracy.
   EXPECT_NEAR(LensCalibrationCovariance(LensCamera(), 0.44)(0, 0), 4.0 * C(0, 0), 1e-12);
@@ -114,8 +115,7 @@ TEST(LensCalibrationErrorTest, HarshsGivenLensStaysInvertibleOverTheImage) {
   const Imperfections harsh = Imperfections{}.Resolve(Realism::kHarsh);
   Imperfections independent = harsh;
   independent.distortion_calibration_rms_px = 0.0;
-  independent.distortion_calibration_std =
-      Eigen::Vector4d(0.0220, 0.0908, 0.0025, 0.0033) / 3.0;
+  independent.distortion_calibration_std = Eigen::Vector4d(0.0220, 0.0908, 0.0025, 0.0033) / 3.0;
   int failed_fitted = 0, failed_independent = 0;
   double worst_rms = 0.0;
   std::vector<double> rms_fitted, rms_independent;
@@ -140,11 +140,11 @@ TEST(LensCalibrationErrorTest, HarshsGivenLensStaysInvertibleOverTheImage) {
       }
     }
   }
-  std::printf("lenses not invertible over the image, of 400: fitted %d, independent %d; "
-              "RMS displacement error, median: fitted %.3f px, independent %.2f px; worst "
-              "fitted %.3f px\n",
-              failed_fitted, failed_independent, Median(rms_fitted), Median(rms_independent),
-              worst_rms);
+  std::printf(
+      "lenses not invertible over the image, of 400: fitted %d, independent %d; "
+      "RMS displacement error, median: fitted %.3f px, independent %.2f px; worst "
+      "fitted %.3f px\n",
+      failed_fitted, failed_independent, Median(rms_fitted), Median(rms_independent), worst_rms);
   EXPECT_EQ(failed_fitted, 0);
   EXPECT_GT(failed_independent, 0);
   EXPECT_LT(worst_rms, 4.0 * 0.22);
