@@ -18,13 +18,15 @@ cv::Mat CvLensCoefficients(const geometry::LensDistortion& lens) {
 void UndistortRectifyMap(const geometry::PinholeCamera& camera, const cv::Mat& R, const cv::Mat& P,
                          cv::Mat* map_x, cv::Mat* map_y) {
   const cv::Mat D = CvLensCoefficients(camera.distortion);
+  cv::Mat x, y;
   if (camera.distortion.model == geometry::LensModel::kEquidistant) {
     cv::fisheye::initUndistortRectifyMap(CvCameraMatrix(camera), D, R, P, CvImageSize(camera),
-                                         CV_32FC1, *map_x, *map_y);
+                                         CV_32FC1, x, y);
   } else {
-    cv::initUndistortRectifyMap(CvCameraMatrix(camera), D, R, P, CvImageSize(camera), CV_32FC1,
-                                *map_x, *map_y);
+    cv::initUndistortRectifyMap(CvCameraMatrix(camera), D, R, P, CvImageSize(camera), CV_32FC1, x,
+                                y);
   }
+  cv::convertMaps(x, y, *map_x, *map_y, CV_16SC2);
 }
 
 LensUndistorter::LensUndistorter(const geometry::PinholeCamera& camera) : camera_(camera) {
@@ -43,7 +45,8 @@ void LensUndistorter::Undistort(const cv::Mat& image, cv::Mat* out) const {
     *out = image;
     return;
   }
-  cv::remap(image, *out, map_x_, map_y_, kRemapInterpolation, cv::BORDER_CONSTANT, 0);
+  cv::remap(image, *out, map_x_, map_y_, RemapInterpolation(/*through_lens=*/true),
+            cv::BORDER_CONSTANT, 0);
 }
 
 }  // namespace trackbed::perception

@@ -52,6 +52,7 @@ StereoRectifier::StereoRectifier(const calibration::StereoCalibration& given) {
   }
   UndistortRectifyMap(left, R1, P1, &map_left_x_, &map_left_y_);
   UndistortRectifyMap(right, R2, P2, &map_right_x_, &map_right_y_);
+  interpolation_ = RemapInterpolation(!left.distortion.is_zero() || !right.distortion.is_zero());
   camera_.left.width_px = given.width_px;
   camera_.left.height_px = given.height_px;
   camera_.left.fx = P1.at<double>(0, 0);
@@ -75,10 +76,9 @@ void StereoRectifier::Rectify(const cv::Mat& left, const cv::Mat& right, cv::Mat
     *right_out = right;
     return;
   }
-  // Bicubic (lens_undistorter.h says why).
-  cv::remap(left, *left_out, map_left_x_, map_left_y_, kRemapInterpolation, cv::BORDER_CONSTANT, 0);
-  cv::remap(right, *right_out, map_right_x_, map_right_y_, kRemapInterpolation, cv::BORDER_CONSTANT,
-            0);
+  // RemapInterpolation (lens_undistorter.h says why).
+  cv::remap(left, *left_out, map_left_x_, map_left_y_, interpolation_, cv::BORDER_CONSTANT, 0);
+  cv::remap(right, *right_out, map_right_x_, map_right_y_, interpolation_, cv::BORDER_CONSTANT, 0);
 }
 
 }  // namespace trackbed::perception

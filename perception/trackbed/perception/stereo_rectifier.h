@@ -28,9 +28,9 @@ class StereoRectifier {
   /// The rectified left camera in the body frame.
   const Eigen::Isometry3d& T_body_left() const { return T_body_left_; }
   /// Rectifies a pair of 8-bit grey images of the calibration's size into *left_out
-  /// and *right_out (bicubic, kRemapInterpolation; outside the source image: black, which alpha = 0
-  /// keeps out of the rectified view). With identity(), the outputs share the inputs'
-  /// pixels.
+  /// and *right_out (RemapInterpolation: Lanczos when either camera has a lens, else
+  /// bicubic; outside the source image: black, which alpha = 0 keeps out of the
+  /// rectified view). With identity(), the outputs share the inputs' pixels.
   void Rectify(const cv::Mat& left, const cv::Mat& right, cv::Mat* left_out,
                cv::Mat* right_out) const;
 
@@ -39,6 +39,7 @@ class StereoRectifier {
   geometry::StereoCamera camera_;
   Eigen::Isometry3d T_body_left_ = Eigen::Isometry3d::Identity();
   cv::Mat map_left_x_, map_left_y_, map_right_x_, map_right_y_;
+  int interpolation_ = 0;  // cv::InterpolationFlags
 };
 
 }  // namespace trackbed::perception
