@@ -3,13 +3,37 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "trackbed/common/option_error.h"
 #include "trackbed/common/split_mix.h"
 #include "trackbed/common/units.h"
+#include "trackbed/sim/sensor_warp.h"
 
 namespace trackbed::robot {
+
+void StereoRigOptions::ValidateLensCoversTheImage() const {
+  // A lens whose distorted radius stops growing before the image's border leaves pixels
+  // no ray reaches: the renderer, the calibration and the rectification all need every
+  // pixel's ray (sim::RenderCameraFor checks the border, where the extreme rays lie).
+  geometry::PinholeCamera camera =
+      geometry::PinholeCamera::FromFieldOfView(width_px, height_px, units::Radians(hfov_deg));
+  camera.distortion = *distortion;
+  try {
+    sim::RenderCameraFor(camera, 0);
+  } catch (const std::invalid_argument& e) {
+    std::string why = e.what();
+    const std::string prefix = "RenderCameraFor: ";
+    if (why.rfind(prefix, 0) == 0) why = why.substr(prefix.size());
+    char image[96];
+    std::snprintf(image, sizeof image, " of the %d x %d image at hfov_deg %g", width_px, height_px,
+                  hfov_deg);
+    throw OptionError("distortion", why + image);
+  }
+}
 
 void StereoRigOptions::Validate() const {
   if (width_px < 16 || width_px > 8192) throw OptionError("width_px", "must be in [16, 8192]");
@@ -36,6 +60,7 @@ void StereoRigOptions::Validate() const {
     } catch (const OptionError& e) {
       throw OptionError("distortion." + e.field(), e.reason());
     }
+    ValidateLensCoversTheImage();
   }
   if (rolling_shutter.line_delay_s) {
     // A frame's rows must all be read within the frame period.

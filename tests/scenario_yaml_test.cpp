@@ -210,6 +210,24 @@ TEST(ScenarioYamlTest, TextThatIsNotUtf8NamesItsKey) {
   EXPECT_EQ(ErrorOf(std::string(kMinimal) + "scene: {name: \"caf\xc3\xa9\"}\n"), "");
 }
 
+// A lens whose distorted radius stops growing before the image's border (k1 −1.5: it
+// peaks at r = 0.58 of the normalised radius, inside the 80° image) is refused when the
+// scenario is read, naming its key, not when the renderer first needs it.
+TEST(ScenarioYamlTest, ALensThatDoesNotReachTheImagesBorderNamesItsKey) {
+  const std::string error = ErrorOf(
+      std::string(kMinimal) +
+      "robot: {stereo: {distortion: {model: radial_tangential, k1: -1.5, k2: 0, p1: 0, p2: 0}}}\n");
+  EXPECT_EQ(
+      error.rfind("test.yaml: robot.stereo.distortion: the lens cannot be inverted at pixel (", 0),
+      0u)
+      << error;
+  EXPECT_NE(error.find("of the 640 x 480 image at hfov_deg 80"), std::string::npos) << error;
+  EXPECT_EQ(ErrorOf(std::string(kMinimal) +
+                    "robot: {stereo: {distortion: {model: radial_tangential, k1: -0.28340811, k2: "
+                    "0.07395907, p1: 0.00019359, p2: 1.76187114e-05}}}\n"),
+            "");
+}
+
 TEST(ScenarioYamlTest, RegionRejectsKeysOfTheOtherShape) {
   const std::string error = ErrorOf(std::string(kMinimal) +
                                     "scene:\n  terrain:\n    regions:\n"

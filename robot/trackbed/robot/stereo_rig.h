@@ -82,6 +82,8 @@ struct StereoRigOptions {
 
   /// Whether time `t_s` falls in a blackout.
   bool InBlackout(double t_s) const;
+  /// Throws OptionError naming the first invalid key (a lens that does not reach every
+  /// pixel of the image, or sees more than 160° across, is `distortion`).
   void Validate() const;
 
   /// The scenario file's keys for these fields (docs/scenario_format.md), read and
@@ -109,6 +111,9 @@ struct StereoRigOptions {
     a->Visit("photometric", &photometric);
     a->Visit("auto_exposure", &auto_exposure);
   }
+
+ private:
+  void ValidateLensCoversTheImage() const;
 };
 
 /// Geometry of the rig; immutable.
