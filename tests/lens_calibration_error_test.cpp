@@ -8,12 +8,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "trackbed/common/units.h"
 #include "trackbed/robot/as_built.h"
+#include "trackbed/sim/sensor_warp.h"
 
 namespace trackbed::robot {
 namespace {
@@ -47,20 +49,13 @@ double RmsDisplacementError(const geometry::PinholeCamera& built,
   return std::sqrt(sum / n);
 }
 
-// Whether `lens` maps the image's border back and forth (Undistort, then Distort) to
-// 1e-9: a model that is not monotonic inside the image fails at the corners.
-bool InvertibleOverTheImage(const geometry::PinholeCamera& K,
-                            const geometry::LensDistortion& lens) {
-  const auto ok = [&](double u, double v) {
-    const Eigen::Vector2d d((u - K.cx) / K.fx, (v - K.cy) / K.fy);
-    const Eigen::Vector2d xy = lens.Undistort(d);
-    return xy.allFinite() && (lens.Distort(xy) - d).norm() < 1e-9;
-  };
-  for (int u = 0; u < K.width_px; ++u) {
-    if (!ok(u, 0) || !ok(u, K.height_px - 1)) return false;
-  }
-  for (int v = 0; v < K.height_px; ++v) {
-    if (!ok(0, v) || !ok(K.width_px - 1, v)) return false;
+// Whether every pixel of K's image has a ray through `lens` (the renderer's check).
+bool InvertibleOverTheImage(geometry::PinholeCamera K, const geometry::LensDistortion& lens) {
+  K.distortion = lens;
+  try {
+    sim::RenderCameraFor(K, 0);
+  } catch (const std::invalid_argument&) {
+    return false;
   }
   return true;
 }
