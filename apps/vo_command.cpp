@@ -16,6 +16,7 @@
 #include "trackbed/estimation/absolute_orientation.h"
 #include "trackbed/estimation/stereo_visual_odometry.h"
 #include "trackbed/estimation/trajectory.h"
+#include "trackbed/estimation/trajectory_metrics.h"
 #include "trackbed/perception/kitti_sequence.h"
 
 namespace trackbed::apps {
@@ -48,6 +49,20 @@ double AteRmseSe3(const std::vector<Eigen::Vector3d>& est, const std::vector<Eig
   double sum_sq = 0.0;
   for (std::size_t k = 0; k < est.size(); ++k) sum_sq += (gt[k] - S.Apply(est[k])).squaredNorm();
   return std::sqrt(sum_sq / static_cast<double>(est.size()));
+}
+
+// The path-length ratio and the frame-to-frame errors (estimation::FrameToFrameError).
+void PrintFrameToFrameError(const estimation::Trajectory& gt, const estimation::Trajectory& est) {
+  const estimation::FrameMotionError e = estimation::FrameToFrameError(gt, est);
+  std::printf("path length: %.2f m against %.2f m (ratio %.4f)\n",
+              e.path_length_ratio * estimation::PathLength(gt), estimation::PathLength(gt),
+              e.path_length_ratio);
+  std::printf(
+      "frame to frame (%zu frames): translation error median %.3f %%, mean %.3f %% of the "
+      "frame's motion; rotation error median %.4f deg, mean %.4f deg; length ratio median "
+      "%.4f, mean %.4f\n",
+      e.trans_pct.count, e.trans_pct.median, e.trans_pct.mean, e.rot_deg.median, e.rot_deg.mean,
+      e.length_ratio.median, e.length_ratio.mean);
 }
 
 void RunVo(const VoArguments& args) {
@@ -115,6 +130,7 @@ void RunVo(const VoArguments& args) {
     std::printf("end-point error: %.3f m (%.2f %% of %.1f m)\n", end_error,
                 length > 0.0 ? 100.0 * end_error / length : 0.0, length);
     std::printf("ATE RMSE (SE(3)-aligned positions): %.3f m\n", AteRmseSe3(p_est, p_gt));
+    PrintFrameToFrameError(gt, trajectory);
   }
   std::printf("outputs: %s\n", out_dir.string().c_str());
 }

@@ -233,6 +233,29 @@ RpeResult RelativePoseError(const Trajectory& gt, const Trajectory& est,
   return out;
 }
 
+FrameMotionError FrameToFrameError(const Trajectory& gt, const Trajectory& est,
+                                   double min_motion_m) {
+  CheckAssociated("FrameToFrameError", gt, est);
+  std::vector<double> trans, rot, ratio;
+  for (std::size_t i = 0; i + 1 < gt.size(); ++i) {
+    const double truth =
+        Relative(gt[i].T_world_body, gt[i + 1].T_world_body).block<3, 1>(0, 3).norm();
+    if (truth < min_motion_m) continue;
+    const Eigen::Matrix4d E = RelativeError(gt, est, i, i + 1);
+    trans.push_back(100.0 * E.block<3, 1>(0, 3).norm() / truth);
+    rot.push_back(Angle(E) * 180.0 / kPi);
+    ratio.push_back(
+        Relative(est[i].T_world_body, est[i + 1].T_world_body).block<3, 1>(0, 3).norm() / truth);
+  }
+  FrameMotionError out;
+  out.trans_pct = ComputeStats(std::move(trans));
+  out.rot_deg = ComputeStats(std::move(rot));
+  out.length_ratio = ComputeStats(std::move(ratio));
+  const double gt_length = PathLength(gt);
+  out.path_length_ratio = gt_length > 0.0 ? PathLength(est) / gt_length : 0.0;
+  return out;
+}
+
 // ---------------------------------------------------------------------------------------
 
 void SegmentDriftOptions::Validate() const {

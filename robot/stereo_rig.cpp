@@ -19,8 +19,7 @@ void StereoRigOptions::ValidateLensCoversTheImage() const {
   // A lens whose distorted radius stops growing before the image's border leaves pixels
   // no ray reaches: the renderer, the calibration and the rectification all need every
   // pixel's ray (sim::RenderCameraFor checks the border, where the extreme rays lie).
-  geometry::PinholeCamera camera =
-      geometry::PinholeCamera::FromFieldOfView(width_px, height_px, units::Radians(hfov_deg));
+  geometry::PinholeCamera camera = DesignIntrinsics();
   camera.distortion = *distortion;
   try {
     sim::RenderCameraFor(camera, 0);
@@ -29,8 +28,8 @@ void StereoRigOptions::ValidateLensCoversTheImage() const {
     const std::string prefix = "RenderCameraFor: ";
     if (why.rfind(prefix, 0) == 0) why = why.substr(prefix.size());
     char image[96];
-    std::snprintf(image, sizeof image, " of the %d x %d image at hfov_deg %g", width_px, height_px,
-                  hfov_deg);
+    std::snprintf(image, sizeof image, " of the %d x %d image at fx %.6g px", width_px, height_px,
+                  camera.fx);
     throw OptionError("distortion", why + image);
   }
 }
@@ -39,6 +38,18 @@ void StereoRigOptions::Validate() const {
   if (width_px < 16 || width_px > 8192) throw OptionError("width_px", "must be in [16, 8192]");
   if (height_px < 16 || height_px > 8192) throw OptionError("height_px", "must be in [16, 8192]");
   option_check::InRange("hfov_deg", hfov_deg, 10.0, 170.0);
+  if (focal_length_px) {
+    option_check::Positive("focal_length_px", *focal_length_px);
+    // The same bound as hfov_deg's: the widest image side sees at most 170°.
+    const double widest = 2.0 * std::atan(0.5 * std::max(width_px, height_px) / *focal_length_px);
+    if (units::Degrees(widest) > 170.0) {
+      throw OptionError("focal_length_px", "too short for the image: it would see more than 170°");
+    }
+  }
+  if (principal_point_px) {
+    option_check::InRange("principal_point_px[0]", principal_point_px->x(), 0.0, width_px - 1.0);
+    option_check::InRange("principal_point_px[1]", principal_point_px->y(), 0.0, height_px - 1.0);
+  }
   option_check::Positive("baseline_m", baseline_m);
   option_check::Finite("mount_m[0]", mount_m.x());
   option_check::Finite("mount_m[1]", mount_m.y());
@@ -91,6 +102,17 @@ void StereoRigOptions::Validate() const {
   }
 }
 
+geometry::PinholeCamera StereoRigOptions::DesignIntrinsics() const {
+  geometry::PinholeCamera K =
+      geometry::PinholeCamera::FromFieldOfView(width_px, height_px, units::Radians(hfov_deg));
+  if (focal_length_px) K.fx = K.fy = *focal_length_px;
+  if (principal_point_px) {
+    K.cx = principal_point_px->x();
+    K.cy = principal_point_px->y();
+  }
+  return K;
+}
+
 bool StereoRigOptions::InBlackout(double t_s) const {
   for (const Eigen::Vector2d& b : blackouts_s) {
     if (t_s >= b.x() && t_s < b.x() + b.y()) return true;
@@ -100,8 +122,7 @@ bool StereoRigOptions::InBlackout(double t_s) const {
 
 StereoRig::StereoRig(const StereoRigOptions& options) : options_(options) {
   options_.Validate();
-  intrinsics_ = geometry::PinholeCamera::FromFieldOfView(options_.width_px, options_.height_px,
-                                                         units::Radians(options_.hfov_deg));
+  intrinsics_ = options_.DesignIntrinsics();
   // Camera axes in body axes for a level camera: z_cam = x_body, x_cam = −y_body,
   // y_cam = −z_body; then tilt down about the camera's x axis.
   Eigen::Matrix3d R_body_cam;

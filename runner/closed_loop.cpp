@@ -20,6 +20,7 @@
 #include "trackbed/robot/auto_exposure.h"
 #include "trackbed/robot/encoder.h"
 #include "trackbed/robot/image_sensor.h"
+#include "trackbed/robot/pose_path_carrier.h"
 #include "trackbed/robot/tracked_vehicle.h"
 #include "trackbed/runner/closed_loop_navigation.h"
 #include "trackbed/runner/estimator_scoring.h"
@@ -164,6 +165,23 @@ sim::BodyMotion Advanced(const sim::BodyMotion& m, double dt_s) {
   return out;
 }
 
+// The carrier of a pose path: the drive's curve, the robot's weight and footprint.
+robot::PosePathOptions PosePathOf(const scenario::Scenario& scenario) {
+  const robot::TrackedVehicleOptions& v = scenario.robot.vehicle;
+  robot::PosePathOptions o;
+  o.waypoints = scenario.drive.waypoints;
+  o.closed = scenario.drive.closed;
+  o.laps = scenario.drive.laps;
+  o.speed_mps = scenario.drive.speed_mps;
+  o.body_height_m = v.com_height_m;
+  o.footprint_length_m = v.track_contact_length_m;
+  o.footprint_width_m = v.track_gauge_m;
+  o.mass_kg = v.mass_kg;
+  o.stations_per_track =
+      v.station_x_m.empty() ? v.road_wheels_per_track : static_cast<int>(v.station_x_m.size());
+  return o;
+}
+
 // The straight calibration run of `scenario`'s robot, in closed loop.
 calibration::VehicleCalibration CalibrateWheels(const scenario::Scenario& scenario) {
   StraightRunFit fit(scenario.robot.encoders.ticks_per_rev, scenario.robot.vehicle.track_gauge_m,
@@ -225,8 +243,7 @@ class ClosedLoop::Impl {
  public:
   Impl(const scenario::Scenario& scenario, ClosedLoopOptions options)
       : scenario_(scenario), options_(std::move(options)) {
-    scenario_.Validate(options_.commander ? scenario::DriveSource::kExternal
-                                          : scenario::DriveSource::kScenario);
+    scenario_.Validate(drive_source());
     if (options_.commander && scenario_.navigation.enabled) {
       throw std::invalid_argument(
           "navigation.enabled: a run driven by a given commander does not navigate; set it false");
@@ -241,6 +258,9 @@ class ClosedLoop::Impl {
   void ReportEstimate(const std::string& name, const Eigen::Matrix4d& T_world_body);
   // Writes metrics.json saying why the run failed (when there is a folder).
   void RecordFailure(const std::exception& e);
+  scenario::DriveSource drive_source() const {
+    return options_.commander ? scenario::DriveSource::kExternal : scenario::DriveSource::kScenario;
+  }
 
  private:
   using ImagePair = std::pair<GrayImage, GrayImage>;
@@ -281,7 +301,9 @@ class ClosedLoop::Impl {
   StepResult step_;  // Step()'s result, reused
 
   std::unique_ptr<sim::World> world_;
-  std::unique_ptr<robot::TrackedVehicle> vehicle_;
+  // The tracked vehicle in the physics, or the carrier of a pose path.
+  std::unique_ptr<robot::Platform> vehicle_;
+  const robot::PosePathCarrier* carrier_ = nullptr;  // vehicle_, when it is one
   std::unique_ptr<robot::Imu> imu_;
   Commander* commander_ = nullptr;
   std::int64_t last_ticks_[2] = {0, 0};
@@ -343,9 +365,17 @@ void ClosedLoop::Impl::BuildWorld() {
       scenario_.scene.world,
       sim::Terrain(scenario_.scene.terrain, split_mix::Stream(scenario_.seed, 0)),
       scenario_.scene.objects);
-  vehicle_ = std::make_unique<robot::TrackedVehicle>(rs.vehicle, world_.get(), rs.start.x_m,
-                                                     rs.start.y_m, units::Radians(rs.start.yaw_deg),
-                                                     &robot_.truth.vehicle);
+  if (scenario_.CarriedOnPosePath(drive_source())) {
+    auto carrier = std::make_unique<robot::PosePathCarrier>(
+        PosePathOf(scenario_), &world_->terrain(), robot_.truth.vehicle,
+        scenario_.scene.world.gravity_mps2);
+    carrier_ = carrier.get();
+    vehicle_ = std::move(carrier);
+  } else {
+    vehicle_ = std::make_unique<robot::TrackedVehicle>(
+        rs.vehicle, world_.get(), rs.start.x_m, rs.start.y_m, units::Radians(rs.start.yaw_deg),
+        &robot_.truth.vehicle);
+  }
   imu_ = std::make_unique<robot::Imu>(rs.imu, scenario_.scene.world.gravity_mps2,
                                       split_mix::Stream(scenario_.seed, 1), &robot_.truth.imu);
   if (rs.stereo.enabled) BuildCameras();
@@ -412,6 +442,9 @@ void ClosedLoop::Impl::BuildSoftware() {
     if (scenario_.navigation.enabled) {
       options_.commander = std::make_unique<ClosedLoopNavigation>(scenario_, world_->objects(),
                                                                   observers_.on_navigation_step);
+    } else if (carrier_) {
+      options_.commander = std::make_unique<PathDriver>(scenario_.drive, rs.vehicle.track_gauge_m,
+                                                        carrier_->end_time_s());
     } else {
       options_.commander = std::make_unique<PathDriver>(scenario_.drive, rs.vehicle.track_gauge_m);
     }
@@ -470,7 +503,7 @@ bool ClosedLoop::Impl::StepOnce(StepResult* out) {
   }
   Timed(&times_.physics_s, [&] {
     vehicle_->ApplyForces(clock_->step_s());
-    world_->Step();
+    if (vehicle_->needs_physics()) world_->Step();
   });
   clock_->Tick();
   if (vehicle_->stalled()) Stop("stalled");  // a motor at its torque limit that cannot turn
@@ -759,6 +792,7 @@ void ClosedLoop::Impl::ReleaseSimulation() {
   renderer_.reset();
   range_sensor_.reset();
   imu_.reset();
+  carrier_ = nullptr;
   vehicle_.reset();
   world_.reset();
 }

@@ -5,8 +5,9 @@
 
 namespace trackbed::runner {
 
-PathDriver::PathDriver(const scenario::DriveSpec& spec, double nominal_gauge_m)
-    : spec_(spec), gauge_(nominal_gauge_m) {
+PathDriver::PathDriver(const scenario::DriveSpec& spec, double nominal_gauge_m,
+                       double pose_path_end_s)
+    : spec_(spec), gauge_(nominal_gauge_m), pose_path_end_s_(pose_path_end_s) {
   if (spec_.mode == scenario::DriveSpec::Mode::kPath) {
     navigation::PurePursuitOptions o;
     o.speed_mps = spec_.speed_mps;
@@ -18,6 +19,10 @@ PathDriver::PathDriver(const scenario::DriveSpec& spec, double nominal_gauge_m)
 
 ControlOutput PathDriver::Update(const ControlInput& input) {
   ControlOutput out;
+  if (spec_.mode == scenario::DriveSpec::Mode::kPosePath) {
+    if (input.t_s >= pose_path_end_s_) out.stop_reason = "path finished";
+    return out;
+  }
   if (follower_) {
     const Eigen::Isometry3d& T = input.T_world_body;
     const double yaw = std::atan2(T.linear()(1, 0), T.linear()(0, 0));

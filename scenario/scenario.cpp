@@ -45,6 +45,18 @@ void CheckTrackSpeed(const std::string& field, double track_mps, double top_mps)
                                " m/s (robot.vehicle.motor.max_speed_radps × sprocket_radius_m)");
 }
 
+// A pose path's waypoints must be on the terrain: the carrier rests on the ground.
+void CheckPosePathOnTerrain(const Scenario& s) {
+  const Eigen::Vector4d& e = s.scene.terrain.extent_m;
+  for (std::size_t k = 0; k < s.drive.waypoints.size(); ++k) {
+    const Eigen::Vector2d& w = s.drive.waypoints[k];
+    if (w.x() >= e[0] && w.x() <= e[2] && w.y() >= e[1] && w.y() <= e[3]) continue;
+    throw OptionError("drive." + Indexed("waypoints", k),
+                      "(" + option_check::Describe(w.x()) + ", " + option_check::Describe(w.y()) +
+                          ") is outside scene.terrain.extent_m: a pose path rests on the ground");
+  }
+}
+
 // Every speed the drive or the closed-loop navigator is told to reach.
 void CheckCommandedSpeeds(const Scenario& s) {
   const robot::TrackedVehicleOptions& v = s.robot.vehicle;
@@ -59,6 +71,7 @@ void CheckCommandedSpeeds(const Scenario& s) {
     CheckTrackSpeed("drive.speed_mps", s.drive.speed_mps, top);
     return;
   }
+  if (s.drive.mode == DriveSpec::Mode::kPosePath) return;  // carried, not driven
   for (std::size_t k = 0; k < s.drive.script.size(); ++k) {
     const DriveCommand& c = s.drive.script[k];
     const std::string at = "drive." + Indexed("script", k);
@@ -136,15 +149,27 @@ void DriveSpec::Validate() const {
   option_check::Positive("lookahead_m", lookahead_m);
   option_check::Positive("rate_hz", rate_hz);
   option_check::Positive("goal_tolerance_m", goal_tolerance_m);
-  if (mode == Mode::kPath) {
+  if (mode == Mode::kPath || mode == Mode::kPosePath) {
+    const char* name = mode == Mode::kPath ? "path" : "pose_path";
     if (waypoints.size() < 2) {
-      throw OptionError("waypoints", "mode path needs at least 2 waypoints (got " +
+      throw OptionError("waypoints", std::string("mode ") + name +
+                                         " needs at least 2 waypoints (got " +
                                          std::to_string(waypoints.size()) + ")");
     }
     for (std::size_t k = 0; k < waypoints.size(); ++k) {
       if (!waypoints[k].allFinite()) {
         throw OptionError(Indexed("waypoints", k), "must be finite");
       }
+      const std::size_t next = k + 1 < waypoints.size() ? k + 1 : 0;
+      if (mode == Mode::kPosePath && (next != 0 || closed) &&
+          (waypoints[next] - waypoints[k]).norm() < 1e-6) {
+        throw OptionError(Indexed("waypoints", next),
+                          "coincides with waypoint " + std::to_string(k) +
+                              " (a pose path's curve needs distinct consecutive waypoints)");
+      }
+    }
+    if (mode == Mode::kPosePath) {
+      option_check::InRange("speed_mps", speed_mps, 0.0, kMaxPosePathSpeedMps);
     }
   } else {
     if (script.empty()) throw OptionError("script", "mode script needs at least 1 command");
@@ -249,6 +274,11 @@ void OutputsSpec::Validate() const {
   }
 }
 
+bool Scenario::CarriedOnPosePath(DriveSource drive_source) const {
+  return drive_source == DriveSource::kScenario && !navigation.enabled &&
+         drive.mode == DriveSpec::Mode::kPosePath;
+}
+
 void Scenario::Validate(DriveSource drive_source) const {
   if (!(std::isfinite(duration_s) && duration_s > 0.0 && duration_s <= 1e6)) {
     throw OptionError("duration_s",
@@ -264,6 +294,7 @@ void Scenario::Validate(DriveSource drive_source) const {
     option_check::Nested("drive", drive);
   }
   if (drive_source != DriveSource::kExternal) CheckCommandedSpeeds(*this);
+  if (CarriedOnPosePath(drive_source)) CheckPosePathOnTerrain(*this);
   if (!(navigation.enabled && navigation.mode == NavigationSpec::Mode::kKinematic)) {
     CheckStartOnTerrain(*this);
   }
@@ -276,6 +307,10 @@ void Scenario::Validate(DriveSource drive_source) const {
     }
     if (navigation.enabled) {
       throw OptionError("teach_repeat.enabled", "teach & repeat and navigation exclude each other");
+    }
+    if (drive.mode == DriveSpec::Mode::kPosePath) {
+      throw OptionError("teach_repeat.enabled",
+                        "teach & repeat drives the robot; drive.mode pose_path carries it");
     }
   }
   option_check::Nested("outputs", outputs);

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -170,6 +171,40 @@ TEST(ClosedLoopTest, AnEstimateReportedFromOutsideIsScoredBesideTheStack) {
   EXPECT_TRUE(fs::exists(dir / "mine.tum"));
   const nlohmann::json j = nlohmann::json::parse(Read(dir / "metrics.json"));
   EXPECT_EQ(j["estimators"]["mine"]["samples"], steps);
+}
+
+TEST(ClosedLoopTest, APosePathCarriesTheRobotAlongItsCurveAndEndsTheRunAtItsEnd) {
+  scenario::Scenario s = testing::FlatTrackSpeedRun("paving", 0.3, 0.3, 1.0);
+  s.robot.stereo.enabled = false;
+  s.scene.terrain.extent_m = {-5, -30, 45, 30};
+  s.scene.terrain.cell_size_m = 0.5;
+  s.robot.realism = robot::Realism::kIdeal;
+  s.drive = scenario::DriveSpec();
+  s.drive.mode = scenario::DriveSpec::Mode::kPosePath;
+  s.drive.waypoints = {{0, 0}, {20, 0}, {30, 5}, {40, 5}};
+  s.drive.speed_mps = 15.0;
+  s.duration_s = 10.0;
+  s.estimation.icr_expansion = 1.0;  // the carrier's virtual tracks turn without skidding
+  const fs::path dir = FreshDir("pose_path");
+  ClosedLoopOptions options;
+  options.dir = dir;
+  const RunMetrics m = ClosedLoop(s, std::move(options)).Run();
+  // About 41.4 m of curve at 15 m/s: the run ends when the path does, not at 10 s.
+  EXPECT_EQ(m.stop_reason, "path finished");
+  EXPECT_NEAR(m.distance_m, 41.4, 0.3);
+  // The last true pose is the last waypoint, heading along the curve's last tangent.
+  std::ifstream truth(dir / "ground_truth.tum");
+  std::string line, last;
+  while (std::getline(truth, line)) last = line;
+  double t, x, y, z;
+  std::istringstream(last) >> t >> x >> y >> z;
+  EXPECT_NEAR(x, 40.0, 1e-6);
+  EXPECT_NEAR(y, 5.0, 1e-6);
+  EXPECT_NEAR(t, m.distance_m / 15.0, 0.06);
+  // Tracks that do not slip, and encoders that count them: the no-slip odometry of the
+  // design's robot follows the truth to within the encoders' resolution.
+  EXPECT_NEAR(m.encoder_distance_m, m.distance_m, 1e-3);
+  EXPECT_LT(m.estimators.at("wheel_odometry_noslip").ate_rmse_m, 0.05);
 }
 
 TEST(ClosedLoopTest, StepOutsideStartAndFinishIsAnError) {

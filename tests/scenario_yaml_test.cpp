@@ -221,7 +221,7 @@ TEST(ScenarioYamlTest, ALensThatDoesNotReachTheImagesBorderNamesItsKey) {
       error.rfind("test.yaml: robot.stereo.distortion: the lens cannot be inverted at pixel (", 0),
       0u)
       << error;
-  EXPECT_NE(error.find("of the 640 x 480 image at hfov_deg 80"), std::string::npos) << error;
+  EXPECT_NE(error.find("of the 640 x 480 image at fx 381.361 px"), std::string::npos) << error;
   EXPECT_EQ(ErrorOf(std::string(kMinimal) +
                     "robot: {stereo: {distortion: {model: radial_tangential, k1: -0.28340811, k2: "
                     "0.07395907, p1: 0.00019359, p2: 1.76187114e-05}}}\n"),
@@ -500,6 +500,49 @@ TEST(ScenarioYamlTest, StartOffTheTerrainAndUnreachableSpeedsAreRefused) {
   EXPECT_EQ(
       ErrorOf(kMinimal, {{"drive.speed_mps", "2"}, {"robot.vehicle.motor.max_speed_radps", "25"}}),
       "");
+}
+
+TEST(ScenarioYamlTest, APosePathIsCarriedAtCarSpeedsAndCheckedOnTheTerrain) {
+  const std::string pose_path = "drive:\n  mode: pose_path\n  waypoints: [[0, 0], [5, 0]]\n";
+  // A carried body is not held to the motors' top track speed, only to a car's.
+  EXPECT_EQ(ErrorOf(pose_path, {{"drive.speed_mps", "25"}}), "");
+  EXPECT_NE(ErrorOf(pose_path, {{"drive.speed_mps", "120"}}).find("drive.speed_mps: must be in"),
+            std::string::npos);
+  EXPECT_EQ(ErrorOf(pose_path, {{"drive.waypoints[1]", "[6, 0]"}}),
+            "--set drive.waypoints[1]=[6, 0]: drive.waypoints[1]: (6, 0) is outside "
+            "scene.terrain.extent_m: a pose path rests on the ground");
+  EXPECT_NE(ErrorOf(pose_path, {{"drive.waypoints[1]", "[0, 0]"}})
+                .find("drive.waypoints[1]: "
+                      "coincides with waypoint 0"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf(pose_path, {{"teach_repeat.enabled", "true"}, {"robot.stereo.enabled", "true"}})
+                .find("teach_repeat.enabled: teach & repeat drives the robot"),
+            std::string::npos);
+  EXPECT_EQ(ParseScenario(pose_path, "test.yaml").drive.mode, DriveSpec::Mode::kPosePath);
+}
+
+TEST(ScenarioYamlTest, APublishedCameraIsGivenByItsFocalLengthAndPrincipalPoint) {
+  const Scenario s = ParseScenario(
+      std::string(kMinimal) +
+          "robot:\n  stereo:\n    width_px: 1241\n    height_px: 376\n"
+          "    focal_length_px: 718.856\n    principal_point_px: [607.1928, 185.2157]\n",
+      "test.yaml");
+  const geometry::PinholeCamera K = s.robot.stereo.DesignIntrinsics();
+  EXPECT_EQ(K.fx, 718.856);
+  EXPECT_EQ(K.fy, 718.856);
+  EXPECT_EQ(K.cx, 607.1928);
+  EXPECT_EQ(K.cy, 185.2157);
+  // Without them: hfov_deg and the image's centre.
+  const geometry::PinholeCamera centred =
+      ParseScenario(kMinimal, "test.yaml").robot.stereo.DesignIntrinsics();
+  EXPECT_EQ(centred.cx, 319.5);
+  EXPECT_NEAR(centred.fx, 320.0 / std::tan(40.0 * M_PI / 180.0), 1e-9);
+  EXPECT_NE(ErrorOf(kMinimal, {{"robot.stereo.focal_length_px", "20"}})
+                .find("robot.stereo.focal_length_px: too short for the image"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf(kMinimal, {{"robot.stereo.principal_point_px", "[700, 200]"}})
+                .find("robot.stereo.principal_point_px[0]: must be in"),
+            std::string::npos);
 }
 
 TEST(ScenarioYamlTest, WallFromToBecomesRotatedBox) {

@@ -286,6 +286,34 @@ TEST(TrajectoryMetricsTest, ConstantScaleDriftGivesKnownTranslationalDrift) {
   EXPECT_NEAR(rpe.trans_m.mean, eps * 10.0, eps * 0.05);
 }
 
+TEST(TrajectoryMetricsTest, FrameToFrameErrorMeasuresEachFramesScaleAndTurn) {
+  // The estimate reads every frame's motion 3 % long, and one frame of ten it turns
+  // 0.1° too far; standing frames are left out of the per-frame figures.
+  Trajectory gt = StraightLine(50.0, 1.0);
+  gt.insert(gt.begin(), gt.front());  // a first frame without motion
+  for (std::size_t k = 0; k < gt.size(); ++k) gt[k].t_s = 0.1 * static_cast<double>(k);
+  Trajectory est = gt;
+  double yaw = 0.0;
+  for (std::size_t k = 1; k < est.size(); ++k) {
+    const Eigen::Vector3d step =
+        gt[k].T_world_body.translation() - gt[k - 1].T_world_body.translation();
+    const Eigen::Isometry3d& before = est[k - 1].T_world_body;
+    if (k % 10 == 0) yaw += 0.1 * M_PI / 180.0;
+    est[k].T_world_body.linear() =
+        Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    est[k].T_world_body.translation() = before.translation() + before.linear() * (1.03 * step);
+  }
+  const FrameMotionError e = FrameToFrameError(gt, est);
+  EXPECT_EQ(e.trans_pct.count, 50u);
+  EXPECT_NEAR(e.length_ratio.median, 1.03, 1e-9);
+  EXPECT_NEAR(e.length_ratio.mean, 1.03, 1e-9);
+  EXPECT_NEAR(e.path_length_ratio, 1.03, 1e-9);
+  EXPECT_NEAR(e.trans_pct.median, 3.0, 1e-6);
+  EXPECT_NEAR(e.rot_deg.median, 0.0, 1e-9);
+  EXPECT_NEAR(e.rot_deg.max, 0.1, 1e-9);
+  EXPECT_NEAR(e.rot_deg.mean, 0.1 * 5.0 / 50.0, 1e-9);
+}
+
 TEST(TrajectoryMetricsTest, ConstantHeadingDriftGivesKnownRotationalDrift) {
   // Ground truth straight; the estimate turns at a constant κ rad per metre of path, so the
   // relative rotation of every segment is κ·length: r_rel = κ·180/π·100 °/100 m.

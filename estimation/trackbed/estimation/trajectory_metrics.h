@@ -119,6 +119,22 @@ struct RpeResult {
 RpeResult RelativePoseError(const Trajectory& gt, const Trajectory& est,
                             const RpeOptions& options = {});
 
+/// Frame-to-frame error of an odometry, the measure that compares a simulated camera's
+/// odometry with a real one's on equal terms (docs/localization.md): for each pair of
+/// consecutive poses whose true motion is at least min_motion_m, E as in
+/// RelativePoseError; the translation error |t(E)| as a percentage of the true motion,
+/// the rotation error [deg], and the length ratio |t(P_i⁻¹ P_i+1)| / |t(Q_i⁻¹ Q_i+1)|
+/// (above 1: the odometry sees the frame's motion as longer than it was).
+struct FrameMotionError {
+  ErrorStats trans_pct;
+  ErrorStats rot_deg;
+  ErrorStats length_ratio;
+  /// Whole paths: the estimate's path length over the ground truth's.
+  double path_length_ratio = 0.0;
+};
+FrameMotionError FrameToFrameError(const Trajectory& gt, const Trajectory& est,
+                                   double min_motion_m = 0.01);
+
 // ---------------------------------------------------------------------------------------
 // Drift over path segments (KITTI odometry devkit, evaluate_odometry.cpp)
 

@@ -39,6 +39,12 @@ struct StereoRigOptions {
   int height_px = 480;
   /// Horizontal field of view [deg], in (10, 170).
   double hfov_deg = 80.0;
+  /// Focal length [px] (square pixels), > 0: when set it replaces hfov_deg's, to give a
+  /// published camera's calibration (KITTI's, for the twin).
+  std::optional<double> focal_length_px;
+  /// Principal point (cx, cy) [px], the centre of the top-left pixel at (0, 0); absent:
+  /// the image's centre ((width − 1) / 2, (height − 1) / 2).
+  std::optional<Eigen::Vector2d> principal_point_px;
   /// Distance between the two optical centres [m], > 0.
   double baseline_m = 0.12;
   /// Midpoint between the optical centres in the body frame [m] (x forward, y
@@ -82,6 +88,9 @@ struct StereoRigOptions {
 
   /// Whether time `t_s` falls in a blackout.
   bool InBlackout(double t_s) const;
+  /// Each camera's intrinsics as designed: the image size, the focal length (given, or
+  /// from hfov_deg) and the principal point (given, or the centre); no lens.
+  geometry::PinholeCamera DesignIntrinsics() const;
   /// Throws OptionError naming the first invalid key (a lens that does not reach every
   /// pixel of the image, or sees more than 160° across, is `distortion`).
   void Validate() const;
@@ -94,6 +103,8 @@ struct StereoRigOptions {
     a->Visit("width_px", &width_px);
     a->Visit("height_px", &height_px);
     a->Visit("hfov_deg", &hfov_deg);
+    a->Visit("focal_length_px", &focal_length_px, archive::kOmitEmpty);
+    a->Visit("principal_point_px", &principal_point_px, archive::kOmitEmpty);
     a->Visit("baseline_m", &baseline_m);
     a->Visit("mount_m", &mount_m);
     a->Visit("pitch_down_deg", &pitch_down_deg);

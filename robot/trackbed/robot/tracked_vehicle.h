@@ -20,6 +20,7 @@
 #include <Eigen/Geometry>
 
 #include "trackbed/common/robot_calibration.h"
+#include "trackbed/robot/platform.h"
 #include "trackbed/robot/sprocket_motor.h"
 #include "trackbed/sim/world.h"
 
@@ -120,40 +121,8 @@ struct TrackedVehicleOptions {
   }
 };
 
-/// Index of the two tracks.
-enum Side { kLeft = 0, kRight = 1 };
-
-/// Kinematic state of the chassis (body frame: x forward, y left, z up, origin
-/// at the centre of mass).
-struct ChassisState {
-  Eigen::Isometry3d T_world_body = Eigen::Isometry3d::Identity();
-  Eigen::Vector3d v_world = Eigen::Vector3d::Zero();      ///< Linear velocity [m/s].
-  Eigen::Vector3d omega_world = Eigen::Vector3d::Zero();  ///< Angular velocity [rad/s].
-};
-
-/// What one track is doing now.
-struct TrackState {
-  double sprocket_angle_rad = 0.0;
-  double sprocket_speed_radps = 0.0;
-  double motor_torque_nm = 0.0;
-  double track_speed_mps = 0.0;    ///< r ω.
-  double ground_speed_mps = 0.0;   ///< Chassis velocity at the track centreline, along body x.
-  double slip_velocity_mps = 0.0;  ///< ground − track speed (Ham et al. sign).
-  double normal_load_n = 0.0;      ///< Sum over stations.
-  double traction_n = 0.0;         ///< Longitudinal shear force on the vehicle.
-  double compaction_resistance_n = 0.0;  ///< Sum of the stations' rut-making resistance.
-  /// Sum of the stations' bulldozing resistance to a sideways skid (its capacity,
-  /// mobilised with the lateral shear).
-  double bulldozing_resistance_n = 0.0;
-  double running_gear_resistance_n = 0.0;  ///< Internal resistance at the track.
-  int stations_in_contact = 0;
-  /// How long the motor has held its torque limit with the sprocket below a tenth
-  /// of its command [s] (0 while it is not).
-  double stall_time_s = 0.0;
-};
-
 /// A tracked vehicle in a World. Not copyable; removes its body on destruction.
-class TrackedVehicle {
+class TrackedVehicle : public Platform {
  public:
   /// Places the vehicle at rest on the terrain at (x, y) with heading `yaw_rad`,
   /// aligned with the local ground slope. `as_built` (robot/as_built.h): each track's
@@ -162,25 +131,24 @@ class TrackedVehicle {
   /// radius, as the motor controller knows only that.
   TrackedVehicle(const TrackedVehicleOptions& options, sim::World* world, double x, double y,
                  double yaw_rad, const calibration::VehicleCalibration* as_built = nullptr);
-  ~TrackedVehicle();
-  TrackedVehicle(const TrackedVehicle&) = delete;
-  TrackedVehicle& operator=(const TrackedVehicle&) = delete;
+  ~TrackedVehicle() override;
 
   /// Commands the track surface speeds [m/s] (sprocket speed = v / r).
-  void CommandTrackSpeeds(double left_mps, double right_mps);
+  void CommandTrackSpeeds(double left_mps, double right_mps) override;
   /// Computes ground forces, applies them to the chassis and advances the
   /// sprockets and the soil shear state by one physics step. Call before World::Step().
-  void ApplyForces(double dt_s);
+  void ApplyForces(double dt_s) override;
+  bool needs_physics() const override { return true; }
 
-  ChassisState chassis() const;
-  const TrackState& track(Side side) const { return tracks_[side].state; }
+  ChassisState chassis() const override;
+  const TrackState& track(Side side) const override { return tracks_[side].state; }
   const TrackedVehicleOptions& options() const { return options_; }
   /// Static-equilibrium suspension deflection [m] on flat ground.
   double static_deflection_m() const;
   /// Contact stations per side (station_x_m's size, else road_wheels_per_track).
   int stations_per_side() const;
   /// True once a track has been stalled for stall_time_s (see TrackState).
-  bool stalled() const;
+  bool stalled() const override;
 
  private:
   struct Station {

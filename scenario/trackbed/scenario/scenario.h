@@ -159,8 +159,14 @@ struct DriveCommand {
 
 /// How the robot is commanded: a replayed script, or a pure-pursuit driver
 /// following a reference path on ground truth (the paper's human driver).
+/// The fastest a pose path may carry the sensors [m/s]: a car at 360 km/h.
+inline constexpr double kMaxPosePathSpeedMps = 100.0;
+
 struct DriveSpec {
-  enum class Mode { kScript, kPath };
+  /// kPath: pure pursuit of `waypoints` on ground truth; kScript: `script` replayed;
+  /// kPosePath: no driving — the body is carried along a smooth curve through
+  /// `waypoints` at `speed_mps`, without physics (robot/pose_path_carrier.h).
+  enum class Mode { kScript, kPath, kPosePath };
   Mode mode = Mode::kPath;
   std::vector<DriveCommand> script;
   /// Reference path vertices [m], world frame.
@@ -169,7 +175,8 @@ struct DriveSpec {
   bool closed = false;
   /// Laps of a closed path to drive, >= 1.
   int laps = 1;
-  /// Cruise speed [m/s], > 0.
+  /// Cruise speed [m/s], > 0 (pose_path: the carrier's speed over the ground, at most
+  /// kMaxPosePathSpeedMps).
   double speed_mps = 0.4;
   /// Pure-pursuit look-ahead distance [m], > 0.
   double lookahead_m = 0.8;
@@ -184,7 +191,9 @@ struct DriveSpec {
   /// written by the config archive (trackbed/common/archive.h).
   template <class Archive>
   void Serialize(Archive* a) {
-    a->VisitEnum("mode", &mode, {{"path", Mode::kPath}, {"script", Mode::kScript}});
+    a->VisitEnum(
+        "mode", &mode,
+        {{"path", Mode::kPath}, {"script", Mode::kScript}, {"pose_path", Mode::kPosePath}});
     a->Visit("waypoints", &waypoints);
     a->Visit("closed", &closed);
     a->Visit("laps", &laps);
@@ -474,6 +483,9 @@ struct Scenario {
   /// With DriveSource::kExternal the `drive` section is not checked but for
   /// `drive.rate_hz` (> 0), the control rate a commander from outside may take.
   void Validate(DriveSource drive_source) const;
+  /// Whether a run driven from `drive_source` carries the robot along a pose path
+  /// (drive.mode pose_path, not navigating) instead of simulating its vehicle.
+  bool CarriedOnPosePath(DriveSource drive_source) const;
 
   /// The scenario file's keys for these fields (docs/scenario_format.md), read and
   /// written by the config archive (trackbed/common/archive.h).
