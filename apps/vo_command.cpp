@@ -28,6 +28,7 @@ struct VoArguments {
   std::string kitti_dir;
   std::string out_dir;
   std::string poses_file;
+  bool estimate_disparity_offset = true;
 };
 
 std::ofstream OpenForWriting(const fs::path& path) {
@@ -71,12 +72,15 @@ void RunVo(const VoArguments& args) {
   const fs::path out_dir(args.out_dir);
   fs::create_directories(out_dir);
 
-  estimation::StereoVisualOdometry vo(sequence.calibration());
+  estimation::StereoVisualOdometryOptions options;
+  options.estimate_disparity_offset = args.estimate_disparity_offset;
+  estimation::StereoVisualOdometry vo(sequence.calibration(), options);
+  double offset_px = 0.0;
   estimation::Trajectory trajectory;
   trajectory.reserve(sequence.size());
   const fs::path csv_path = out_dir / "vo_frames.csv";
   std::ofstream csv = OpenForWriting(csv_path);
-  csv << "t,status,tracked,inliers,ms,dynamics_constrained\n";
+  csv << "t,status,tracked,inliers,ms,dynamics_constrained,disparity_offset_px\n";
   double process_s = 0.0;
   int ok_frames = 0;
   for (std::size_t k = 0; k < sequence.size(); ++k) {
@@ -89,11 +93,12 @@ void RunVo(const VoArguments& args) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     process_s += seconds;
     if (r.ok()) ++ok_frames;
+    offset_px = r.disparity_offset_px;
     trajectory.push_back({t_s, r.T_world_cam});
     char line[160];
-    std::snprintf(line, sizeof(line), "%.6f,%s,%d,%d,%.3f,%d\n", t_s,
+    std::snprintf(line, sizeof(line), "%.6f,%s,%d,%d,%.3f,%d,%.4f\n", t_s,
                   estimation::ToString(r.status), r.tracked, r.inliers, 1e3 * seconds,
-                  r.dynamics_constrained ? 1 : 0);
+                  r.dynamics_constrained ? 1 : 0, r.disparity_offset_px);
     csv << line;
   }
   Close(csv, csv_path);
@@ -114,6 +119,9 @@ void RunVo(const VoArguments& args) {
   const std::size_t n = trajectory.size();
   std::printf("frames: %zu (%d with motion, %zu failed)\n", n, ok_frames,
               n - 1 - static_cast<std::size_t>(ok_frames));
+  if (args.estimate_disparity_offset) {
+    std::printf("disparity offset: %.3f px (estimated at the last frame)\n", offset_px);
+  }
   std::printf("speed: %.1f frames/s (%.2f ms per frame, Process only)\n",
               process_s > 0.0 ? static_cast<double>(n) / process_s : 0.0,
               1e3 * process_s / static_cast<double>(n));
@@ -151,6 +159,10 @@ void AddVoCommand(CLI::App& app) {
   vo->add_option("--poses", args->poses_file,
                  "Ground truth in KITTI format (default: kitti_dir/poses.txt if present)")
       ->check(CLI::ExistingFile);
+  vo->add_flag("--disparity-offset,!--no-disparity-offset", args->estimate_disparity_offset,
+               "Estimate the rig's disparity offset (a rectification's error) frame by frame and "
+               "triangulate with it (default); --no-disparity-offset: the disparities as "
+               "measured");
   vo->callback([args]() {
     try {
       RunVo(*args);

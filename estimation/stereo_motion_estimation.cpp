@@ -322,6 +322,51 @@ MotionRefinementResult RefineMotionReprojection(
   return out;
 }
 
+DisparityOffsetMeasurement MeasureDisparityOffset(
+    const std::vector<MotionCorrespondence>& correspondences,
+    const std::vector<unsigned char>& mask, const geometry::StereoCamera& camera,
+    const Eigen::Isometry3d& T_curr_prev, double huber_px) {
+  Eigen::Matrix<double, 7, 7> H = Eigen::Matrix<double, 7, 7>::Zero();
+  Eigen::Matrix<double, 7, 1> g = Eigen::Matrix<double, 7, 1>::Zero();
+  double sum_sq = 0.0;
+  int n = 0;
+  for (std::size_t i = 0; i < correspondences.size(); ++i) {
+    if (!mask.empty() && !mask[i]) continue;
+    const MotionCorrespondence& c = correspondences[i];
+    Eigen::Matrix<double, 3, 6> Jm;
+    const Eigen::Vector3d r = StereoReprojectionResidual(camera, T_curr_prev, c, &Jm);
+    const double d_prev = c.z_prev.x() - c.z_prev.z();
+    if (!(d_prev > 0.0)) continue;
+    // p_prev(δ) = Triangulate(u, v, d + δ): ∂p_prev/∂δ = −p_prev / d, moved by T's
+    // rotation; ∂r/∂p is the Jacobian's translation block. The measured right
+    // coordinate carries −δ: r_right gains +δ.
+    Eigen::Matrix<double, 3, 7> J;
+    J.leftCols<6>() = Jm;
+    const Eigen::Vector3d dp = -(T_curr_prev.linear() * c.p_prev) / d_prev;
+    J.col(6) = Jm.leftCols<3>() * dp + Eigen::Vector3d(0.0, 0.0, 1.0);
+    const double e = r.norm();
+    const double w = e <= huber_px ? 1.0 : huber_px / e;
+    H.noalias() += w * J.transpose() * J;
+    g.noalias() += w * J.transpose() * r;
+    sum_sq += r.squaredNorm();
+    ++n;
+  }
+  DisparityOffsetMeasurement out;
+  if (n < kMinDisparityOffsetPoints) return out;
+  const Eigen::Matrix<double, 6, 6> Hmm = H.topLeftCorner<6, 6>();
+  const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt(Hmm);
+  const Eigen::Matrix<double, 6, 1> Hmd = H.block<6, 1>(0, 6);
+  const double info = H(6, 6) - Hmd.dot(ldlt.solve(Hmd));
+  const double grad = g(6) - Hmd.dot(ldlt.solve(g.head<6>()));
+  if (!(info > 1e-9)) return out;
+  const double sigma2 = sum_sq / (3.0 * n);
+  out.valid = true;
+  out.information = info;
+  out.offset_px = -grad / info;
+  out.variance_px2 = sigma2 / info;
+  return out;
+}
+
 // ---------------------------------------------------------------------------------------
 // RANSAC and refinement combined.
 

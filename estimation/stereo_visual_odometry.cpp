@@ -51,6 +51,8 @@ void StereoVisualOdometryOptions::Validate() const {
   option_check::Positive("max_acceleration_mps2", max_acceleration_mps2);
   option_check::Positive("max_angular_acceleration_dps2", max_angular_acceleration_dps2);
   option_check::Positive("max_rotation_prior_error_deg", max_rotation_prior_error_deg);
+  option_check::Positive("disparity_offset_prior_std_px", disparity_offset_prior_std_px);
+  option_check::Positive("disparity_offset_walk_px", disparity_offset_walk_px);
 }
 
 const char* ToString(VoStatus status) {
@@ -107,7 +109,9 @@ StereoVisualOdometry::StereoVisualOdometry(const geometry::StereoCamera& camera,
       motion_options_(MotionOptionsOf(options_)),
       tracker_(options_.tracker),
       matcher_(options_.matcher),
-      rng_(options_.seed) {}
+      rng_(options_.seed),
+      disparity_offset_var_px2_(options_.disparity_offset_prior_std_px *
+                                options_.disparity_offset_prior_std_px) {}
 
 void StereoVisualOdometry::Reset() {
   has_previous_ = false;
@@ -117,6 +121,9 @@ void StereoVisualOdometry::Reset() {
   last_T_curr_prev_ = Eigen::Isometry3d::Identity();
   last_motion_valid_ = false;
   rng_ = random::Generator(options_.seed);
+  disparity_offset_px_ = 0.0;
+  disparity_offset_var_px2_ =
+      options_.disparity_offset_prior_std_px * options_.disparity_offset_prior_std_px;
 }
 
 bool StereoVisualOdometry::UsablePoint(const Eigen::Vector3d& p) const {
@@ -199,10 +206,11 @@ void StereoVisualOdometry::Replenish(const cv::Mat& left, const cv::Mat& right,
         if (occupancy_.at<unsigned char>(y, x)) continue;
         const perception::StereoMatch m = matcher_.Match(left, right, p);
         if (!m.valid()) continue;
-        const Eigen::Vector3d p_cam = camera_.Triangulate(p.x, p.y, m.disparity_px);
+        const Eigen::Vector3d p_cam = TriangulateCorrected(p.x, p.y, m.disparity_px);
         if (!UsablePoint(p_cam)) continue;
         features->points.push_back(p);
         features->p_cam.push_back(p_cam);
+        features->disparity.push_back(m.disparity_px);
         occupy(p);
         if (++count >= per_cell) break;
       }
@@ -274,6 +282,8 @@ VoFrameResult StereoVisualOdometry::Process(const cv::Mat& left, const cv::Mat& 
   AcceptMotion(frame, &result);
   // 5. Carry the inliers to the next frame; fill the grid's empty cells.
   CarryInliers();
+  if (options_.estimate_disparity_offset) UpdateDisparityOffset();
+  result.disparity_offset_px = disparity_offset_px_;
   Replenish(left, right, &curr_);
   return Finish(frame, &result);
 }
@@ -321,10 +331,15 @@ int StereoVisualOdometry::MatchTrackedFeatures(const cv::Mat& left, const cv::Ma
     const cv::Point2f& q = new_points_[j];
     const float d = matches_[j].disparity_px;
     MotionCorrespondence c;
-    c.p_prev = prev_.p_cam[static_cast<std::size_t>(i)];
-    c.p_curr = camera_.Triangulate(q.x, q.y, d);
+    const auto k = static_cast<std::size_t>(i);
+    const cv::Point2f& q_prev = prev_.points[k];
+    const double d_prev = prev_.disparity[k];
+    c.p_prev = options_.estimate_disparity_offset ? TriangulateCorrected(q_prev.x, q_prev.y, d_prev)
+                                                  : prev_.p_cam[k];
+    c.p_curr = TriangulateCorrected(q.x, q.y, d);
     if (!UsablePoint(c.p_prev) || !UsablePoint(c.p_curr)) continue;
-    c.z_curr = Eigen::Vector3d(q.x, q.y, static_cast<double>(q.x) - static_cast<double>(d));
+    c.z_curr = Eigen::Vector3d(q.x, q.y, q.x - (d + disparity_offset_px_));
+    c.z_prev = Eigen::Vector3d(q_prev.x, q_prev.y, q_prev.x - (d_prev + disparity_offset_px_));
     correspondences_.push_back(c);
     new_points_[kept++] = q;  // compacted: new_points_[k] belongs to correspondence k
   }
@@ -445,11 +460,25 @@ void StereoVisualOdometry::AcceptMotion(const Frame& frame, VoFrameResult* resul
   last_motion_valid_ = true;
 }
 
+void StereoVisualOdometry::UpdateDisparityOffset() {
+  disparity_offset_var_px2_ +=
+      options_.disparity_offset_walk_px * options_.disparity_offset_walk_px;
+  const DisparityOffsetMeasurement m =
+      MeasureDisparityOffset(correspondences_, motion_.inlier_mask, camera_, motion_.T_curr_prev,
+                             options_.refinement.huber_px);
+  if (!m.valid) return;
+  const double gain = disparity_offset_var_px2_ / (disparity_offset_var_px2_ + m.variance_px2);
+  disparity_offset_px_ += gain * m.offset_px;
+  disparity_offset_var_px2_ *= 1.0 - gain;
+}
+
 void StereoVisualOdometry::CarryInliers() {
   for (std::size_t j = 0; j < correspondences_.size(); ++j) {
     if (!motion_.inlier_mask[j]) continue;
     curr_.points.push_back(new_points_[j]);
     curr_.p_cam.push_back(correspondences_[j].p_curr);
+    const Eigen::Vector3d& z = correspondences_[j].z_curr;
+    curr_.disparity.push_back(static_cast<float>(z.x() - z.z() - disparity_offset_px_));
   }
 }
 

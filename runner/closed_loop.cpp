@@ -153,6 +153,7 @@ estimation::LocalizationOptions LocalizationOptionsOf(const scenario::Scenario& 
   lo.vo.max_acceleration_mps2 = es.vo_max_acceleration_mps2;
   lo.vo.max_angular_acceleration_dps2 = es.vo_max_angular_acceleration_dps2;
   lo.vo.max_rotation_prior_error_deg = es.vo_max_gyro_rotation_error_deg;
+  lo.vo.estimate_disparity_offset = es.vo_estimate_disparity_offset;
   lo.ekf = es.ekf;
   return lo;
 }

@@ -35,7 +35,39 @@ struct MotionCorrespondence {
   Eigen::Vector3d p_curr = Eigen::Vector3d::Zero();  ///< same point from the current pair [m]
   /// Its observation in the current pair: (u_left, v, u_right) [px].
   Eigen::Vector3d z_curr = Eigen::Vector3d::Zero();
+  /// Its observation in the previous pair, from which p_prev was triangulated
+  /// (MeasureDisparityOffset reads it).
+  Eigen::Vector3d z_prev = Eigen::Vector3d::Zero();
 };
+
+/// A stereo rig's disparity offset δ [px] as one frame's motion shows it. A
+/// rectification that got a principal point or the cameras' relative yaw slightly wrong
+/// offsets every disparity by the same amount: the true disparity is d + δ for a measured
+/// d. A point's depth is then off by the factor (d + δ) / d — little for near points,
+/// much for far ones — so the translation's scale comes out wrong by a fraction that
+/// grows as the motion rests on far points (at speed, near points leave LK's reach), and
+/// points at different depths tell δ and the scale apart.
+///
+/// One Gauss–Newton step of the stereo reprojection error jointly over the motion and δ,
+/// at T_curr_prev and δ = 0 (the caller's correspondences already corrected by its
+/// current estimate: p_prev triangulated from z_prev, whose right coordinate is
+/// u_left − (d + δ_current), likewise z_curr), with the Huber weights of the refinement,
+/// marginalised to δ by the Schur complement: the step in δ and its variance (the
+/// residuals' mean square per coordinate over δ's marginal information). Not valid with
+/// fewer than kMinDisparityOffsetPoints points or no information on δ (no translation).
+struct DisparityOffsetMeasurement {
+  bool valid = false;
+  double offset_px = 0.0;     ///< the step in δ [px]
+  double variance_px2 = 0.0;  ///< its variance [px²]
+  /// δ's marginal information per unit residual variance [-]: how strongly the points
+  /// and the motion pin δ down (none without translation).
+  double information = 0.0;
+};
+inline constexpr int kMinDisparityOffsetPoints = 10;
+DisparityOffsetMeasurement MeasureDisparityOffset(
+    const std::vector<MotionCorrespondence>& correspondences,
+    const std::vector<unsigned char>& mask, const geometry::StereoCamera& camera,
+    const Eigen::Isometry3d& T_curr_prev, double huber_px);
 
 /// A 6-DoF increment δ = (ρ, φ) [m, rad] applied on the left:
 /// T ← (Exp(φ), ρ) ∘ T, i.e. R ← Exp(φ)·R, t ← Exp(φ)·t + ρ.

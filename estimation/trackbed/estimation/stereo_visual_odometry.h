@@ -25,7 +25,9 @@
 //      a consensus that breaks the dynamics bounds gives way to the consensus of the
 //      remaining correspondences, if that one keeps within them;
 //   5. keep the inliers as features and replenish the grid cells that have too few with
-//      new Harris corners (stereo-matched for the next frame).
+//      new Harris corners (stereo-matched for the next frame); with
+//      estimate_disparity_offset, update the rig's disparity offset from the inliers
+//      (stereo_motion_estimation.h, MeasureDisparityOffset).
 // Fewer than min_inliers inliers is a failure: no motion (identity), inliers = 0, a
 // status and a reason that say why (a run folder logs each frame's status,
 // docs/run_folder.md), and all features are detected afresh so that the next frame can
@@ -120,6 +122,16 @@ struct StereoVisualOdometryOptions {
   /// Start LK at the position the last motion predicts (constant velocity), rather than
   /// at the previous position: large image motions stay within LK's capture range.
   bool use_motion_prior = true;
+  /// Estimate the rig's disparity offset (MeasureDisparityOffset) and triangulate with
+  /// it: after every frame with a motion, its inliers' measurement updates a scalar
+  /// Kalman filter — the offset a constant of the rig that may wander slowly (a
+  /// calibration's error, a rig that warms up) — and every point is triangulated from
+  /// its measured disparity plus the estimate. Off: the disparities as measured.
+  bool estimate_disparity_offset = false;
+  /// The filter's prior spread [px] (rectification errors are fractions of a pixel) and
+  /// its random walk per frame [px], both > 0.
+  double disparity_offset_prior_std_px = 1.0;
+  double disparity_offset_walk_px = 0.005;
 
   /// Throws OptionError naming the first invalid field (dotted for nested structs,
   /// e.g. "tracker.window_px").
@@ -162,6 +174,8 @@ struct VoFrameResult {
   /// Whether RANSAC's consensus broke the dynamics bounds and the motion is the
   /// consensus of the other correspondences instead.
   bool dynamics_constrained = false;
+  /// The disparity offset estimated so far [px] (0 unless estimate_disparity_offset).
+  double disparity_offset_px = 0.0;
   bool ok() const { return status == VoStatus::kOk; }
 };
 
@@ -196,9 +210,11 @@ class StereoVisualOdometry {
   struct Features {
     std::vector<cv::Point2f> points;     // left image [px]
     std::vector<Eigen::Vector3d> p_cam;  // 3-D in that frame's left camera [m]
+    std::vector<float> disparity;        // as measured in that frame [px]
     void clear() {
       points.clear();
       p_cam.clear();
+      disparity.clear();
     }
     std::size_t size() const { return points.size(); }
   };
@@ -251,6 +267,12 @@ class StereoVisualOdometry {
   /// to `features`.
   void Replenish(const cv::Mat& left, const cv::Mat& right, Features* features);
   bool UsablePoint(const Eigen::Vector3d& p) const;
+  /// The point at left pixel (u, v) with measured disparity d, corrected by the offset.
+  Eigen::Vector3d TriangulateCorrected(double u, double v, double d) const {
+    return camera_.Triangulate(u, v, d + disparity_offset_px_);
+  }
+  /// Updates the disparity offset from this frame's inliers (estimate_disparity_offset).
+  void UpdateDisparityOffset();
 
   geometry::StereoCamera camera_;
   StereoVisualOdometryOptions options_;
@@ -269,6 +291,8 @@ class StereoVisualOdometry {
   Eigen::Isometry3d last_T_curr_prev_ = Eigen::Isometry3d::Identity();
   double last_motion_dt_s_ = 0.0;  // the interval last_T_curr_prev_ spans
   bool last_motion_valid_ = false;
+  double disparity_offset_px_ = 0.0;
+  double disparity_offset_var_px2_ = 0.0;
 
   // Per-frame scratch (kept to avoid allocations).
   std::vector<cv::Point2f> tracked_points_, new_points_;

@@ -250,6 +250,9 @@ struct EstimationSpec {
   /// consensus VO's rotation error stayed under 0.6 deg per frame in the outdoor runs of
   /// seeds 3 and 6.
   double vo_max_gyro_rotation_error_deg = 2.0;
+  /// Visual odometry estimates the rig's disparity offset and triangulates with it
+  /// (StereoVisualOdometryOptions::estimate_disparity_offset).
+  bool vo_estimate_disparity_offset = false;
   /// The EKF baseline's noise model (estimation/ekf_odometry.h), as `estimation.ekf.*`.
   estimation::EkfOdometryOptions ekf;
 
@@ -273,6 +276,7 @@ struct EstimationSpec {
     a->Visit("vo_max_acceleration_mps2", &vo_max_acceleration_mps2);
     a->Visit("vo_max_angular_acceleration_dps2", &vo_max_angular_acceleration_dps2);
     a->Visit("vo_max_gyro_rotation_error_deg", &vo_max_gyro_rotation_error_deg);
+    a->Visit("vo_estimate_disparity_offset", &vo_estimate_disparity_offset);
     a->Visit("ekf", &ekf);
   }
 };
