@@ -54,7 +54,7 @@ int Run(const std::string& scenario_path, const std::string& out_dir,
     return 0;
   }
   std::printf(
-      "%s: %.1f s simulated in %.2f s wall (%.0fx real time); distance %.2f m, encoder "
+      "%s: %.1f s simulated in %.2f s wall (%.3gx real time); distance %.2f m, encoder "
       "distance %.2f m (%+.2f %%); outputs in %s\n",
       m.stop_reason.c_str(), m.sim_time_s, m.wall_time_s, m.real_time_factor(), m.distance_m,
       m.encoder_distance_m,
