@@ -71,7 +71,11 @@ void EkfOdometry::PredictTo(double t_s) {
   F(kY, kVx) = s * dt;
   F(kY, kVy) = c * dt;
   F(kTheta, kOmega) = dt;
-  P_ = F * P_ * F.transpose();
+  // P ← F P Fᵀ, where F differs from the identity only in the pose rows.
+  const Mat P = P_;
+  for (const int r : {kX, kY, kTheta}) P_.row(r) = F.row(r).lazyProduct(P);
+  const Mat FP = P_;
+  for (const int r : {kX, kY, kTheta}) P_.col(r) = FP.lazyProduct(F.row(r).transpose());
   P_(kVx, kVx) += options_.accel_noise * options_.accel_noise * dt;
   P_(kVy, kVy) += options_.lateral_accel_noise * options_.lateral_accel_noise * dt;
   P_(kOmega, kOmega) += options_.yaw_accel_noise * options_.yaw_accel_noise * dt;
@@ -83,12 +87,18 @@ template <int M>
 void EkfOdometry::Update(const Eigen::Matrix<double, M, 1>& innovation,
                          const Eigen::Matrix<double, M, kN>& H,
                          const Eigen::Matrix<double, M, M>& R) {
-  const Eigen::Matrix<double, M, M> S = H * P_ * H.transpose() + R;
-  const Eigen::Matrix<double, kN, M> K = P_ * H.transpose() * S.inverse();
-  x_ += K * innovation;
+  // Coefficient-wise products: for a 10-state filter they are several times
+  // faster than Eigen's blocked matrix product, which it picks from 20 rows,
+  // columns and depth combined.
+  const Eigen::Matrix<double, kN, M> PHt = P_.lazyProduct(H.transpose());
+  const Eigen::Matrix<double, M, M> S = H.lazyProduct(PHt) + R;
+  const Eigen::Matrix<double, kN, M> K = PHt.lazyProduct(S.inverse());
+  x_ += K.lazyProduct(innovation);
   // Joseph form keeps P symmetric positive definite.
-  const Mat I_KH = Mat::Identity() - K * H;
-  P_ = I_KH * P_ * I_KH.transpose() + K * R * K.transpose();
+  const Mat I_KH = Mat::Identity() - K.lazyProduct(H);
+  const Mat A = I_KH.lazyProduct(P_);
+  const Eigen::Matrix<double, kN, M> KR = K.lazyProduct(R);
+  P_ = A.lazyProduct(I_KH.transpose()) + KR.lazyProduct(K.transpose());
 }
 
 void EkfOdometry::AddWheelTwist(double t_s, double forward_mps, double yaw_rate_radps) {

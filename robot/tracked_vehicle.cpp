@@ -408,6 +408,9 @@ void TrackedVehicle::ApplyHullContacts(const ChassisState& s) {
   const double c = 2.0 * std::sqrt(k * options_.mass_kg / 4.0);
   for (const Eigen::Vector3d& pb : hull_points_body_) {
     const Eigen::Vector3d p = s.T_world_body * pb;
+    // Above the ground, as the hull nearly always is: no contact (the full
+    // sample's normal and material are not needed).
+    if (p.z() >= world_->terrain().Height(p.x(), p.y())) continue;
     const sim::GroundSample g = world_->terrain().Sample(p.x(), p.y());
     const double depth = (g.height_m - p.z()) * g.normal.z();
     if (depth <= 0.0) continue;

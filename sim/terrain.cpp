@@ -194,7 +194,17 @@ void Terrain::Locate(double x, double y, int* i, int* j, double* u, double* v) c
   *v = gy - *j;
 }
 
-double Terrain::Height(double x, double y) const { return Sample(x, y).height_m; }
+double Terrain::Height(double x, double y) const {
+  // Sample's height, without its normal and material.
+  int i, j;
+  double u, v;
+  Locate(x, y, &i, &j, &u, &v);
+  const std::size_t base = static_cast<std::size_t>(j) * cols_ + i;
+  const double h00 = heights_[base], h10 = heights_[base + 1];
+  const double h01 = heights_[base + cols_], h11 = heights_[base + cols_ + 1];
+  if (u >= v) return h00 + u * (h10 - h00) + v * (h11 - h10);
+  return h00 + u * (h11 - h01) + v * (h01 - h00);
+}
 
 GroundSample Terrain::Sample(double x, double y) const {
   int i, j;

@@ -78,6 +78,11 @@ World::World(const WorldOptions& options, Terrain terrain, std::vector<StaticObj
   }
   BulletParts& b = *bullet_;
   b.dynamics.setGravity(btVector3(0, 0, -options_.gravity_mps2));
+  // The ground and the obstacles never move: marked asleep, their bounding
+  // boxes are set once below instead of every step (for every tree and bench
+  // that was 15 % of a physics-only outdoor step). Sleeping static objects
+  // still collide with the awake chassis.
+  b.dynamics.setForceUpdateAllAabbs(false);
 
   // Terrain. Bullet centres the shape on its AABB, so the body sits at the
   // centre of the grid and at the middle of the height range.
@@ -88,11 +93,15 @@ World::World(const WorldOptions& options, Terrain terrain, std::vector<StaticObj
   b.terrain_shape->setLocalScaling(btVector3(terrain_.cell_size_m(), terrain_.cell_size_m(), 1));
   auto ground = std::make_unique<btCollisionObject>();
   ground->setCollisionShape(b.terrain_shape.get());
+  ground->setActivationState(ISLAND_SLEEPING);
   ground->setWorldTransform(
       btTransform(btQuaternion::getIdentity(),
                   btVector3((terrain_.x_min() + terrain_.x_max()) / 2,
                             (terrain_.y_min() + terrain_.y_max()) / 2, (lo + hi) / 2)));
   b.dynamics.addCollisionObject(ground.get(), kGroupTerrain, kGroupChassis | kGroupOccluder);
+  // The box a step's update would give (the shape's, widened by the contact
+  // threshold), which the range sensor's rays are culled against.
+  b.dynamics.updateSingleAabb(ground.get());
   b.bodies.push_back(std::move(ground));
 
   for (const StaticObject& o : objects_) {
@@ -112,7 +121,9 @@ World::World(const WorldOptions& options, Terrain terrain, std::vector<StaticObj
         btTransform(btQuaternion(btVector3(0, 0, 1), o.yaw_rad),
                     btVector3(o.center_m.x(), o.center_m.y(), o.base_z_m + half_height)));
     body->setFriction(0.6);
+    body->setActivationState(ISLAND_SLEEPING);
     b.dynamics.addCollisionObject(body.get(), kGroupObstacle, kGroupChassis | kGroupOccluder);
+    b.dynamics.updateSingleAabb(body.get());
     b.shapes.push_back(std::move(shape));
     b.bodies.push_back(std::move(body));
   }
