@@ -8,8 +8,8 @@
 #include <stdexcept>
 
 #include "trackbed/common/option_error.h"
-#include "trackbed/common/random.h"
 #include "trackbed/common/split_mix.h"
+#include "trackbed/sim/lattice_noise.h"
 
 namespace trackbed::sim {
 
@@ -58,54 +58,13 @@ void TerrainOptions::Validate() const {
 
 namespace {
 
-// Smooth 2-D value noise in [-1, 1]: random values on a lattice of the given
-// wavelength, blended with the quintic fade of Perlin (2002) so the surface
-// has continuous slope.
-class ValueNoise {
- public:
-  ValueNoise(double x0, double y0, double width, double height, double wavelength,
-             random::Generator* rng)
-      : x0_(x0), y0_(y0), wavelength_(wavelength) {
-    nx_ = static_cast<int>(std::ceil(width / wavelength)) + 2;
-    ny_ = static_cast<int>(std::ceil(height / wavelength)) + 2;
-    values_.resize(static_cast<std::size_t>(nx_) * ny_);
-    for (double& v : values_) {
-      v = 2.0 * rng->Uniform() - 1.0;  // in [-1, 1), exactly
-    }
-  }
-
-  double operator()(double x, double y) const {
-    const double gx = (x - x0_) / wavelength_, gy = (y - y0_) / wavelength_;
-    const int i = std::clamp(static_cast<int>(std::floor(gx)), 0, nx_ - 2);
-    const int j = std::clamp(static_cast<int>(std::floor(gy)), 0, ny_ - 2);
-    const double u = Fade(gx - i), v = Fade(gy - j);
-    const double a = At(i, j), b = At(i + 1, j), c = At(i, j + 1), d = At(i + 1, j + 1);
-    return (a * (1 - u) + b * u) * (1 - v) + (c * (1 - u) + d * u) * v;
-  }
-
- private:
-  static double Fade(double t) {
-    t = std::clamp(t, 0.0, 1.0);
-    return t * t * t * (t * (t * 6 - 15) + 10);
-  }
-  double At(int i, int j) const { return values_[static_cast<std::size_t>(j) * nx_ + i]; }
-
-  double x0_, y0_, wavelength_;
-  int nx_ = 0, ny_ = 0;
-  std::vector<double> values_;
-};
-
-}  // namespace
-
-namespace {
-
 const TerrainOptions& Validated(const TerrainOptions& options) {
   options.Validate();
   return options;
 }
 
-// The soil variation's stream of the terrain seed (the heights use the seed itself).
-constexpr std::uint64_t kSoilVariationStream = 0x5011;
+// The streams of the terrain seed: the heights' four octaves, the soil variation.
+constexpr std::uint64_t kHeightStream = 0x4e16, kSoilVariationStream = 0x5011;
 
 }  // namespace
 
@@ -118,14 +77,15 @@ Terrain::Terrain(const TerrainOptions& options, std::uint64_t seed)
   cols_ = static_cast<int>(std::ceil((options.extent_m[2] - x0_) / cell_)) + 1;
   rows_ = static_cast<int>(std::ceil((options.extent_m[3] - y0_) / cell_)) + 1;
 
-  // Heights: two octaves for each of undulation and bumps, then the slope.
-  random::Generator rng(seed ^ 0x7e77a1ULL);
+  // Heights: two octaves for each of undulation and bumps, then the slope. Each
+  // octave is a lattice noise of the seed alone, so a point's height does not
+  // depend on the extent (nor, later, on which tile it is computed in).
+  const std::uint64_t height_seed = split_mix::Stream(seed, kHeightStream);
   const TerrainRoughness& r = options.roughness;
-  const double width = cell_ * (cols_ - 1), height = cell_ * (rows_ - 1);
-  ValueNoise hills(x0_, y0_, width, height, r.undulation_wavelength_m, &rng);
-  ValueNoise hills2(x0_, y0_, width, height, r.undulation_wavelength_m / 2.0, &rng);
-  ValueNoise bumps(x0_, y0_, width, height, r.bump_wavelength_m, &rng);
-  ValueNoise bumps2(x0_, y0_, width, height, r.bump_wavelength_m / 2.0, &rng);
+  const LatticeNoise hills(split_mix::Stream(height_seed, 0), r.undulation_wavelength_m);
+  const LatticeNoise hills2(split_mix::Stream(height_seed, 1), r.undulation_wavelength_m / 2.0);
+  const LatticeNoise bumps(split_mix::Stream(height_seed, 2), r.bump_wavelength_m);
+  const LatticeNoise bumps2(split_mix::Stream(height_seed, 3), r.bump_wavelength_m / 2.0);
   heights_.resize(static_cast<std::size_t>(cols_) * rows_);
   min_h_ = 1e300;
   max_h_ = -1e300;

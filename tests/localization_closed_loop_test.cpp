@@ -41,13 +41,17 @@ TEST(LocalizationClosedLoopTest, OnRoughTexturedGroundVisionBeatsWheelOdometryAn
     EXPECT_GT(m.localization.mean_inliers, 100.0);
     EXPECT_LT(Ate(m, "visual_odometry"), Ate(m, "wheel_odometry"));
     EXPECT_LT(Ate(m, "fused"), Ate(m, "wheel_odometry"));
-    // Slip is real here: the slip-aware odometry beats the no-slip baseline.
-    EXPECT_LT(Ate(m, "wheel_odometry"), Ate(m, "wheel_odometry_noslip"));
     // The EKF reads the same encoders with no slip model, but weighs them against the
-    // gyro and VO: an order of magnitude better with the truth given; with the IMU and
-    // the cameras as calibrated (seed 3) 7.4 times.
+    // gyro and VO: better than either odometry, and an order of magnitude better than
+    // the no-slip one with the truth given (seeds 1-6: 12-38 times; with the IMU and
+    // the cameras as calibrated 1.4-8.6 times). Whether the slip-aware odometry beats
+    // the no-slip one is not resolved in 20 s (seeds 1-6: in 2 under typical, 4 under
+    // ideal); over the whole route it is (the README's localization rows).
     EXPECT_LT(Ate(m, "ekf"), Ate(m, "wheel_odometry"));
-    EXPECT_LT((realism == "ideal" ? 10.0 : 5.0) * Ate(m, "ekf"), Ate(m, "wheel_odometry_noslip"));
+    EXPECT_LT(Ate(m, "ekf"), Ate(m, "wheel_odometry_noslip"));
+    if (realism == "ideal") {
+      EXPECT_LT(10.0 * Ate(m, "ekf"), Ate(m, "wheel_odometry_noslip"));
+    }
   }
 }
 

@@ -46,6 +46,21 @@ TEST(TerrainTest, SameSeedSameGroundOtherSeedOtherGround) {
   EXPECT_GT(a.max_height_m() - a.min_height_m(), 0.2);
 }
 
+TEST(TerrainTest, AGrownWorldKeepsItsHeights) {
+  // Heights are a function of the seed and the point alone: a world grown by
+  // whole cells on every side has the same ground where the two overlap.
+  const Terrain small(Rough(), 9);
+  TerrainOptions grown = Rough();
+  grown.extent_m = {-16, -9, 26, 14};
+  const Terrain big(grown, 9);
+  for (double x = -6.0; x <= 6.0; x += 0.37) {
+    for (double y = -4.0; y <= 4.0; y += 0.41) {
+      // The same point up to the rounding of its grid coordinates.
+      ASSERT_NEAR(small.Height(x, y), big.Height(x, y), 1e-12) << x << ", " << y;
+    }
+  }
+}
+
 TEST(TerrainTest, NormalIsTheGradientOfTheHeight) {
   const Terrain t(Rough(), 5);
   std::mt19937_64 rng(11);

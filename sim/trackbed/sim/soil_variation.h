@@ -53,8 +53,6 @@ class SoilVariation {
   SoilPoint Apply(const SoilPoint& base, double x_m, double y_m) const;
 
  private:
-  double Lattice(Field f, std::int64_t i, std::int64_t j) const;
-
   SoilVariationOptions options_;
   std::uint64_t seed_;
 };

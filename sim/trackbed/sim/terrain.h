@@ -5,7 +5,8 @@
 // exactly as Bullet's btHeightfieldTerrainShape triangulates it with
 // flipQuadEdges = true, so the track model, the physics and the renderer all
 // see the same surface. Roughness is seeded value noise: long-wave undulation
-// plus short-wave bumps plus a constant slope.
+// plus short-wave bumps plus a constant slope, each a lattice noise of the
+// seed alone (trackbed/sim/lattice_noise.h).
 #pragma once
 
 #include <cstdint>
