@@ -14,6 +14,7 @@
 #include <opencv2/core.hpp>
 
 #include "bench_args.h"
+#include "trackbed/common/split_mix.h"
 #include "trackbed/estimation/stereo_visual_odometry.h"
 #include "trackbed/perception/opencv_views.h"
 #include "trackbed/robot/stereo_rig.h"
@@ -57,11 +58,14 @@ int main(int argc, char** argv) {
             0.5 * (frame.T_world_left.translation() + frame.T_world_right.translation()).head<2>());
       };
       runner::RunClosedLoop(s, record);
-      const sim::World world(s.scene.world, sim::Terrain(s.scene.terrain, s.seed), s.scene.objects);
+      // The run's terrain and textures: the streams of its seed the closed loop uses.
+      const sim::World world(s.scene.world,
+                             sim::Terrain(s.scene.terrain, split_mix::Stream(s.seed, 0)),
+                             scenario::SceneObjects(s));
       const robot::StereoRig rig(s.robot.stereo);
-      sim::Renderer renderer(world, s.scene.appearance, s.scene.occluders, s.seed,
-                             s.robot.stereo.width_px, s.robot.stereo.height_px,
-                             s.robot.stereo.near_m, s.robot.stereo.far_m);
+      sim::Renderer renderer(world, s.scene.appearance, s.scene.occluders,
+                             split_mix::Stream(s.seed, 2), s.robot.stereo.width_px,
+                             s.robot.stereo.height_px, s.robot.stereo.near_m, s.robot.stereo.far_m);
       GrayImage l, r;
       const int n = std::min<int>(pairs, static_cast<int>(left.size()));
       // Rendering speed on n pairs spread along the whole route.

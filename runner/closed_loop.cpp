@@ -365,7 +365,7 @@ void ClosedLoop::Impl::BuildWorld() {
   world_ = std::make_unique<sim::World>(
       scenario_.scene.world,
       sim::Terrain(scenario_.scene.terrain, split_mix::Stream(scenario_.seed, 0)),
-      scenario_.scene.objects);
+      scenario::SceneObjects(scenario_));
   if (scenario_.CarriedOnPosePath(drive_source())) {
     auto carrier = std::make_unique<robot::PosePathCarrier>(
         PosePathOf(scenario_), &world_->terrain(), robot_.truth.vehicle,

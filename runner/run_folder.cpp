@@ -456,7 +456,7 @@ void RunFolderWriter::Close(const scenario::Scenario& scenario, const RunMetrics
     WriteNavigationMap(dir_ / "navigation.png",
                        scenario.scene.name + ": " + scenario.navigation.method + " (" +
                            metrics.navigation->status + ")",
-                       f.navigation_log, ObjectCircles(scenario.scene.objects),
+                       f.navigation_log, ObjectCircles(scenario::SceneObjects(scenario)),
                        scenario.navigation.safety_radius_m, scene.start, scene.goal,
                        metrics.navigation_subgoals);
   }

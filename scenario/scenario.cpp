@@ -15,6 +15,10 @@
 namespace trackbed::scenario {
 namespace {
 
+// The streams of the scene's seed that scatter objects, one per `scene.scatter`
+// entry from this one (the terrain's heights and soil use 0x4e16 and 0x5011).
+constexpr std::uint64_t kScatterStream = 0x5ca7;
+
 std::string Indexed(const std::string& name, std::size_t k) {
   return name + "[" + std::to_string(k) + "]";
 }
@@ -120,6 +124,13 @@ void SceneSpec::Validate() const {
   }
   for (std::size_t k = 0; k < objects.size(); ++k) {
     option_check::Nested(Indexed("objects", k), objects[k]);
+  }
+  for (std::size_t k = 0; k < scatter.size(); ++k) {
+    option_check::Nested(Indexed("scatter", k), scatter[k]);
+    for (std::size_t m = 0; m < scatter[k].materials.size(); ++m) {
+      KnownMaterial(Indexed("scatter", k) + "." + Indexed("materials", m), scatter[k].materials[m],
+                    terrain);
+    }
   }
   option_check::Nested("appearance", appearance);
   for (std::size_t k = 0; k < occluders.size(); ++k) {
@@ -361,6 +372,24 @@ Scenario WithBuiltinMaterialsResolved(Scenario scenario) {
     if (it != builtins.end()) terrain.materials.push_back(*it);
   }
   return scenario;
+}
+
+std::vector<sim::StaticObject> SceneObjects(const Scenario& scenario) {
+  std::vector<sim::StaticObject> objects = scenario.scene.objects;
+  std::vector<std::vector<Eigen::Vector2d>> clear = {
+      {Eigen::Vector2d(scenario.robot.start.x_m, scenario.robot.start.y_m)}};
+  std::vector<Eigen::Vector2d> route = scenario.drive.waypoints;
+  if (scenario.drive.closed && !route.empty()) route.push_back(route.front());
+  if (!route.empty()) clear.push_back(route);
+  // The scene's streams come from the terrain's seed (runner/closed_loop.cpp).
+  const std::uint64_t scene_seed = split_mix::Stream(scenario.seed, 0);
+  for (std::size_t k = 0; k < scenario.scene.scatter.size(); ++k) {
+    const std::vector<sim::StaticObject> more = sim::ScatterObjects(
+        scenario.scene.scatter[k], split_mix::Stream(scene_seed, kScatterStream + k),
+        scenario.scene.terrain, clear);
+    objects.insert(objects.end(), more.begin(), more.end());
+  }
+  return objects;
 }
 
 }  // namespace trackbed::scenario

@@ -66,22 +66,7 @@ double YawDegreesFor(double rad) {
 // ---------------------------------------------------------------------------
 // Scene objects.
 
-// Object types: the `type` key picks the shape and the default appearance.
-struct ObjectType {
-  const char* name;
-  StaticObject::Shape shape;
-  const char* appearance;
-};
-constexpr ObjectType kObjectTypes[] = {
-    {"wall", StaticObject::Shape::kBox, "plain_paint"},
-    {"box", StaticObject::Shape::kBox, "plain_paint"},
-    {"bench", StaticObject::Shape::kBox, "wood"},
-    {"cylinder", StaticObject::Shape::kCylinder, "plain_paint"},
-    {"tree", StaticObject::Shape::kCylinder, "bark"},
-    {"post", StaticObject::Shape::kCylinder, "metal"},
-    {"door", StaticObject::Shape::kBox, "door"},
-    {"poster", StaticObject::Shape::kBox, "poster"},
-};
+// The `type` key picks the shape and the default appearance (sim::ObjectTypes).
 // Doors and posters are dressing flat on a wall: drawn, not simulated, unless
 // the file says `collides: true`.
 bool DefaultCollides(const std::string& kind) { return kind != "door" && kind != "poster"; }
@@ -119,11 +104,10 @@ void ReadObject(const Node& node, const std::string& path, archive::Wording word
                 StaticObject* out) {
   archive::Reader map(node, path, wording);
   map.Visit("type", &out->kind);
-  const auto type = std::find_if(std::begin(kObjectTypes), std::end(kObjectTypes),
-                                 [&](const ObjectType& t) { return out->kind == t.name; });
-  if (type == std::end(kObjectTypes)) {
+  const sim::ObjectType* type = sim::FindObjectType(out->kind);
+  if (type == nullptr) {
     std::vector<std::string> names;
-    for (const ObjectType& t : kObjectTypes) names.emplace_back(t.name);
+    for (const sim::ObjectType& t : sim::ObjectTypes()) names.emplace_back(t.name);
     map.Fail("type",
              "must be one of " + archive::Reader::JoinNames(names) + " (got '" + out->kind + "')");
   }

@@ -56,6 +56,13 @@ void TerrainOptions::Validate() const {
   }
 }
 
+const std::string& TerrainOptions::MaterialNameAt(double x, double y) const {
+  for (auto it = regions.rbegin(); it != regions.rend(); ++it) {
+    if (it->Contains(x, y)) return it->material;
+  }
+  return default_material;
+}
+
 namespace {
 
 const TerrainOptions& Validated(const TerrainOptions& options) {

@@ -16,21 +16,6 @@ void WorldOptions::Validate() const {
   option_check::InRange("gravity_mps2", gravity_mps2, 0.0, 100.0);
 }
 
-void StaticObject::Validate() const {
-  if (shape == Shape::kBox) {
-    option_check::Positive("size_m[0]", size_m.x());
-    option_check::Positive("size_m[1]", size_m.y());
-    option_check::Positive("size_m[2]", size_m.z());
-  } else {
-    option_check::Positive("radius_m", radius_m);
-    option_check::Positive("height_m", height_m);
-  }
-  option_check::Finite("center_m[0]", center_m.x());
-  option_check::Finite("center_m[1]", center_m.y());
-  if (std::isinf(base_z_m)) throw OptionError("base_z_m", "must be finite (or absent)");
-  option_check::Finite("yaw_rad", yaw_rad);
-}
-
 namespace {
 
 // Lowest terrain height under an object's footprint (sampled on its bounding square).

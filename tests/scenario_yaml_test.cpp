@@ -197,6 +197,31 @@ TEST(ScenarioYamlTest, UnknownKeyNamesFileAndDottedKey) {
             "height_m, appearance, base_z_m, collides)");
 }
 
+TEST(ScenarioYamlTest, ScatterAddsObjectsClearOfTheRouteAndNamesBadKeys) {
+  const std::string scene =
+      "drive:\n  waypoints: [[-5, 0], [5, 0]]\n"
+      "scene:\n  terrain: {extent_m: [-20, -10, 20, 10], default_material: grass}\n"
+      "  objects: [{type: post, center: [9, 9]}]\n"
+      "  scatter: [{type: tree, density_per_100m2: 4, clearance_m: 1}]\n";
+  const Scenario s = ParseScenario(scene, "test.yaml");
+  const std::vector<sim::StaticObject> objects = SceneObjects(s);
+  ASSERT_GT(objects.size(), 25u);      // 800 m² at 4 per 100 m²: 32, less the route's strip
+  EXPECT_EQ(objects[0].kind, "post");  // the listed ones first
+  for (std::size_t k = 1; k < objects.size(); ++k) {
+    const Eigen::Vector2d c = objects[k].center_m;
+    const double from_route = std::abs(c.x()) <= 5.0 ? std::abs(c.y()) : 1e9;
+    EXPECT_GE(from_route, 1.0 + objects[k].radius_m) << c.transpose();
+  }
+  // The same seed scatters the same; the scenario written out reads back the same.
+  EXPECT_EQ(SceneObjects(ParseScenario(RoundTrip(scene), "again.yaml")).size(), objects.size());
+  EXPECT_EQ(ErrorOf(std::string(kMinimal) + "scene: {scatter: [{type: wall}]}"),
+            "test.yaml: scene.scatter[0].type: must be tree, post, cylinder, bench or box (got "
+            "'wall')");
+  EXPECT_EQ(ErrorOf(std::string(kMinimal) + "scene: {scatter: [{materials: [lava]}]}")
+                .rfind("test.yaml: scene.scatter[0].materials[0]: ", 0),
+            0u);
+}
+
 // YAML is UTF-8 text: a name with other bytes is refused where it is read, naming its
 // key, in the file and in `--set` alike (it would otherwise reach the
 // run folder's scenario.yaml as invalid text).

@@ -22,6 +22,7 @@
 #include "trackbed/robot/range_sensor.h"
 #include "trackbed/robot/stereo_rig.h"
 #include "trackbed/robot/tracked_vehicle.h"
+#include "trackbed/sim/object_scatter.h"
 #include "trackbed/sim/occluder.h"
 #include "trackbed/sim/renderer.h"
 #include "trackbed/sim/static_object.h"
@@ -51,6 +52,9 @@ struct SceneSpec {
   sim::WorldOptions world;
   sim::TerrainOptions terrain;
   std::vector<sim::StaticObject> objects;
+  /// Objects scattered by density from the seed (sim/object_scatter.h), added to
+  /// `objects`; the drive's route and the start are kept clear of them.
+  std::vector<sim::ObjectScatter> scatter;
   /// Light and visual dressing for the cameras.
   sim::SceneAppearance appearance;
   /// People walking scripted paths (seen by the cameras).
@@ -66,6 +70,7 @@ struct SceneSpec {
     a->Visit("world", &world);
     a->Visit("terrain", &terrain);
     a->Visit("objects", &objects);  // a file form of their own: Codec<sim::StaticObject> above
+    a->Visit("scatter", &scatter);
     a->Visit("appearance", &appearance);
     a->Visit("occluders", &occluders);
   }
@@ -517,5 +522,10 @@ Scenario WithBuiltinMaterialsResolved(Scenario scenario);
 /// profile's where the file left it out) and as_built_seed set, so that the run
 /// folder's scenario.yaml reproduces the robot after the profiles change.
 Scenario WithRealismResolved(Scenario scenario);
+
+/// The scene's objects: `scene.objects`, then each `scene.scatter` entry's,
+/// scattered with its own stream of the run's seed, clear of the drive's
+/// waypoints and the start.
+std::vector<sim::StaticObject> SceneObjects(const Scenario& scenario);
 
 }  // namespace trackbed::scenario

@@ -3,6 +3,7 @@
 
 #include <limits>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -36,5 +37,16 @@ struct StaticObject {
 
   void Validate() const;
 };
+
+/// A type of scene object as scene files name it: its shape and default appearance.
+struct ObjectType {
+  const char* name;
+  StaticObject::Shape shape;
+  const char* appearance;
+};
+/// Every type: wall, box, bench, cylinder, tree, post, door, poster.
+const std::vector<ObjectType>& ObjectTypes();
+/// The type called `name`, or null.
+const ObjectType* FindObjectType(const std::string& name);
 
 }  // namespace trackbed::sim

@@ -99,6 +99,9 @@ struct TerrainOptions {
   SoilVariationOptions soil_variation;
 
   void Validate() const;
+  /// Name of the material at (x, y): the last region containing the point, else
+  /// the default (Terrain gives a cell the material at its centre).
+  const std::string& MaterialNameAt(double x, double y) const;
 
   /// The scenario file's keys for these fields (docs/scenario_format.md), read and
   /// written by the config archive (trackbed/common/archive.h).

@@ -1,0 +1,47 @@
+// Static scene objects (see static_object.h).
+#include "trackbed/sim/static_object.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "trackbed/common/option_error.h"
+
+namespace trackbed::sim {
+
+void StaticObject::Validate() const {
+  if (shape == Shape::kBox) {
+    option_check::Positive("size_m[0]", size_m.x());
+    option_check::Positive("size_m[1]", size_m.y());
+    option_check::Positive("size_m[2]", size_m.z());
+  } else {
+    option_check::Positive("radius_m", radius_m);
+    option_check::Positive("height_m", height_m);
+  }
+  option_check::Finite("center_m[0]", center_m.x());
+  option_check::Finite("center_m[1]", center_m.y());
+  if (std::isinf(base_z_m)) throw OptionError("base_z_m", "must be finite (or absent)");
+  option_check::Finite("yaw_rad", yaw_rad);
+}
+
+const std::vector<ObjectType>& ObjectTypes() {
+  static const std::vector<ObjectType> types = {
+      {"wall", StaticObject::Shape::kBox, "plain_paint"},
+      {"box", StaticObject::Shape::kBox, "plain_paint"},
+      {"bench", StaticObject::Shape::kBox, "wood"},
+      {"cylinder", StaticObject::Shape::kCylinder, "plain_paint"},
+      {"tree", StaticObject::Shape::kCylinder, "bark"},
+      {"post", StaticObject::Shape::kCylinder, "metal"},
+      {"door", StaticObject::Shape::kBox, "door"},
+      {"poster", StaticObject::Shape::kBox, "poster"},
+  };
+  return types;
+}
+
+const ObjectType* FindObjectType(const std::string& name) {
+  const std::vector<ObjectType>& types = ObjectTypes();
+  const auto it =
+      std::find_if(types.begin(), types.end(), [&](const ObjectType& t) { return name == t.name; });
+  return it == types.end() ? nullptr : &*it;
+}
+
+}  // namespace trackbed::sim
