@@ -152,46 +152,39 @@ Terrain::Terrain(const TerrainOptions& options, std::uint64_t seed)
   }
 }
 
-void Terrain::Locate(double x, double y, int* i, int* j, double* u, double* v) const {
+Terrain::Facet Terrain::FacetAt(double x, double y) const {
   const double gx = std::clamp((x - x0_) / cell_, 0.0, cols_ - 1.0);
   const double gy = std::clamp((y - y0_) / cell_, 0.0, rows_ - 1.0);
-  *i = std::min(static_cast<int>(gx), cols_ - 2);
-  *j = std::min(static_cast<int>(gy), rows_ - 2);
-  *u = gx - *i;
-  *v = gy - *j;
+  Facet f;
+  f.i = std::min(static_cast<int>(gx), cols_ - 2);
+  f.j = std::min(static_cast<int>(gy), rows_ - 2);
+  f.u = gx - f.i;
+  f.v = gy - f.j;
+  const std::size_t base = static_cast<std::size_t>(f.j) * cols_ + f.i;
+  const double h00 = heights_[base], h10 = heights_[base + 1];
+  const double h01 = heights_[base + cols_], h11 = heights_[base + cols_ + 1];
+  f.h00 = h00;
+  if (f.u >= f.v) {  // triangle (i,j), (i+1,j), (i+1,j+1)
+    f.dzdu = h10 - h00;
+    f.dzdv = h11 - h10;
+  } else {  // triangle (i,j), (i,j+1), (i+1,j+1)
+    f.dzdu = h11 - h01;
+    f.dzdv = h01 - h00;
+  }
+  return f;
 }
 
 double Terrain::Height(double x, double y) const {
-  // Sample's height, without its normal and material.
-  int i, j;
-  double u, v;
-  Locate(x, y, &i, &j, &u, &v);
-  const std::size_t base = static_cast<std::size_t>(j) * cols_ + i;
-  const double h00 = heights_[base], h10 = heights_[base + 1];
-  const double h01 = heights_[base + cols_], h11 = heights_[base + cols_ + 1];
-  if (u >= v) return h00 + u * (h10 - h00) + v * (h11 - h10);
-  return h00 + u * (h11 - h01) + v * (h01 - h00);
+  const Facet f = FacetAt(x, y);
+  return f.h00 + f.u * f.dzdu + f.v * f.dzdv;
 }
 
 GroundSample Terrain::Sample(double x, double y) const {
-  int i, j;
-  double u, v;
-  Locate(x, y, &i, &j, &u, &v);
-  const std::size_t base = static_cast<std::size_t>(j) * cols_ + i;
-  const double h00 = heights_[base], h10 = heights_[base + 1];
-  const double h01 = heights_[base + cols_], h11 = heights_[base + cols_ + 1];
+  const Facet f = FacetAt(x, y);
   GroundSample s;
-  double dzdu, dzdv;
-  if (u >= v) {  // triangle (i,j), (i+1,j), (i+1,j+1)
-    dzdu = h10 - h00;
-    dzdv = h11 - h10;
-  } else {  // triangle (i,j), (i,j+1), (i+1,j+1)
-    dzdu = h11 - h01;
-    dzdv = h01 - h00;
-  }
-  s.height_m = h00 + u * dzdu + v * dzdv;
-  s.normal = Eigen::Vector3d(-dzdu / cell_, -dzdv / cell_, 1.0).normalized();
-  s.material = &materials_[cell_material_[static_cast<std::size_t>(j) * (cols_ - 1) + i]];
+  s.height_m = f.h00 + f.u * f.dzdu + f.v * f.dzdv;
+  s.normal = Eigen::Vector3d(-f.dzdu / cell_, -f.dzdv / cell_, 1.0).normalized();
+  s.material = &materials_[cell_material_[static_cast<std::size_t>(f.j) * (cols_ - 1) + f.i]];
   return s;
 }
 

@@ -157,7 +157,14 @@ class Terrain {
   const std::vector<std::uint8_t>& cell_materials() const { return cell_material_; }
 
  private:
-  void Locate(double x, double y, int* i, int* j, double* u, double* v) const;
+  // The triangle under (x, y): its cell (i, j), the point's place in the cell
+  // (u, v in [0, 1]), the cell corner's height and the triangle's rise per cell
+  // along x and y.
+  struct Facet {
+    int i, j;
+    double u, v, h00, dzdu, dzdv;
+  };
+  Facet FacetAt(double x, double y) const;
 
   double x0_, y0_, cell_;
   int cols_, rows_;
