@@ -299,7 +299,9 @@ std::string MetricsJson(const RunMetrics& m) {
                          {"recovery_rate", finite_or_null(t.recovery_rate)},
                          {"recovery_rate_pooled", finite_or_null(t.recovery_rate_pooled)},
                          {"milestones", t.milestones},
-                         {"teach_images", t.teach_images}};
+                         {"teach_images", t.teach_images},
+                         {"map_size_mb", t.map_size_mb},
+                         {"map_mb_per_100m", finite_or_null(t.map_mb_per_100m)}};
     nlohmann::ordered_json places = nlohmann::ordered_json::array();
     for (const TeachRepeatMetrics::Place& p : t.places) {
       places.push_back({{"start_s", p.start_s},

@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -31,6 +33,15 @@
 namespace trackbed::runner {
 namespace fs = std::filesystem;
 namespace {
+
+// Bytes of the regular files under `folder`, recursively.
+std::uintmax_t FolderBytes(const std::filesystem::path& folder) {
+  std::uintmax_t bytes = 0;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(folder)) {
+    if (entry.is_regular_file()) bytes += entry.file_size();
+  }
+  return bytes;
+}
 
 // The teach pass: the scenario's own drive, images into the builder with the no-slip
 // wheel odometry at each image (metadata; 3D teaching scales milestones by it).
@@ -233,6 +244,8 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
     taught = TaughtPathBeside(tr.map);
   }
 
+  const double map_bytes = static_cast<double>(
+      FolderBytes(tr.map.empty() ? dir / "teach_map" : std::filesystem::path(tr.map)));
   const scenario::Scenario repeat = RepeatScenario(scenario);
 
   teach_repeat::FunnelLaneOptions o2;
@@ -292,6 +305,7 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
   t.status = m.stop_reason.rfind("repeat ", 0) == 0 ? m.stop_reason.substr(7) : m.stop_reason;
   t.milestones = milestones;
   t.teach_images = teach_images;
+  t.map_size_mb = map_bytes / 1e6;
   t.features_lost = m.repeat_features_lost;
   t.features_recovered = m.repeat_features_recovered;
   ScorePlaces(tr, counts, &t);
@@ -307,6 +321,8 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
     t.lateral_start_m = p.lateral_start_m;
     t.lateral_end_rms_m = p.lateral_end_rms_m;
     t.taught_length_m = p.taught_length_m;
+    t.map_mb_per_100m = p.taught_length_m > 0.0 ? t.map_size_mb * 100.0 / p.taught_length_m
+                                                : std::numeric_limits<double>::quiet_NaN();
     WriteTrajectoryPlot(
         dir / "teach_repeat.png",
         scenario.scene.name + ": teach & repeat (" + tr.method + ", " + t.status + ")",

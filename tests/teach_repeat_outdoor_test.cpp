@@ -35,6 +35,9 @@ TEST(TeachRepeatOutdoorTest, OnRoughGroundWithSlipTheRepeatStaysOnTheRoute) {
   EXPECT_EQ(t.status, "finished");
   EXPECT_TRUE(t.completed);
   EXPECT_GT(t.taught_length_m, 5.0);
+  // The map's size on disk, as a user sizes a long route's map by it.
+  EXPECT_GT(t.map_size_mb, 0.01 * t.milestones);  // a key image per milestone at least
+  EXPECT_NEAR(t.map_mb_per_100m, t.map_size_mb * 100.0 / t.taught_length_m, 1e-12);
   EXPECT_LT(t.lateral_rms_m, 0.15);
   EXPECT_LT(t.lateral_max_m, 0.25);
   EXPECT_LT(t.end_point_error_m, 0.25);
