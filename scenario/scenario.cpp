@@ -127,6 +127,10 @@ void SceneSpec::Validate() const {
   }
   for (std::size_t k = 0; k < scatter.size(); ++k) {
     option_check::Nested(Indexed("scatter", k), scatter[k]);
+    if (scatter[k].Candidates(terrain) > sim::ObjectScatter::kMaxCandidates) {
+      throw OptionError(Indexed("scatter", k) + ".density_per_100m2",
+                        "gives more than a million objects over the region");
+    }
     for (std::size_t m = 0; m < scatter[k].materials.size(); ++m) {
       KnownMaterial(Indexed("scatter", k) + "." + Indexed("materials", m), scatter[k].materials[m],
                     terrain);

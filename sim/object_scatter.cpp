@@ -94,12 +94,24 @@ void ObjectScatter::Validate() const {
   }
 }
 
+Eigen::Vector4d ObjectScatter::RegionOn(const TerrainOptions& terrain) const {
+  return region_m.isZero() ? terrain.extent_m : region_m;
+}
+
+double ObjectScatter::Candidates(const TerrainOptions& terrain) const {
+  const Eigen::Vector4d r = RegionOn(terrain);
+  return (r[2] - r[0]) * (r[3] - r[1]) * density_per_100m2 / 100.0;
+}
+
 std::vector<StaticObject> ScatterObjects(
     const ObjectScatter& scatter, std::uint64_t stream_seed, const TerrainOptions& terrain,
     const std::vector<std::vector<Eigen::Vector2d>>& extra_clear) {
   scatter.Validate();
   const ObjectType& type = *FindObjectType(scatter.type);
-  const Eigen::Vector4d r = scatter.region_m.isZero() ? terrain.extent_m : scatter.region_m;
+  if (scatter.Candidates(terrain) > ObjectScatter::kMaxCandidates) {
+    throw OptionError("density_per_100m2", "gives more than a million objects over the region");
+  }
+  const Eigen::Vector4d r = scatter.RegionOn(terrain);
   std::vector<std::vector<Eigen::Vector2d>> clear = scatter.keep_clear;
   clear.insert(clear.end(), extra_clear.begin(), extra_clear.end());
   const double cell = 10.0 / std::sqrt(scatter.density_per_100m2);

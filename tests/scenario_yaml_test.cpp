@@ -217,6 +217,11 @@ TEST(ScenarioYamlTest, ScatterAddsObjectsClearOfTheRouteAndNamesBadKeys) {
   EXPECT_EQ(ErrorOf(std::string(kMinimal) + "scene: {scatter: [{type: wall}]}"),
             "test.yaml: scene.scatter[0].type: must be tree, post, cylinder, bench or box (got "
             "'wall')");
+  EXPECT_EQ(ErrorOf(std::string(kMinimal) +
+                    "scene: {terrain: {cell_size_m: 2, extent_m: [0, 0, 4000, 4000]}, "
+                    "scatter: [{density_per_100m2: 10}]}"),
+            "test.yaml: scene.scatter[0].density_per_100m2: gives more than a million objects "
+            "over the region");
   EXPECT_EQ(ErrorOf(std::string(kMinimal) + "scene: {scatter: [{materials: [lava]}]}")
                 .rfind("test.yaml: scene.scatter[0].materials[0]: ", 0),
             0u);

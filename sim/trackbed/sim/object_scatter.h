@@ -45,6 +45,12 @@ struct ObjectScatter {
   double clearance_m = 1.0;
 
   void Validate() const;
+  /// The region scattered over `terrain` (its extent when `region_m` is all zero).
+  Eigen::Vector4d RegionOn(const TerrainOptions& terrain) const;
+  /// Lattice cells, one candidate each, over `terrain`: Validate's bound on it is
+  /// checked with the terrain by the scene (at most kMaxCandidates).
+  double Candidates(const TerrainOptions& terrain) const;
+  static constexpr double kMaxCandidates = 1e6;
 
   /// The scenario file's keys for these fields (docs/scenario_format.md), read and
   /// written by the config archive (trackbed/common/archive.h).
