@@ -75,7 +75,6 @@ void RunVo(const VoArguments& args) {
   estimation::StereoVisualOdometryOptions options;
   options.estimate_disparity_offset = args.estimate_disparity_offset;
   estimation::StereoVisualOdometry vo(sequence.calibration(), options);
-  double offset_px = 0.0;
   estimation::Trajectory trajectory;
   trajectory.reserve(sequence.size());
   const fs::path csv_path = out_dir / "vo_frames.csv";
@@ -93,7 +92,6 @@ void RunVo(const VoArguments& args) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     process_s += seconds;
     if (r.ok()) ++ok_frames;
-    offset_px = r.disparity_offset_px;
     trajectory.push_back({t_s, r.T_world_cam});
     char line[160];
     std::snprintf(line, sizeof(line), "%.6f,%s,%d,%d,%.3f,%d,%.4f\n", t_s,
@@ -120,7 +118,8 @@ void RunVo(const VoArguments& args) {
   std::printf("frames: %zu (%d with motion, %zu failed)\n", n, ok_frames,
               n - 1 - static_cast<std::size_t>(ok_frames));
   if (args.estimate_disparity_offset) {
-    std::printf("disparity offset: %.3f px (estimated at the last frame)\n", offset_px);
+    std::printf("disparity offset: %.3f px (estimated at the last frame)\n",
+                vo.disparity_offset_px());
   }
   std::printf("speed: %.1f frames/s (%.2f ms per frame, Process only)\n",
               process_s > 0.0 ? static_cast<double>(n) / process_s : 0.0,

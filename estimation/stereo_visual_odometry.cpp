@@ -110,8 +110,7 @@ StereoVisualOdometry::StereoVisualOdometry(const geometry::StereoCamera& camera,
       tracker_(options_.tracker),
       matcher_(options_.matcher),
       rng_(options_.seed),
-      disparity_offset_var_px2_(options_.disparity_offset_prior_std_px *
-                                options_.disparity_offset_prior_std_px) {}
+      disparity_offset_var_px2_(PriorOffsetVariance()) {}
 
 void StereoVisualOdometry::Reset() {
   has_previous_ = false;
@@ -122,8 +121,7 @@ void StereoVisualOdometry::Reset() {
   last_motion_valid_ = false;
   rng_ = random::Generator(options_.seed);
   disparity_offset_px_ = 0.0;
-  disparity_offset_var_px2_ =
-      options_.disparity_offset_prior_std_px * options_.disparity_offset_prior_std_px;
+  disparity_offset_var_px2_ = PriorOffsetVariance();
 }
 
 bool StereoVisualOdometry::UsablePoint(const Eigen::Vector3d& p) const {
@@ -283,7 +281,6 @@ VoFrameResult StereoVisualOdometry::Process(const cv::Mat& left, const cv::Mat& 
   // 5. Carry the inliers to the next frame; fill the grid's empty cells.
   CarryInliers();
   if (options_.estimate_disparity_offset) UpdateDisparityOffset();
-  result.disparity_offset_px = disparity_offset_px_;
   Replenish(left, right, &curr_);
   return Finish(frame, &result);
 }
@@ -512,6 +509,7 @@ VoFrameResult StereoVisualOdometry::Finish(const Frame& frame, VoFrameResult* re
   image_size_ = frame.left.size();
   result->T_world_cam = T_world_cam_;
   result->features = static_cast<int>(prev_.size());
+  result->disparity_offset_px = disparity_offset_px_;  // failed frames keep the estimate
   return *result;
 }
 

@@ -56,11 +56,16 @@ void TerrainOptions::Validate() const {
   }
 }
 
-const std::string& TerrainOptions::MaterialNameAt(double x, double y) const {
-  for (auto it = regions.rbegin(); it != regions.rend(); ++it) {
-    if (it->Contains(x, y)) return it->material;
+int TerrainOptions::RegionAt(double x, double y) const {
+  for (int k = static_cast<int>(regions.size()) - 1; k >= 0; --k) {
+    if (regions[static_cast<std::size_t>(k)].Contains(x, y)) return k;
   }
-  return default_material;
+  return -1;
+}
+
+const std::string& TerrainOptions::MaterialNameAt(double x, double y) const {
+  const int k = RegionAt(x, y);
+  return k < 0 ? default_material : regions[static_cast<std::size_t>(k)].material;
 }
 
 namespace {
@@ -142,11 +147,10 @@ Terrain::Terrain(const TerrainOptions& options, std::uint64_t seed)
   cell_material_.assign(static_cast<std::size_t>(cols_ - 1) * (rows_ - 1), fallback);
   for (int j = 0; j + 1 < rows_; ++j) {
     for (int i = 0; i + 1 < cols_; ++i) {
-      const double x = x0_ + (i + 0.5) * cell_, y = y0_ + (j + 0.5) * cell_;
-      for (std::size_t k = 0; k < options.regions.size(); ++k) {
-        if (options.regions[k].Contains(x, y)) {
-          cell_material_[static_cast<std::size_t>(j) * (cols_ - 1) + i] = region_material[k];
-        }
+      const int k = options.RegionAt(x0_ + (i + 0.5) * cell_, y0_ + (j + 0.5) * cell_);
+      if (k >= 0) {
+        cell_material_[static_cast<std::size_t>(j) * (cols_ - 1) + i] =
+            region_material[static_cast<std::size_t>(k)];
       }
     }
   }

@@ -416,12 +416,6 @@ TEST(StereoMotionEstimationTest, BadArgumentsThrow) {
   EXPECT_EQ(field(o), "refinement.huber_px");
 }
 
-}  // namespace
-}  // namespace trackbed::estimation
-
-namespace trackbed::estimation {
-namespace {
-
 // A point's observations (u_left, v, u_right) before and after a motion.
 struct Observed {
   Eigen::Vector3d z0, z1;

@@ -174,7 +174,8 @@ struct VoFrameResult {
   /// Whether RANSAC's consensus broke the dynamics bounds and the motion is the
   /// consensus of the other correspondences instead.
   bool dynamics_constrained = false;
-  /// The disparity offset estimated so far [px] (0 unless estimate_disparity_offset).
+  /// The disparity offset estimated so far [px], on every frame, failed ones too (0
+  /// unless estimate_disparity_offset).
   double disparity_offset_px = 0.0;
   bool ok() const { return status == VoStatus::kOk; }
 };
@@ -205,6 +206,8 @@ class StereoVisualOdometry {
   const geometry::StereoCamera& camera() const { return camera_; }
   const StereoVisualOdometryOptions& options() const { return options_; }
   const Eigen::Isometry3d& T_world_cam() const { return T_world_cam_; }
+  /// The rig's disparity offset estimated so far [px] (0 unless estimate_disparity_offset).
+  double disparity_offset_px() const { return disparity_offset_px_; }
 
  private:
   struct Features {
@@ -273,6 +276,9 @@ class StereoVisualOdometry {
   }
   /// Updates the disparity offset from this frame's inliers (estimate_disparity_offset).
   void UpdateDisparityOffset();
+  double PriorOffsetVariance() const {
+    return options_.disparity_offset_prior_std_px * options_.disparity_offset_prior_std_px;
+  }
 
   geometry::StereoCamera camera_;
   StereoVisualOdometryOptions options_;

@@ -99,8 +99,10 @@ struct TerrainOptions {
   SoilVariationOptions soil_variation;
 
   void Validate() const;
-  /// Name of the material at (x, y): the last region containing the point, else
-  /// the default (Terrain gives a cell the material at its centre).
+  /// Index of the region that covers (x, y): the last one containing it; -1 for none.
+  int RegionAt(double x, double y) const;
+  /// Name of the material at (x, y): RegionAt's, else the default (Terrain gives a
+  /// cell the material at its centre).
   const std::string& MaterialNameAt(double x, double y) const;
 
   /// The scenario file's keys for these fields (docs/scenario_format.md), read and
