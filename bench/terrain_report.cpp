@@ -16,6 +16,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -40,12 +41,31 @@ const std::array<cv::Vec3d, 8> kPalette = {{{0.8, 0.8, 0.8},
                                             {0.3, 0.7, 0.35},
                                             {0.45, 0.85, 0.5}}};
 
+// The lowest and highest grid heights.
+std::pair<double, double> HeightRange(const Terrain& t) {
+  double lo = 1e300, hi = -1e300;
+  for (int j = 0; j < t.rows(); ++j) {
+    for (int i = 0; i < t.cols(); ++i) {
+      lo = std::min(lo, t.VertexHeight(i, j));
+      hi = std::max(hi, t.VertexHeight(i, j));
+    }
+  }
+  return {lo, hi};
+}
+
 void PrintStatistics(const Terrain& t) {
-  const std::vector<double>& h = t.heights();
   double sum = 0.0, sum_sq = 0.0;
-  for (const double z : h) sum += z;
-  const double mean = sum / static_cast<double>(h.size());
-  for (const double z : h) sum_sq += (z - mean) * (z - mean);
+  const double n = static_cast<double>(t.cols()) * t.rows();
+  for (int j = 0; j < t.rows(); ++j) {
+    for (int i = 0; i < t.cols(); ++i) sum += t.VertexHeight(i, j);
+  }
+  const double mean = sum / n;
+  for (int j = 0; j < t.rows(); ++j) {
+    for (int i = 0; i < t.cols(); ++i) {
+      const double d = t.VertexHeight(i, j) - mean;
+      sum_sq += d * d;
+    }
+  }
   std::vector<double> slopes;
   std::map<int, long> cells_per_material;
   const double c = t.cell_size_m();
@@ -54,7 +74,7 @@ void PrintStatistics(const Terrain& t) {
       const double x = t.x_min() + (i + 0.5) * c, y = t.y_min() + (j + 0.5) * c;
       const double nz = t.Sample(x, y).normal.z();
       slopes.push_back(std::sqrt(std::max(1.0 - nz * nz, 0.0)) / nz);  // tan of the tilt
-      ++cells_per_material[t.cell_materials()[static_cast<std::size_t>(j) * (t.cols() - 1) + i]];
+      ++cells_per_material[t.CellMaterial(i, j)];
     }
   }
   double slope_sq = 0.0;
@@ -62,8 +82,9 @@ void PrintStatistics(const Terrain& t) {
   std::sort(slopes.begin(), slopes.end());
   std::printf("extent      [%.2f, %.2f] x [%.2f, %.2f] m, %d x %d grid points of %.3f m\n",
               t.x_min(), t.x_max(), t.y_min(), t.y_max(), t.cols(), t.rows(), c);
-  std::printf("height      min %.4f  max %.4f  mean %.4f  std %.4f m\n", t.min_height_m(),
-              t.max_height_m(), mean, std::sqrt(sum_sq / static_cast<double>(h.size())));
+  const auto [lo, hi] = HeightRange(t);
+  std::printf("height      min %.4f  max %.4f  mean %.4f  std %.4f m\n", lo, hi, mean,
+              std::sqrt(sum_sq / n));
   std::printf("slope       rms %.4f  p95 %.4f  max %.4f (tan of the tilt)\n",
               std::sqrt(slope_sq / static_cast<double>(slopes.size())),
               slopes[slopes.size() * 95 / 100], slopes.back());
@@ -77,7 +98,8 @@ void PrintStatistics(const Terrain& t) {
 cv::Mat Relief(const Terrain& t) {
   cv::Mat image(t.rows(), t.cols(), CV_8UC3);
   const double c = t.cell_size_m();
-  const double span = std::max(t.max_height_m() - t.min_height_m(), 1e-9);
+  const auto [lo, hi] = HeightRange(t);
+  const double span = std::max(hi - lo, 1e-9);
   for (int j = 0; j < t.rows(); ++j) {
     for (int i = 0; i < t.cols(); ++i) {
       const double x = t.x_min() + std::min(i + 0.5, t.cols() - 1.0) * c;
@@ -86,7 +108,7 @@ cv::Mat Relief(const Terrain& t) {
       // Lambert from the north-west, 45° up, with half the light ambient.
       const double light =
           0.5 + 0.5 * std::max(0.0, g.normal.dot(Eigen::Vector3d(-0.5, 0.5, 0.7071)));
-      const double height = (g.height_m - t.min_height_m()) / span;
+      const double height = (g.height_m - lo) / span;
       const auto material = static_cast<std::size_t>(g.material - t.materials().data());
       const cv::Vec3d& colour = kPalette[material % kPalette.size()];
       cv::Vec3b& px = image.at<cv::Vec3b>(t.rows() - 1 - j, i);

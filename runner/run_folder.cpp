@@ -277,7 +277,8 @@ std::string MetricsJson(const RunMetrics& m) {
                  {"physics_s", m.physics_wall_s},
                  {"control_s", m.control_wall_s},
                  {"sensing_s", m.sensing_wall_s},
-                 {"io_s", m.io_wall_s}};
+                 {"io_s", m.io_wall_s},
+                 {"setup_s", m.setup_wall_s}};
   j["memory"] = {{"peak_rss_mb", m.peak_rss_mb}};
   if (m.teach_repeat) {
     const TeachRepeatMetrics& t = *m.teach_repeat;

@@ -10,6 +10,7 @@
 #include "trackbed/common/option_error.h"
 #include "trackbed/common/split_mix.h"
 #include "trackbed/navigation/navigator_factory.h"
+#include "trackbed/sim/terrain_detail.h"
 #include "trackbed/sim/terrain_material.h"
 
 namespace trackbed::scenario {
@@ -346,6 +347,12 @@ void Scenario::Validate(DriveSource drive_source) const {
                         "closed_loop senses the scene's objects; navigation.field, obstacles "
                         "and walls are for kinematic mode");
     }
+  }
+  if (robot.stereo.enabled && scene.terrain.cells() > sim::TerrainDetail::kMaxCells) {
+    throw OptionError("scene.terrain.cell_size_m",
+                      "gives " + option_check::Describe(scene.terrain.cells() / 1e6) +
+                          " million cells; the camera's renderer meshes the whole grid and "
+                          "takes at most 16 million (physics-only runs take any)");
   }
   if (outputs.save_images == "kitti" && !robot.stereo.enabled) {
     throw OptionError("outputs.save_images", "kitti needs robot.stereo.enabled: true");

@@ -134,8 +134,8 @@ void CastShadow(const World& world, const StaticObject& o, bool crown, const Eig
   Bounds(o, crown, &lo, &hi, &top);
   const Terrain& terrain = world.terrain();
   // The shadow falls away from the sun, as far as the top's height above the lowest
-  // ground over the tangent of the elevation.
-  const double fall = (top - terrain.min_height_m()) / std::max(sun.z(), 1e-3);
+  // ground can be over the tangent of the elevation.
+  const double fall = (top - terrain.min_height_bound_m()) / std::max(sun.z(), 1e-3);
   const Eigen::Vector2d away = -sun.head<2>() * fall;
   const Eigen::Vector2d a = lo.cwiseMin(lo + away), b = hi.cwiseMax(hi + away);
   const Eigen::Vector2i first = map->Texel(a.x(), a.y()), last = map->Texel(b.x(), b.y());

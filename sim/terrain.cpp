@@ -9,7 +9,6 @@
 
 #include "trackbed/common/option_error.h"
 #include "trackbed/common/split_mix.h"
-#include "trackbed/sim/lattice_noise.h"
 
 namespace trackbed::sim {
 
@@ -38,14 +37,26 @@ void MaterialRegion::Validate() const {
   }
 }
 
+double TerrainOptions::cells() const {
+  return (extent_m[2] - extent_m[0]) * (extent_m[3] - extent_m[1]) / (cell_size_m * cell_size_m);
+}
+
 void TerrainOptions::Validate() const {
   if (!(extent_m[2] > extent_m[0] && extent_m[3] > extent_m[1])) {
     throw OptionError("extent_m", "must be [x_min, y_min, x_max, y_max] with max > min");
   }
+  // Within 10 km of the origin a float vertex position (the renderer's) resolves
+  // 2^-10 m, under a millimetre; tiles keep the memory bounded at any area.
+  for (int k = 0; k < 4; ++k) {
+    if (!(std::abs(extent_m[k]) <= kMaxSideM)) {
+      throw OptionError("extent_m", "must lie within ±10000 m of the origin (got " +
+                                        option_check::Describe(extent_m[k]) + ")");
+    }
+  }
+  if (extent_m[2] - extent_m[0] > kMaxSideM || extent_m[3] - extent_m[1] > kMaxSideM) {
+    throw OptionError("extent_m", "must be at most 10000 m a side");
+  }
   option_check::InRange("cell_size_m", cell_size_m, 0.01, 2.0);
-  const double cells =
-      (extent_m[2] - extent_m[0]) * (extent_m[3] - extent_m[1]) / (cell_size_m * cell_size_m);
-  if (cells > 16e6) throw OptionError("cell_size_m", "gives more than 16 million cells");
   option_check::Nested("roughness", roughness);
   for (std::size_t k = 0; k < materials.size(); ++k) {
     option_check::Nested("materials[" + std::to_string(k) + "]", materials[k]);
@@ -78,46 +89,42 @@ const TerrainOptions& Validated(const TerrainOptions& options) {
 // The streams of the terrain seed: the heights' four octaves, the soil variation.
 constexpr std::uint64_t kHeightStream = 0x4e16, kSoilVariationStream = 0x5011;
 
+// The stream of the height octave `octave`.
+std::uint64_t HeightStream(std::uint64_t seed, std::uint64_t octave) {
+  return split_mix::Stream(split_mix::Stream(seed, kHeightStream), octave);
+}
+
 }  // namespace
 
 Terrain::Terrain(const TerrainOptions& options, std::uint64_t seed)
-    : soil_variation_(Validated(options).soil_variation,
-                      split_mix::Stream(seed, kSoilVariationStream)) {
+    : options_(Validated(options)),
+      // Two octaves for each of undulation and bumps, each a lattice noise of
+      // the seed alone, so a point's height does not depend on the extent nor
+      // on the tile it is computed in.
+      hills_(HeightStream(seed, 0), options.roughness.undulation_wavelength_m),
+      hills2_(HeightStream(seed, 1), options.roughness.undulation_wavelength_m / 2.0),
+      bumps_(HeightStream(seed, 2), options.roughness.bump_wavelength_m),
+      bumps2_(HeightStream(seed, 3), options.roughness.bump_wavelength_m / 2.0),
+      soil_variation_(options.soil_variation, split_mix::Stream(seed, kSoilVariationStream)) {
   cell_ = options.cell_size_m;
   x0_ = options.extent_m[0];
   y0_ = options.extent_m[1];
   cols_ = static_cast<int>(std::ceil((options.extent_m[2] - x0_) / cell_)) + 1;
   rows_ = static_cast<int>(std::ceil((options.extent_m[3] - y0_) / cell_)) + 1;
-
-  // Heights: two octaves for each of undulation and bumps, then the slope. Each
-  // octave is a lattice noise of the seed alone, so a point's height does not
-  // depend on the extent (nor, later, on which tile it is computed in).
-  const std::uint64_t height_seed = split_mix::Stream(seed, kHeightStream);
   const TerrainRoughness& r = options.roughness;
-  const LatticeNoise hills(split_mix::Stream(height_seed, 0), r.undulation_wavelength_m);
-  const LatticeNoise hills2(split_mix::Stream(height_seed, 1), r.undulation_wavelength_m / 2.0);
-  const LatticeNoise bumps(split_mix::Stream(height_seed, 2), r.bump_wavelength_m);
-  const LatticeNoise bumps2(split_mix::Stream(height_seed, 3), r.bump_wavelength_m / 2.0);
-  heights_.resize(static_cast<std::size_t>(cols_) * rows_);
-  min_h_ = 1e300;
-  max_h_ = -1e300;
-  for (int j = 0; j < rows_; ++j) {
-    for (int i = 0; i < cols_; ++i) {
-      const double x = x0_ + i * cell_, y = y0_ + j * cell_;
-      double z = r.slope_x * x + r.slope_y * y;
-      if (r.undulation_amplitude_m > 0.0) {
-        z += r.undulation_amplitude_m * (0.75 * hills(x, y) + 0.25 * hills2(x, y));
-      }
-      if (r.bump_amplitude_m > 0.0) {
-        z += r.bump_amplitude_m * (0.75 * bumps(x, y) + 0.25 * bumps2(x, y));
-      }
-      heights_[static_cast<std::size_t>(j) * cols_ + i] = z;
-      min_h_ = std::min(min_h_, z);
-      max_h_ = std::max(max_h_, z);
-    }
-  }
+  const double plane_lo = std::min(r.slope_x * x0_, r.slope_x * x_max()) +
+                          std::min(r.slope_y * y0_, r.slope_y * y_max());
+  const double plane_hi = std::max(r.slope_x * x0_, r.slope_x * x_max()) +
+                          std::max(r.slope_y * y0_, r.slope_y * y_max());
+  const double reach = r.undulation_amplitude_m + r.bump_amplitude_m;
+  min_bound_ = plane_lo - reach;
+  max_bound_ = plane_hi + reach;
+  ResolveMaterials(options);
+}
 
-  // Materials: built-ins, then the scenario's own (which may shadow a built-in).
+// Materials: built-ins, then the scenario's own (which may shadow a built-in);
+// the default's and each region's index among them.
+void Terrain::ResolveMaterials(const TerrainOptions& options) {
   materials_ = BuiltinMaterials();
   for (const TerrainMaterial& m : options.materials) {
     auto it = std::find_if(materials_.begin(), materials_.end(),
@@ -138,22 +145,72 @@ Terrain::Terrain(const TerrainOptions& options, std::uint64_t seed)
     for (const TerrainMaterial& m : materials_) known += (known.empty() ? "" : ", ") + m.name;
     throw OptionError(field, "unknown material '" + name + "' (known: " + known + ")");
   };
-  const std::uint8_t fallback = index_of(options.default_material, "default_material");
-  std::vector<std::uint8_t> region_material;
+  default_material_ = index_of(options.default_material, "default_material");
   for (std::size_t k = 0; k < options.regions.size(); ++k) {
-    region_material.push_back(
+    region_material_.push_back(
         index_of(options.regions[k].material, "regions[" + std::to_string(k) + "].material"));
   }
-  cell_material_.assign(static_cast<std::size_t>(cols_ - 1) * (rows_ - 1), fallback);
-  for (int j = 0; j + 1 < rows_; ++j) {
-    for (int i = 0; i + 1 < cols_; ++i) {
-      const int k = options.RegionAt(x0_ + (i + 0.5) * cell_, y0_ + (j + 0.5) * cell_);
-      if (k >= 0) {
-        cell_material_[static_cast<std::size_t>(j) * (cols_ - 1) + i] =
-            region_material[static_cast<std::size_t>(k)];
-      }
+}
+
+double Terrain::VertexHeight(int i, int j) const {
+  const double x = x0_ + i * cell_, y = y0_ + j * cell_;
+  const TerrainRoughness& r = options_.roughness;
+  double z = r.slope_x * x + r.slope_y * y;
+  if (r.undulation_amplitude_m > 0.0) {
+    z += r.undulation_amplitude_m * (0.75 * hills_(x, y) + 0.25 * hills2_(x, y));
+  }
+  if (r.bump_amplitude_m > 0.0) {
+    z += r.bump_amplitude_m * (0.75 * bumps_(x, y) + 0.25 * bumps2_(x, y));
+  }
+  return z;
+}
+
+std::uint8_t Terrain::CellMaterial(int i, int j) const {
+  const int k = options_.RegionAt(x0_ + (i + 0.5) * cell_, y0_ + (j + 0.5) * cell_);
+  return k < 0 ? default_material_ : region_material_[static_cast<std::size_t>(k)];
+}
+
+TerrainTile Terrain::GenerateTile(int ti, int tj) const {
+  TerrainTile t;
+  t.ti = ti;
+  t.tj = tj;
+  t.i0 = ti * kTileCells;
+  t.j0 = tj * kTileCells;
+  t.cols = std::min(kTileCells, cols_ - 1 - t.i0) + 1;
+  t.rows = std::min(kTileCells, rows_ - 1 - t.j0) + 1;
+  t.heights.resize(static_cast<std::size_t>(t.cols) * t.rows);
+  t.min_height_m = 1e300;
+  t.max_height_m = -1e300;
+  for (int b = 0; b < t.rows; ++b) {
+    for (int a = 0; a < t.cols; ++a) {
+      const double z = VertexHeight(t.i0 + a, t.j0 + b);
+      t.heights[static_cast<std::size_t>(b) * t.cols + a] = z;
+      t.min_height_m = std::min(t.min_height_m, z);
+      t.max_height_m = std::max(t.max_height_m, z);
     }
   }
+  t.cell_material.resize(static_cast<std::size_t>(t.cols - 1) * (t.rows - 1));
+  for (int b = 0; b + 1 < t.rows; ++b) {
+    for (int a = 0; a + 1 < t.cols; ++a) {
+      t.cell_material[static_cast<std::size_t>(b) * (t.cols - 1) + a] =
+          CellMaterial(t.i0 + a, t.j0 + b);
+    }
+  }
+  return t;
+}
+
+std::shared_ptr<const TerrainTile> Terrain::Tile(int ti, int tj) const {
+  if (ti < 0 || tj < 0 || ti >= tiles_x() || tj >= tiles_y()) {
+    throw std::out_of_range("Terrain::Tile: no tile (" + std::to_string(ti) + ", " +
+                            std::to_string(tj) + ")");
+  }
+  return tiles_.Get(ti, tj, [this](int a, int b) { return GenerateTile(a, b); });
+}
+
+const TerrainTile& Terrain::TileOfCell(int i, int j) const {
+  const int ti = i / kTileCells, tj = j / kTileCells;
+  if (!last_tile_ || last_tile_->ti != ti || last_tile_->tj != tj) last_tile_ = Tile(ti, tj);
+  return *last_tile_;
 }
 
 Terrain::Facet Terrain::FacetAt(double x, double y) const {
@@ -164,9 +221,11 @@ Terrain::Facet Terrain::FacetAt(double x, double y) const {
   f.j = std::min(static_cast<int>(gy), rows_ - 2);
   f.u = gx - f.i;
   f.v = gy - f.j;
-  const std::size_t base = static_cast<std::size_t>(f.j) * cols_ + f.i;
-  const double h00 = heights_[base], h10 = heights_[base + 1];
-  const double h01 = heights_[base + cols_], h11 = heights_[base + cols_ + 1];
+  f.tile = &TileOfCell(f.i, f.j);
+  const TerrainTile& t = *f.tile;
+  const std::size_t base = static_cast<std::size_t>(f.j - t.j0) * t.cols + (f.i - t.i0);
+  const double h00 = t.heights[base], h10 = t.heights[base + 1];
+  const double h01 = t.heights[base + t.cols], h11 = t.heights[base + t.cols + 1];
   f.h00 = h00;
   if (f.u >= f.v) {  // triangle (i,j), (i+1,j), (i+1,j+1)
     f.dzdu = h10 - h00;
@@ -188,7 +247,7 @@ GroundSample Terrain::Sample(double x, double y) const {
   GroundSample s;
   s.height_m = f.h00 + f.u * f.dzdu + f.v * f.dzdv;
   s.normal = Eigen::Vector3d(-f.dzdu / cell_, -f.dzdv / cell_, 1.0).normalized();
-  s.material = &materials_[cell_material_[static_cast<std::size_t>(f.j) * (cols_ - 1) + f.i]];
+  s.material = &materials_[f.tile->CellMaterial(f.i, f.j)];
   return s;
 }
 

@@ -18,8 +18,14 @@ TerrainDetail::TerrainDetail(const Terrain& terrain, double full_detail_m, int c
                                 std::to_string(1 << kMaxLevel) + " (got " +
                                 std::to_string(chunk_cells) + ")");
   }
+  if (static_cast<double>(cols_ - 1) * (rows_ - 1) > kMaxCells) {
+    throw std::invalid_argument("TerrainDetail: the grid has more than 16 million cells");
+  }
   const double cell = terrain.cell_size_m();
-  const std::vector<double>& h = terrain.heights();
+  std::vector<double> h(static_cast<std::size_t>(cols_) * rows_);
+  for (int j = 0; j < rows_; ++j) {
+    for (int i = 0; i < cols_; ++i) h[Index(i, j)] = terrain.VertexHeight(i, j);
+  }
   // Grid heights with indices clamped to the grid: the corners of the coarse
   // cells that overhang the far edges.
   auto H = [&](int i, int j) {
@@ -60,7 +66,6 @@ TerrainDetail::TerrainDetail(const Terrain& terrain, double full_detail_m, int c
     }
   }
 
-  const std::vector<std::uint8_t>& cell_material = terrain.cell_materials();
   for (int j0 = 0; j0 < rows_ - 1; j0 += chunk_cells) {
     for (int i0 = 0; i0 < cols_ - 1; i0 += chunk_cells) {
       const int i1 = std::min(i0 + chunk_cells, cols_ - 1),
@@ -68,7 +73,7 @@ TerrainDetail::TerrainDetail(const Terrain& terrain, double full_detail_m, int c
       std::vector<bool> present(terrain.materials().size(), false);
       for (int j = j0; j < j1; ++j) {
         for (int i = i0; i < i1; ++i) {
-          present[cell_material[static_cast<std::size_t>(j) * (cols_ - 1) + i]] = true;
+          present[terrain.CellMaterial(i, j)] = true;
         }
       }
       const int kinds = static_cast<int>(std::count(present.begin(), present.end(), true));
@@ -216,12 +221,10 @@ void TerrainDetail::BuildMesh(const Chunk& c, const Eigen::Vector2d& center_xy,
   mesh->chunk = &c;
   mesh->level = level;
   mesh->indices.clear();
-  const std::vector<std::uint8_t>& cell_material = terrain_.cell_materials();
   const auto v = [&](int a, int b) { return static_cast<std::uint32_t>(b * (na + 1) + a); };
   for (int b = 0; b < nb; ++b) {
     for (int a = 0; a < na; ++a) {
-      const std::size_t cell_index = static_cast<std::size_t>(c.j0 + b) * (cols_ - 1) + (c.i0 + a);
-      if (level == 0 && cell_material[cell_index] != c.material) continue;
+      if (level == 0 && terrain_.CellMaterial(c.i0 + a, c.j0 + b) != c.material) continue;
       // The diagonal (a, b)–(a+1, b+1), as Terrain and Bullet split the cell.
       mesh->indices.insert(mesh->indices.end(), {v(a, b), v(a + 1, b), v(a + 1, b + 1), v(a, b),
                                                  v(a + 1, b + 1), v(a, b + 1)});

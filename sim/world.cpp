@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <utility>
 
 #include <BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h>
 #include <btBulletDynamicsCommon.h>
@@ -35,18 +37,92 @@ double LowestGround(const Terrain& terrain, const StaticObject& o) {
 
 }  // namespace
 
+// One terrain tile in Bullet: a heightfield over the tile and one cell beyond
+// it on every side that has a neighbour, so that neighbouring heightfields
+// overlap by two cells and a ray along a seam, or through a tile's corner, is
+// inside one of them (Bullet can miss a ray exactly on a heightfield's edge).
+struct GroundTile {
+  int i0 = 0, j0 = 0, cols = 0, rows = 0;  // grid vertices it covers
+  std::vector<double> heights;             // row-major; the shape reads them
+  std::unique_ptr<btHeightfieldTerrainShape> shape;
+  std::unique_ptr<btCollisionObject> body;
+  std::uint64_t used = 0;
+};
+
+// The heights of tile (ti, tj) and the border around it.
+void FillGround(const Terrain& terrain, int ti, int tj, GroundTile* g) {
+  const std::shared_ptr<const TerrainTile> tile = terrain.Tile(ti, tj);
+  g->i0 = std::max(tile->i0 - 1, 0);
+  g->j0 = std::max(tile->j0 - 1, 0);
+  g->cols = std::min(tile->i0 + tile->cols, terrain.cols() - 1) + 1 - g->i0;
+  g->rows = std::min(tile->j0 + tile->rows, terrain.rows() - 1) + 1 - g->j0;
+  g->heights.resize(static_cast<std::size_t>(g->cols) * g->rows);
+  for (int b = 0; b < g->rows; ++b) {
+    for (int a = 0; a < g->cols; ++a) {
+      const int i = g->i0 + a, j = g->j0 + b;
+      const bool inside =
+          i >= tile->i0 && i < tile->i0 + tile->cols && j >= tile->j0 && j < tile->j0 + tile->rows;
+      g->heights[static_cast<std::size_t>(b) * g->cols + a] =
+          inside ? tile->Height(i, j) : terrain.VertexHeight(i, j);
+    }
+  }
+}
+
 struct World::BulletParts {
   btDefaultCollisionConfiguration config;
   btCollisionDispatcher dispatcher{&config};
   btDbvtBroadphase broadphase;
   btSequentialImpulseConstraintSolver solver;
   btDiscreteDynamicsWorld dynamics{&dispatcher, &broadphase, &solver, &config};
-  std::unique_ptr<btHeightfieldTerrainShape> terrain_shape;
+  std::map<std::pair<int, int>, GroundTile> ground;
+  std::uint64_t ground_clock = 0;
   std::vector<std::unique_ptr<btCollisionShape>> shapes;
   std::vector<std::unique_ptr<btCollisionObject>> bodies;
 
   ~BulletParts() {
+    for (auto& [key, g] : ground) dynamics.removeCollisionObject(g.body.get());
     for (auto& body : bodies) dynamics.removeCollisionObject(body.get());
+  }
+
+  // Puts terrain tile (ti, tj) in the world if it is not.
+  void AddGround(const Terrain& terrain, int ti, int tj) {
+    GroundTile& g = ground[{ti, tj}];
+    g.used = ++ground_clock;
+    if (g.body) return;
+    FillGround(terrain, ti, tj, &g);
+    // Bullet centres the shape on its AABB, so the body sits at the centre of
+    // the heights' square and at the middle of their range.
+    const auto [lo_it, hi_it] = std::minmax_element(g.heights.begin(), g.heights.end());
+    const double lo = *lo_it, hi = std::max(*hi_it, lo + 1e-3);
+    const double cell = terrain.cell_size_m();
+    g.shape = std::make_unique<btHeightfieldTerrainShape>(g.cols, g.rows, g.heights.data(), lo, hi,
+                                                          2, /*flipQuadEdges=*/true);
+    g.shape->setLocalScaling(btVector3(cell, cell, 1));
+    g.body = std::make_unique<btCollisionObject>();
+    g.body->setCollisionShape(g.shape.get());
+    g.body->setActivationState(ISLAND_SLEEPING);
+    const double x0 = terrain.x_min() + cell * g.i0,
+                 x1 = terrain.x_min() + cell * (g.i0 + g.cols - 1);
+    const double y0 = terrain.y_min() + cell * g.j0,
+                 y1 = terrain.y_min() + cell * (g.j0 + g.rows - 1);
+    g.body->setWorldTransform(btTransform(btQuaternion::getIdentity(),
+                                          btVector3((x0 + x1) / 2, (y0 + y1) / 2, (lo + hi) / 2)));
+    dynamics.addCollisionObject(g.body.get(), kGroupTerrain, kGroupChassis | kGroupOccluder);
+    // The box a step's update would give (the shape's, widened by the contact
+    // threshold), which rays are culled against.
+    dynamics.updateSingleAabb(g.body.get());
+  }
+
+  // Takes the least recently used tiles out beyond `keep`.
+  void DropGround(std::size_t keep) {
+    while (ground.size() > keep) {
+      auto oldest = ground.begin();
+      for (auto it = ground.begin(); it != ground.end(); ++it) {
+        if (it->second.used < oldest->second.used) oldest = it;
+      }
+      dynamics.removeCollisionObject(oldest->second.body.get());
+      ground.erase(oldest);
+    }
   }
 };
 
@@ -69,25 +145,13 @@ World::World(const WorldOptions& options, Terrain terrain, std::vector<StaticObj
   // still collide with the awake chassis.
   b.dynamics.setForceUpdateAllAabbs(false);
 
-  // Terrain. Bullet centres the shape on its AABB, so the body sits at the
-  // centre of the grid and at the middle of the height range.
-  const double lo = terrain_.min_height_m(), hi = std::max(terrain_.max_height_m(), lo + 1e-3);
-  b.terrain_shape = std::make_unique<btHeightfieldTerrainShape>(
-      terrain_.cols(), terrain_.rows(), terrain_.heights().data(), lo, hi, 2,
-      /*flipQuadEdges=*/true);
-  b.terrain_shape->setLocalScaling(btVector3(terrain_.cell_size_m(), terrain_.cell_size_m(), 1));
-  auto ground = std::make_unique<btCollisionObject>();
-  ground->setCollisionShape(b.terrain_shape.get());
-  ground->setActivationState(ISLAND_SLEEPING);
-  ground->setWorldTransform(
-      btTransform(btQuaternion::getIdentity(),
-                  btVector3((terrain_.x_min() + terrain_.x_max()) / 2,
-                            (terrain_.y_min() + terrain_.y_max()) / 2, (lo + hi) / 2)));
-  b.dynamics.addCollisionObject(ground.get(), kGroupTerrain, kGroupChassis | kGroupOccluder);
-  // The box a step's update would give (the shape's, widened by the contact
-  // threshold), which the range sensor's rays are culled against.
-  b.dynamics.updateSingleAabb(ground.get());
-  b.bodies.push_back(std::move(ground));
+  // The ground: a small world's tiles all at once, before the obstacles; a
+  // larger one's as rays first reach them (CastRay).
+  if (terrain_.tiles_x() * terrain_.tiles_y() <= static_cast<int>(kGroundTiles)) {
+    for (int tj = 0; tj < terrain_.tiles_y(); ++tj) {
+      for (int ti = 0; ti < terrain_.tiles_x(); ++ti) b.AddGround(terrain_, ti, tj);
+    }
+  }
 
   for (const StaticObject& o : objects_) {
     if (!o.collides) continue;
@@ -118,13 +182,35 @@ World::~World() = default;
 
 btDiscreteDynamicsWorld& World::bullet() { return bullet_->dynamics; }
 
+std::size_t World::ground_tiles() const { return bullet_->ground.size(); }
+
 void World::Step() {
   // maxSubSteps = 0: exactly one step of the given size, no interpolation.
   bullet_->dynamics.stepSimulation(options_.physics_step_s, 0);
 }
 
+void World::HoldGroundUnder(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const {
+  const Terrain& t = terrain_;
+  // The tiles of the cells within half a cell of the segment's box.
+  auto tile = [&](double v, double v0, int n) {
+    const int cell = static_cast<int>(std::clamp((v - v0) / t.cell_size_m(), 0.0, n - 2.0));
+    return cell / kTileCells;
+  };
+  const double half = 0.5 * t.cell_size_m();
+  const int ti0 = tile(std::min(from.x(), to.x()) - half, t.x_min(), t.cols());
+  const int ti1 = tile(std::max(from.x(), to.x()) + half, t.x_min(), t.cols());
+  const int tj0 = tile(std::min(from.y(), to.y()) - half, t.y_min(), t.rows());
+  const int tj1 = tile(std::max(from.y(), to.y()) + half, t.y_min(), t.rows());
+  for (int tj = tj0; tj <= tj1; ++tj) {
+    for (int ti = ti0; ti <= ti1; ++ti) bullet_->AddGround(t, ti, tj);
+  }
+  const auto spanned = static_cast<std::size_t>((ti1 - ti0 + 1) * (tj1 - tj0 + 1));
+  bullet_->DropGround(std::max(kGroundTiles, spanned));
+}
+
 std::optional<RayHit> World::CastRay(const Eigen::Vector3d& from, const Eigen::Vector3d& to,
                                      int mask) const {
+  if (mask & kGroupTerrain) HoldGroundUnder(from, to);
   const btVector3 a(from.x(), from.y(), from.z()), c(to.x(), to.y(), to.z());
   btCollisionWorld::ClosestRayResultCallback cb(a, c);
   cb.m_collisionFilterGroup = btBroadphaseProxy::AllFilter;

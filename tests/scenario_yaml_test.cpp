@@ -532,6 +532,26 @@ TEST(ScenarioYamlTest, StartOffTheTerrainAndUnreachableSpeedsAreRefused) {
       "");
 }
 
+// A terrain may be 10 km a side at any area (it is held in tiles); the camera's
+// renderer still meshes the whole grid and takes at most 16 million cells.
+TEST(ScenarioYamlTest, TerrainBoundsAndTheRenderersLimitNameTheirKeys) {
+  const std::string m = kMinimal;
+  const std::string km = "scene: {terrain: {extent_m: [-500, -500, 500, 500]}}\n";
+  EXPECT_EQ(ErrorOf(m + km), "");  // 100 million cells of 0.1 m, physics only
+  EXPECT_EQ(ErrorOf(m + km + "robot: {stereo: {enabled: true}}\n"),
+            "test.yaml: scene.terrain.cell_size_m: gives 100 million cells; the camera's "
+            "renderer meshes the whole grid and takes at most 16 million (physics-only runs "
+            "take any)");
+  EXPECT_EQ(ErrorOf(m + "scene: {terrain: {extent_m: [-5000, -5000, 5001, 0], cell_size_m: 2}}\n"),
+            "test.yaml: scene.terrain.extent_m: must be at most 10000 m a side");
+  EXPECT_EQ(ErrorOf(m + "scene: {terrain: {extent_m: [9000, 0, 10001, 5], cell_size_m: 2}}\n"),
+            "test.yaml: scene.terrain.extent_m: must lie within ±10000 m of the origin (got "
+            "10001)");
+  EXPECT_EQ(ErrorOf(m + "scene: {terrain: {extent_m: [-5000, -5000, 5000, 5000], cell_size_m: "
+                        "2}}\nrobot: {start: {x_m: 4000, y_m: -4000}}\n"),
+            "");
+}
+
 TEST(ScenarioYamlTest, APosePathIsCarriedAtCarSpeedsAndCheckedOnTheTerrain) {
   const std::string pose_path = "drive:\n  mode: pose_path\n  waypoints: [[0, 0], [5, 0]]\n";
   // A carried body is not held to the motors' top track speed, only to a car's.

@@ -41,9 +41,12 @@ TEST(TerrainTest, PlaneSlopeGivesHeightAndNormal) {
 
 TEST(TerrainTest, SameSeedSameGroundOtherSeedOtherGround) {
   const Terrain a(Rough(), 3), b(Rough(), 3), c(Rough(), 4);
-  EXPECT_EQ(a.heights(), b.heights());
-  EXPECT_NE(a.heights(), c.heights());
-  EXPECT_GT(a.max_height_m() - a.min_height_m(), 0.2);
+  EXPECT_EQ(a.Tile(0, 0)->heights, b.Tile(0, 0)->heights);
+  EXPECT_NE(a.Tile(0, 0)->heights, c.Tile(0, 0)->heights);
+  EXPECT_GT(a.Tile(0, 0)->max_height_m - a.Tile(0, 0)->min_height_m, 0.2);
+  // Within the bounds the terrain gives for every height.
+  EXPECT_GE(a.Tile(0, 0)->min_height_m, a.min_height_bound_m());
+  EXPECT_LE(a.Tile(0, 0)->max_height_m, a.max_height_bound_m());
 }
 
 TEST(TerrainTest, AGrownWorldKeepsItsHeights) {

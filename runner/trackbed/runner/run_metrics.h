@@ -97,6 +97,9 @@ struct RunMetrics {
   /// Bullet step), control (driver or navigator), sensing (the range sensor) and the
   /// observers' file output.
   double physics_wall_s = 0.0, control_wall_s = 0.0, sensing_wall_s = 0.0, io_wall_s = 0.0;
+  /// Wall-clock time building the world, the renderer and the robot software before
+  /// the first step [s]: terrain, objects, Bullet shapes, textures, the stack.
+  double setup_wall_s = 0.0;
   /// Peak resident memory of the process at the end of the run [MB].
   double peak_rss_mb = 0.0;
   /// Per estimator (wheel_odometry, wheel_odometry_noslip, visual_odometry, fused).

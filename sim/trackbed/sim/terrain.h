@@ -1,6 +1,8 @@
 // Terrain: a heightfield with material regions.
 //
-// Heights live on a regular grid (x fastest); between grid points the surface
+// Heights live on a regular grid (x fastest), held in tiles generated when a
+// query first needs them and dropped when far (trackbed/sim/terrain_tile.h), so
+// a terrain's memory does not grow with its area. Between grid points the surface
 // is the two-triangle split of each cell along the (i, j)–(i+1, j+1) diagonal,
 // exactly as Bullet's btHeightfieldTerrainShape triangulates it with
 // flipQuadEdges = true, so the track model, the physics and the renderer all
@@ -10,13 +12,16 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "trackbed/sim/lattice_noise.h"
 #include "trackbed/sim/soil_variation.h"
 #include "trackbed/sim/terrain_material.h"
+#include "trackbed/sim/terrain_tile.h"
 
 namespace trackbed::sim {
 
@@ -98,7 +103,12 @@ struct TerrainOptions {
   /// Seeded point-to-point variation of the soil parameters (off by default).
   SoilVariationOptions soil_variation;
 
+  /// Longest side a terrain may have [m]; it must also lie within this of the origin.
+  static constexpr double kMaxSideM = 10000.0;
+
   void Validate() const;
+  /// Grid cells over the extent (about).
+  double cells() const;
   /// Index of the region that covers (x, y): the last one containing it; -1 for none.
   int RegionAt(double x, double y) const;
   /// Name of the material at (x, y): RegionAt's, else the default (Terrain gives a
@@ -126,10 +136,16 @@ struct GroundSample {
   const TerrainMaterial* material = nullptr;
 };
 
-/// An immutable heightfield terrain. Queries outside the extent clamp to the edge.
+/// A heightfield terrain, immutable to its users. Queries outside the extent
+/// clamp to the edge. Queries generate and drop tiles: call them from one thread
+/// at a time.
 class Terrain {
  public:
-  /// Builds the grid; `seed` drives the roughness noise. Throws OptionError on bad options.
+  /// Tiles a terrain holds at most (each at most 513 × 513 heights, 2.4 MB).
+  static constexpr std::size_t kResidentTiles = 16;
+
+  /// Checks the options and the materials; tiles are generated when first queried.
+  /// `seed` drives the roughness noise. Throws OptionError on bad options.
   Terrain(const TerrainOptions& options, std::uint64_t seed);
 
   /// Height of the surface at (x, y) [m], on the triangulated surface.
@@ -142,40 +158,61 @@ class Terrain {
   /// there), scaled by the soil variation fields.
   SoilPoint SoilAt(const TerrainMaterial& material, double x, double y) const;
 
-  int cols() const { return cols_; }  ///< Grid points along x.
-  int rows() const { return rows_; }  ///< Grid points along y.
+  /// Height of grid vertex (i, j) [m], computed from the seed (what its tile holds).
+  double VertexHeight(int i, int j) const;
+  /// Material index (into materials()) of grid cell (i, j), computed from the
+  /// regions at the cell's centre (what its tile holds).
+  std::uint8_t CellMaterial(int i, int j) const;
+  /// Tile (ti, tj), generated if not held.
+  std::shared_ptr<const TerrainTile> Tile(int ti, int tj) const;
+
+  int cols() const { return cols_; }                            ///< Grid points along x.
+  int rows() const { return rows_; }                            ///< Grid points along y.
+  int tiles_x() const { return (cols_ - 2) / kTileCells + 1; }  ///< Tiles along x.
+  int tiles_y() const { return (rows_ - 2) / kTileCells + 1; }  ///< Tiles along y.
   double cell_size_m() const { return cell_; }
   double x_min() const { return x0_; }
   double y_min() const { return y0_; }
   double x_max() const { return x0_ + cell_ * (cols_ - 1); }
   double y_max() const { return y0_ + cell_ * (rows_ - 1); }
-  double min_height_m() const { return min_h_; }
-  double max_height_m() const { return max_h_; }
-  /// Grid heights, row-major (index = row * cols + col, x = x_min + col * cell).
-  const std::vector<double>& heights() const { return heights_; }
+  /// Bounds no height can leave [m]: the slope's plane over the extent, less
+  /// and plus the roughness amplitudes (not the heights reached).
+  double min_height_bound_m() const { return min_bound_; }
+  double max_height_bound_m() const { return max_bound_; }
   /// All materials the terrain uses or defines (built-ins first).
   const std::vector<TerrainMaterial>& materials() const { return materials_; }
-  /// Material index per cell (row-major, (rows-1) x (cols-1)).
-  const std::vector<std::uint8_t>& cell_materials() const { return cell_material_; }
+  /// The tiles held now and generated so far.
+  const TerrainTileCache& tile_cache() const { return tiles_; }
 
  private:
   // The triangle under (x, y): its cell (i, j), the point's place in the cell
-  // (u, v in [0, 1]), the cell corner's height and the triangle's rise per cell
-  // along x and y.
+  // (u, v in [0, 1]), the cell corner's height, the triangle's rise per cell
+  // along x and y, and the tile holding the cell.
   struct Facet {
     int i, j;
     double u, v, h00, dzdu, dzdv;
+    const TerrainTile* tile;
   };
   Facet FacetAt(double x, double y) const;
+  // The tile holding grid cell (i, j).
+  const TerrainTile& TileOfCell(int i, int j) const;
+  TerrainTile GenerateTile(int ti, int tj) const;
+  void ResolveMaterials(const TerrainOptions& options);
 
+  TerrainOptions options_;
   double x0_, y0_, cell_;
   int cols_, rows_;
-  double min_h_ = 0.0, max_h_ = 0.0;
-  std::vector<double> heights_;
+  double min_bound_ = 0.0, max_bound_ = 0.0;
+  // The heights' four octaves: undulation and half its wavelength, bumps and half theirs.
+  LatticeNoise hills_, hills2_, bumps_, bumps2_;
   std::vector<TerrainMaterial> materials_;
   std::vector<SoilPoint> soils_;  // SoilOf(materials_[k])
-  std::vector<std::uint8_t> cell_material_;
+  std::uint8_t default_material_ = 0;
+  std::vector<std::uint8_t> region_material_;  // material index of each region
   SoilVariation soil_variation_;
+  mutable TerrainTileCache tiles_{kResidentTiles};
+  // The tile the last query used: a track's contact points stay in one for long.
+  mutable std::shared_ptr<const TerrainTile> last_tile_;
 };
 
 }  // namespace trackbed::sim

@@ -42,6 +42,9 @@ class TerrainDetail {
  public:
   /// Coarsest level: every 8th grid vertex.
   static constexpr int kMaxLevel = 3;
+  /// Most grid cells it meshes: it holds every level's heights and normals over
+  /// the whole grid.
+  static constexpr double kMaxCells = 16e6;
 
   /// A square of `chunk_cells` cells (fewer at the far edges) of one material.
   struct Chunk {
@@ -63,7 +66,8 @@ class TerrainDetail {
   };
 
   /// `full_detail_m` ≤ 0 draws the full grid everywhere. Throws
-  /// std::invalid_argument when `chunk_cells` is not a positive multiple of 2^kMaxLevel.
+  /// std::invalid_argument when `chunk_cells` is not a positive multiple of 2^kMaxLevel
+  /// or the grid has more than kMaxCells cells.
   TerrainDetail(const Terrain& terrain, double full_detail_m, int chunk_cells = 16);
 
   const std::vector<Chunk>& chunks() const { return chunks_; }

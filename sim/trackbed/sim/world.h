@@ -1,11 +1,15 @@
 // The Bullet world: gravity, a fixed physics step, the terrain heightfield and
 // static obstacles. Dynamic bodies (the robot's chassis) register themselves.
 //
-// Collision filtering: the terrain is in the world for ray tests (range sensor,
-// placement), but the chassis does not collide with it through Bullet; the
-// robot model computes track and hull contact with the ground itself (see
-// robot/tracked_vehicle.h), which is both cheaper than per-triangle GJK and
-// where the terramechanics lives. The chassis does collide with obstacles.
+// The terrain is in Bullet tile by tile (trackbed/sim/terrain_tile.h), each a
+// heightfield over its tile's heights: a small world's tiles all from the start,
+// a larger one's as ray tests first reach them, at most kGroundTiles at a time
+// (more while one ray spans more).
+//
+// Collision filtering: the terrain is in the world for ray tests, but the chassis does not collide
+// with it through Bullet; the robot model computes track and hull contact with the ground itself
+// (see robot/tracked_vehicle.h), which is both cheaper than per-triangle GJK and where the
+// terramechanics lives. The chassis does collide with obstacles.
 #pragma once
 
 #include <memory>
@@ -57,6 +61,9 @@ struct RayHit {
 /// Owns the Bullet dynamics world and the static scene. Not copyable.
 class World {
  public:
+  /// Terrain tiles held in Bullet at most (beyond what one ray spans).
+  static constexpr std::size_t kGroundTiles = 9;
+
   World(const WorldOptions& options, Terrain terrain, std::vector<StaticObject> objects);
   ~World();
   World(const World&) = delete;
@@ -72,11 +79,17 @@ class World {
   btDiscreteDynamicsWorld& bullet();
 
   /// Closest hit along the segment from `from` to `to` against the collision
-  /// groups in `mask`, if any.
+  /// groups in `mask`, if any. With the terrain in `mask`, first puts the tiles
+  /// under the segment in Bullet (dropping the least recently used beyond
+  /// kGroundTiles): not to be called while another thread steps the world.
   std::optional<RayHit> CastRay(const Eigen::Vector3d& from, const Eigen::Vector3d& to,
                                 int mask = kGroupTerrain | kGroupObstacle) const;
+  /// Terrain tiles in Bullet now.
+  std::size_t ground_tiles() const;
 
  private:
+  void HoldGroundUnder(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const;
+
   struct BulletParts;  // Bullet's objects, kept out of this header.
   WorldOptions options_;
   Terrain terrain_;
