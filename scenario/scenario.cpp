@@ -348,11 +348,13 @@ void Scenario::Validate(DriveSource drive_source) const {
                         "and walls are for kinematic mode");
     }
   }
-  if (robot.stereo.enabled && scene.terrain.cells() > sim::TerrainDetail::kMaxCells) {
+  if (robot.stereo.enabled && !(scene.appearance.terrain_full_detail_m > 0.0) &&
+      scene.terrain.cells() > sim::TerrainDetail::kMaxCells) {
     throw OptionError("scene.terrain.cell_size_m",
                       "gives " + option_check::Describe(scene.terrain.cells() / 1e6) +
-                          " million cells; the camera's renderer meshes the whole grid and "
-                          "takes at most 16 million (physics-only runs take any)");
+                          " million cells; with scene.appearance.terrain_full_detail_m 0 the "
+                          "camera's renderer meshes the whole grid and takes at most 16 million "
+                          "(set it > 0 to draw a window in detail and the rest coarser)");
   }
   if (outputs.save_images == "kitti" && !robot.stereo.enabled) {
     throw OptionError("outputs.save_images", "kitti needs robot.stereo.enabled: true");

@@ -20,13 +20,16 @@
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 
 #include "lit_program.h"
 #include "trackbed/common/option_error.h"
 #include "trackbed/common/units.h"
+#include "trackbed/sim/far_terrain.h"
 #include "trackbed/sim/procedural_texture.h"
 #include "trackbed/sim/terrain_detail.h"
+#include "trackbed/sim/terrain_window.h"
 
 namespace trackbed::sim {
 
@@ -71,9 +74,11 @@ struct GlTexture {
   double meters_per_repeat = 1.0;
 };
 
-// One material of one terrain chunk, and its mesh for the last detail centre.
+// One material of one terrain chunk, and its mesh for the last detail centre; or
+// one piece of the far terrain, its mesh fixed.
 struct TerrainDrawable {
   std::size_t chunk = 0;
+  bool fixed = false;  // a far terrain piece
   GlTexture texture;
   TerrainDetail::Mesh mesh;
   Eigen::Vector2d center_xy = Eigen::Vector2d::Zero();
@@ -124,8 +129,12 @@ struct Renderer::Gl {
   std::vector<float> depth;
   std::map<std::string, GlTexture> textures;
   std::vector<Drawable> drawables;
-  std::unique_ptr<TerrainDetail> detail;
+  std::unique_ptr<TerrainWindow> window;              // which part of the grid is near
+  std::optional<TerrainWindow::Placement> placement;  // where it is now
+  std::unique_ptr<TerrainDetail> detail;              // the near window's levels
+  std::unique_ptr<FarTerrain> far;                    // the rings beyond it
   std::vector<TerrainDrawable> terrain_drawables;
+  std::size_t terrain_drawable_count = 0;  // drawables[0, count) are the terrain's
   std::vector<OccluderSpec> occluders;
   std::vector<GLuint> occluder_lists;
   std::vector<std::pair<double, int>> draw_order;  // per frame, kept to avoid reallocation
@@ -231,11 +240,14 @@ struct Renderer::Gl {
     return textures.emplace(name, g).first->second;
   }
 
-  // Terrain drawables: one per (chunk, material), meshed per frame from the
-  // detail centre (TerrainDetail), the mesh kept while it still holds.
-  void BuildTerrain() {
+  // Terrain drawables, first in `drawables`: one per (chunk, material) of the near
+  // window, meshed per frame from the detail centre (TerrainDetail), the mesh kept
+  // while it still holds; one per piece of the far terrain beyond a paged window.
+  void BuildTerrain(const GridWindow& w) {
+    ReleaseTerrain();
     detail =
-        std::make_unique<TerrainDetail>(*terrain, appearance.terrain_full_detail_m, kChunkCells);
+        std::make_unique<TerrainDetail>(*terrain, appearance.terrain_full_detail_m, kChunkCells, w);
+    std::vector<Drawable> boxes;
     for (std::size_t c = 0; c < detail->chunks().size(); ++c) {
       const TerrainDetail::Chunk& chunk = detail->chunks()[c];
       const TerrainMaterial& material = terrain->materials()[chunk.material];
@@ -246,39 +258,95 @@ struct Renderer::Gl {
       Drawable d;
       d.box = chunk.box;
       d.terrain = static_cast<int>(terrain_drawables.size()) - 1;
-      drawables.push_back(d);
+      boxes.push_back(d);
+    }
+    if (window->paged()) BuildFarTerrain(w, &boxes);
+    drawables.insert(drawables.begin(), boxes.begin(), boxes.end());
+    terrain_drawable_count = boxes.size();
+  }
+
+  void BuildFarTerrain(const GridWindow& w, std::vector<Drawable>* boxes) {
+    std::vector<double> meters_per_repeat;
+    for (const TerrainMaterial& m : terrain->materials()) {
+      meters_per_repeat.push_back(Texture(m.name, m.albedo).meters_per_repeat);
+    }
+    far = std::make_unique<FarTerrain>(*terrain, w, far_m, meters_per_repeat);
+    for (const FarTerrain::Piece& piece : far->pieces()) {
+      const TerrainMaterial& material = terrain->materials()[piece.material];
+      TerrainDrawable t;
+      t.fixed = true;
+      t.texture = Texture(material.name, material.albedo);
+      t.mesh.vertices = piece.vertices;
+      t.mesh.indices = piece.indices;
+      t.mesh.level = TerrainDetail::kMaxLevel;
+      terrain_drawables.push_back(std::move(t));
+      Drawable d;
+      d.box = piece.box;
+      d.terrain = static_cast<int>(terrain_drawables.size()) - 1;
+      boxes->push_back(d);
+    }
+  }
+
+  void ReleaseTerrain() {
+    for (TerrainDrawable& t : terrain_drawables) {
+      if (t.vertex_buffer != 0) {
+        glDeleteBuffers(1, &t.vertex_buffer);
+        glDeleteBuffers(1, &t.index_buffer);
+      }
+    }
+    terrain_drawables.clear();
+    drawables.erase(drawables.begin(),
+                    drawables.begin() + static_cast<std::ptrdiff_t>(terrain_drawable_count));
+    terrain_drawable_count = 0;
+  }
+
+  // Moves the near window to the detail centre when it must (a paged terrain).
+  void FollowDetailCenter(const Eigen::Vector2d& center_xy) {
+    std::optional<TerrainWindow::Placement> next = window->Follow(center_xy, placement);
+    if (!next) return;
+    placement = next;
+    BuildTerrain(next->window);
+  }
+
+  // Puts the mesh into the drawable's buffer objects.
+  static void Upload(TerrainDrawable& t) {
+    if (t.vertex_buffer == 0) {
+      glGenBuffers(1, &t.vertex_buffer);
+      glGenBuffers(1, &t.index_buffer);
+    }
+    // A mesh of the same size overwrites the buffer's storage: glBufferData
+    // would have Mesa free and allocate it anew on every re-mesh (and glibc
+    // hand the memory back and fault it in again; docs/rendering.md).
+    const auto bytes = static_cast<GLsizeiptr>(t.mesh.vertices.size() * sizeof(TerrainVertex));
+    glBindBuffer(GL_ARRAY_BUFFER, t.vertex_buffer);
+    if (bytes == t.vertex_bytes) {
+      glBufferSubData(GL_ARRAY_BUFFER, 0, bytes, t.mesh.vertices.data());
+    } else {
+      glBufferData(GL_ARRAY_BUFFER, bytes, t.mesh.vertices.data(), GL_DYNAMIC_DRAW);
+      t.vertex_bytes = bytes;
+    }
+    if (t.mesh.level != t.uploaded_level) {
+      glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, t.index_buffer);
+      glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+                   static_cast<GLsizeiptr>(t.mesh.indices.size() * sizeof(std::uint32_t)),
+                   t.mesh.indices.data(), GL_DYNAMIC_DRAW);
+      t.uploaded_level = t.mesh.level;
+      t.index_count = static_cast<GLsizei>(t.mesh.indices.size());
     }
   }
 
   void DrawTerrain(TerrainDrawable& t, const Eigen::Vector2d& center_xy) {
-    const TerrainDetail::Chunk& chunk = detail->chunks()[t.chunk];
-    if (!t.built ||
-        (center_xy != t.center_xy && !detail->SameMesh(chunk, t.center_xy, center_xy))) {
-      detail->BuildMesh(chunk, center_xy, t.texture.meters_per_repeat, &t.mesh);
-      t.center_xy = center_xy;
+    if (t.fixed) {
+      if (!t.built) Upload(t);
       t.built = true;
-      if (t.vertex_buffer == 0) {
-        glGenBuffers(1, &t.vertex_buffer);
-        glGenBuffers(1, &t.index_buffer);
-      }
-      // A mesh of the same size overwrites the buffer's storage: glBufferData
-      // would have Mesa free and allocate it anew on every re-mesh (and glibc
-      // hand the memory back and fault it in again; docs/rendering.md).
-      const auto bytes = static_cast<GLsizeiptr>(t.mesh.vertices.size() * sizeof(TerrainVertex));
-      glBindBuffer(GL_ARRAY_BUFFER, t.vertex_buffer);
-      if (bytes == t.vertex_bytes) {
-        glBufferSubData(GL_ARRAY_BUFFER, 0, bytes, t.mesh.vertices.data());
-      } else {
-        glBufferData(GL_ARRAY_BUFFER, bytes, t.mesh.vertices.data(), GL_DYNAMIC_DRAW);
-        t.vertex_bytes = bytes;
-      }
-      if (t.mesh.level != t.uploaded_level) {
-        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, t.index_buffer);
-        glBufferData(GL_ELEMENT_ARRAY_BUFFER,
-                     static_cast<GLsizeiptr>(t.mesh.indices.size() * sizeof(std::uint32_t)),
-                     t.mesh.indices.data(), GL_DYNAMIC_DRAW);
-        t.uploaded_level = t.mesh.level;
-        t.index_count = static_cast<GLsizei>(t.mesh.indices.size());
+    } else {
+      const TerrainDetail::Chunk& chunk = detail->chunks()[t.chunk];
+      if (!t.built ||
+          (center_xy != t.center_xy && !detail->SameMesh(chunk, t.center_xy, center_xy))) {
+        detail->BuildMesh(chunk, center_xy, t.texture.meters_per_repeat, &t.mesh);
+        t.center_xy = center_xy;
+        t.built = true;
+        Upload(t);
       }
     }
     if (t.index_count == 0) return;
@@ -510,7 +578,10 @@ Renderer::Renderer(const World& world, const SceneAppearance& appearance,
   const float sky = static_cast<float>(appearance.sky_gray);
   glClearColor(sky, sky, sky, 1.0f);
 
-  g.BuildTerrain();
+  // A terrain that fits in the near window is built now; a paged one's window
+  // follows the detail centre from the first frame.
+  g.window = std::make_unique<TerrainWindow>(*g.terrain, appearance.terrain_full_detail_m);
+  if (!g.window->paged()) g.FollowDetailCenter(Eigen::Vector2d::Zero());
   g.BuildObjects(world);
   if (appearance.lighting) {
     const Eigen::Vector3d sun =
@@ -598,6 +669,9 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
     }
     return std::none_of(std::begin(outside), std::end(outside), [](int n) { return n == 8; });
   };
+  const Eigen::Vector2d center_xy =
+      detail_center_xy ? *detail_center_xy : T_world_camera.translation().head<2>();
+  g.FollowDetailCenter(center_xy);
   // Near to far, so that llvmpipe's early depth test rejects hidden fragments
   // before they are textured.
   std::vector<std::pair<double, int>>& order = g.draw_order;
@@ -609,8 +683,6 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
     }
   }
   std::sort(order.begin(), order.end());
-  const Eigen::Vector2d center_xy =
-      detail_center_xy ? *detail_center_xy : T_world_camera.translation().head<2>();
   glEnableClientState(GL_VERTEX_ARRAY);
   glEnableClientState(GL_NORMAL_ARRAY);
   glEnableClientState(GL_TEXTURE_COORD_ARRAY);

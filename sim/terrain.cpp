@@ -213,7 +213,7 @@ const TerrainTile& Terrain::TileOfCell(int i, int j) const {
   return *last_tile_;
 }
 
-Terrain::Facet Terrain::FacetAt(double x, double y) const {
+Terrain::Facet Terrain::CellAt(double x, double y) const {
   const double gx = std::clamp((x - x0_) / cell_, 0.0, cols_ - 1.0);
   const double gy = std::clamp((y - y0_) / cell_, 0.0, rows_ - 1.0);
   Facet f;
@@ -221,20 +221,40 @@ Terrain::Facet Terrain::FacetAt(double x, double y) const {
   f.j = std::min(static_cast<int>(gy), rows_ - 2);
   f.u = gx - f.i;
   f.v = gy - f.j;
+  f.tile = nullptr;
+  return f;
+}
+
+void Terrain::SetSlopes(double h00, double h10, double h01, double h11, Facet* f) {
+  f->h00 = h00;
+  if (f->u >= f->v) {  // triangle (i,j), (i+1,j), (i+1,j+1)
+    f->dzdu = h10 - h00;
+    f->dzdv = h11 - h10;
+  } else {  // triangle (i,j), (i,j+1), (i+1,j+1)
+    f->dzdu = h11 - h01;
+    f->dzdv = h01 - h00;
+  }
+}
+
+Terrain::Facet Terrain::FacetAt(double x, double y) const {
+  Facet f = CellAt(x, y);
   f.tile = &TileOfCell(f.i, f.j);
   const TerrainTile& t = *f.tile;
   const std::size_t base = static_cast<std::size_t>(f.j - t.j0) * t.cols + (f.i - t.i0);
-  const double h00 = t.heights[base], h10 = t.heights[base + 1];
-  const double h01 = t.heights[base + t.cols], h11 = t.heights[base + t.cols + 1];
-  f.h00 = h00;
-  if (f.u >= f.v) {  // triangle (i,j), (i+1,j), (i+1,j+1)
-    f.dzdu = h10 - h00;
-    f.dzdv = h11 - h10;
-  } else {  // triangle (i,j), (i,j+1), (i+1,j+1)
-    f.dzdu = h11 - h01;
-    f.dzdv = h01 - h00;
-  }
+  SetSlopes(t.heights[base], t.heights[base + 1], t.heights[base + t.cols],
+            t.heights[base + t.cols + 1], &f);
   return f;
+}
+
+double Terrain::HeightFromSeed(double x, double y) const {
+  Facet f = CellAt(x, y);
+  SetSlopes(VertexHeight(f.i, f.j), VertexHeight(f.i + 1, f.j), VertexHeight(f.i, f.j + 1),
+            VertexHeight(f.i + 1, f.j + 1), &f);
+  return f.h00 + f.u * f.dzdu + f.v * f.dzdv;
+}
+
+double Terrain::GridHeight(int i, int j) const {
+  return TileOfCell(std::min(i, cols_ - 2), std::min(j, rows_ - 2)).Height(i, j);
 }
 
 double Terrain::Height(double x, double y) const {

@@ -8,29 +8,50 @@
 
 namespace trackbed::sim {
 
-TerrainDetail::TerrainDetail(const Terrain& terrain, double full_detail_m, int chunk_cells)
+TerrainDetail::TerrainDetail(const Terrain& terrain, double full_detail_m, int chunk_cells,
+                             std::optional<GridWindow> window)
     : terrain_(terrain),
       full_detail_m_(full_detail_m),
-      cols_(terrain.cols()),
-      rows_(terrain.rows()) {
+      window_(window.value_or(GridWindow::Whole(terrain))),
+      cols_(window_.i1 - window_.i0 + 1),
+      rows_(window_.j1 - window_.j0 + 1) {
   if (chunk_cells <= 0 || chunk_cells % (1 << kMaxLevel) != 0) {
     throw std::invalid_argument("TerrainDetail: chunk_cells must be a positive multiple of " +
                                 std::to_string(1 << kMaxLevel) + " (got " +
                                 std::to_string(chunk_cells) + ")");
   }
+  const GridWindow& w = window_;
+  const auto aligned = [&](int v, int edge) { return v == edge || v % chunk_cells == 0; };
+  if (!(w.i0 >= 0 && w.j0 >= 0 && w.i1 < terrain.cols() && w.j1 < terrain.rows() && w.i1 > w.i0 &&
+        w.j1 > w.j0 && aligned(w.i0, 0) && aligned(w.j0, 0) && aligned(w.i1, terrain.cols() - 1) &&
+        aligned(w.j1, terrain.rows() - 1))) {
+    throw std::invalid_argument(
+        "TerrainDetail: the window is not a chunk-aligned part of the grid");
+  }
   if (static_cast<double>(cols_ - 1) * (rows_ - 1) > kMaxCells) {
-    throw std::invalid_argument("TerrainDetail: the grid has more than 16 million cells");
+    throw std::invalid_argument("TerrainDetail: the window has more than 16 million cells");
   }
+  BuildLevels(terrain);
+  BuildChunks(terrain, chunk_cells);
+}
+
+// Every level's height and normal at the window's vertices.
+void TerrainDetail::BuildLevels(const Terrain& terrain) {
   const double cell = terrain.cell_size_m();
-  std::vector<double> h(static_cast<std::size_t>(cols_) * rows_);
-  for (int j = 0; j < rows_; ++j) {
-    for (int i = 0; i < cols_; ++i) h[Index(i, j)] = terrain.VertexHeight(i, j);
+  // The grid's heights over the window and the border the coarsest level's
+  // normals reach into, indices clamped to the grid: the corners of the coarse
+  // cells that overhang the grid's far edges.
+  const int border = 2 << kMaxLevel;
+  const int bi0 = window_.i0 - border, bj0 = window_.j0 - border;
+  const int bcols = cols_ + 2 * border, brows = rows_ + 2 * border;
+  std::vector<double> h(static_cast<std::size_t>(bcols) * brows);
+  for (int b = 0; b < brows; ++b) {
+    for (int a = 0; a < bcols; ++a) {
+      h[static_cast<std::size_t>(b) * bcols + a] = terrain.GridHeight(
+          std::clamp(bi0 + a, 0, terrain.cols() - 1), std::clamp(bj0 + b, 0, terrain.rows() - 1));
+    }
   }
-  // Grid heights with indices clamped to the grid: the corners of the coarse
-  // cells that overhang the far edges.
-  auto H = [&](int i, int j) {
-    return h[Index(std::clamp(i, 0, cols_ - 1), std::clamp(j, 0, rows_ - 1))];
-  };
+  auto H = [&](int i, int j) { return h[static_cast<std::size_t>(j - bj0) * bcols + (i - bi0)]; };
   const std::size_t n = static_cast<std::size_t>(cols_) * rows_;
   for (int k = 0; k <= kMaxLevel; ++k) {
     const int s = 1 << k;
@@ -44,8 +65,8 @@ TerrainDetail::TerrainDetail(const Terrain& terrain, double full_detail_m, int c
       const double ny = -(H(I, J + s) - H(I, J - s)) / (2 * s * cell);
       return Eigen::Vector3d(nx, ny, 1.0).normalized();
     };
-    for (int j = 0; j < rows_; ++j) {
-      for (int i = 0; i < cols_; ++i) {
+    for (int j = window_.j0; j <= window_.j1; ++j) {
+      for (int i = window_.i0; i <= window_.i1; ++i) {
         const int I = i / s * s, J = j / s * s;
         const double u = static_cast<double>(i - I) / s, v = static_cast<double>(j - J) / s;
         // Barycentric weights in the coarse cell split along (I, J)–(I+s, J+s).
@@ -65,16 +86,18 @@ TerrainDetail::TerrainDetail(const Terrain& terrain, double full_detail_m, int c
       }
     }
   }
+}
 
-  for (int j0 = 0; j0 < rows_ - 1; j0 += chunk_cells) {
-    for (int i0 = 0; i0 < cols_ - 1; i0 += chunk_cells) {
-      const int i1 = std::min(i0 + chunk_cells, cols_ - 1),
-                j1 = std::min(j0 + chunk_cells, rows_ - 1);
+// The window's chunks (one per material in each square) and their neighbours.
+void TerrainDetail::BuildChunks(const Terrain& terrain, int chunk_cells) {
+  const double cell = terrain.cell_size_m();
+  for (int j0 = window_.j0; j0 < window_.j1; j0 += chunk_cells) {
+    for (int i0 = window_.i0; i0 < window_.i1; i0 += chunk_cells) {
+      const int i1 = std::min(i0 + chunk_cells, window_.i1),
+                j1 = std::min(j0 + chunk_cells, window_.j1);
       std::vector<bool> present(terrain.materials().size(), false);
       for (int j = j0; j < j1; ++j) {
-        for (int i = i0; i < i1; ++i) {
-          present[terrain.CellMaterial(i, j)] = true;
-        }
+        for (int i = i0; i < i1; ++i) present[terrain.CellMaterial(i, j)] = true;
       }
       const int kinds = static_cast<int>(std::count(present.begin(), present.end(), true));
       int max_level = 0;

@@ -25,11 +25,13 @@ double LowestGround(const Terrain& terrain, const StaticObject& o) {
   const double half = o.shape == StaticObject::Shape::kBox
                           ? 0.5 * std::hypot(o.size_m.x(), o.size_m.y())
                           : o.radius_m;
-  double lowest = terrain.Height(o.center_m.x(), o.center_m.y());
+  // From the seed: objects scattered over a large world would otherwise generate
+  // every tile under them.
+  double lowest = terrain.HeightFromSeed(o.center_m.x(), o.center_m.y());
   for (int i = -4; i <= 4; ++i) {
     for (int j = -4; j <= 4; ++j) {
-      lowest = std::min(
-          lowest, terrain.Height(o.center_m.x() + half * i / 4.0, o.center_m.y() + half * j / 4.0));
+      lowest = std::min(lowest, terrain.HeightFromSeed(o.center_m.x() + half * i / 4.0,
+                                                       o.center_m.y() + half * j / 4.0));
     }
   }
   return lowest;

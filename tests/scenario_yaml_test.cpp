@@ -533,15 +533,20 @@ TEST(ScenarioYamlTest, StartOffTheTerrainAndUnreachableSpeedsAreRefused) {
 }
 
 // A terrain may be 10 km a side at any area (it is held in tiles); the camera's
-// renderer still meshes the whole grid and takes at most 16 million cells.
+// renderer meshes the whole grid, at most 16 million cells, unless it may draw the far
+// ground coarser (terrain_full_detail_m > 0).
 TEST(ScenarioYamlTest, TerrainBoundsAndTheRenderersLimitNameTheirKeys) {
   const std::string m = kMinimal;
   const std::string km = "scene: {terrain: {extent_m: [-500, -500, 500, 500]}}\n";
   EXPECT_EQ(ErrorOf(m + km), "");  // 100 million cells of 0.1 m, physics only
   EXPECT_EQ(ErrorOf(m + km + "robot: {stereo: {enabled: true}}\n"),
-            "test.yaml: scene.terrain.cell_size_m: gives 100 million cells; the camera's "
-            "renderer meshes the whole grid and takes at most 16 million (physics-only runs "
-            "take any)");
+            "test.yaml: scene.terrain.cell_size_m: gives 100 million cells; with "
+            "scene.appearance.terrain_full_detail_m 0 the camera's renderer meshes the whole "
+            "grid and takes at most 16 million (set it > 0 to draw a window in detail and the "
+            "rest coarser)");
+  EXPECT_EQ(ErrorOf(m + "scene: {terrain: {extent_m: [-500, -500, 500, 500]}, appearance: "
+                        "{terrain_full_detail_m: 2}}\nrobot: {stereo: {enabled: true}}\n"),
+            "");
   EXPECT_EQ(ErrorOf(m + "scene: {terrain: {extent_m: [-5000, -5000, 5001, 0], cell_size_m: 2}}\n"),
             "test.yaml: scene.terrain.extent_m: must be at most 10000 m a side");
   EXPECT_EQ(ErrorOf(m + "scene: {terrain: {extent_m: [9000, 0, 10001, 5], cell_size_m: 2}}\n"),

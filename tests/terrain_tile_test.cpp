@@ -126,6 +126,19 @@ TEST(TerrainTileTest, QueriesAcrossALargeWorldHoldABoundedNumberOfTiles) {
   EXPECT_LE(bytes, 2 * ((kTileCells + 1) * (kTileCells + 1) * 8 + kTileCells * kTileCells));
 }
 
+TEST(TerrainTileTest, HeightsFromTheSeedAndFromTilesAreTheSameBits) {
+  const Terrain t(Rough(150, 150), 6);  // 3 x 3 tiles
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> ux(-20, 130), uy(-10, 140);
+  std::uniform_int_distribution<int> ui(0, t.cols() - 1), uj(0, t.rows() - 1);
+  for (int k = 0; k < 500; ++k) {
+    const double x = ux(rng), y = uy(rng);
+    ASSERT_EQ(t.HeightFromSeed(x, y), t.Height(x, y)) << x << ", " << y;
+    const int i = ui(rng), j = uj(rng);
+    ASSERT_EQ(t.GridHeight(i, j), t.VertexHeight(i, j)) << i << ", " << j;
+  }
+}
+
 TEST(TerrainTileTest, TheCacheDropsTheLeastRecentlyFetched) {
   TerrainTileCache cache(2);
   int made = 0;

@@ -150,6 +150,9 @@ class Terrain {
 
   /// Height of the surface at (x, y) [m], on the triangulated surface.
   double Height(double x, double y) const;
+  /// Height(x, y) to the bit, computed from the seed without generating or holding a
+  /// tile: for one-off queries scattered over a large world (placing objects).
+  double HeightFromSeed(double x, double y) const;
   /// Height, upward unit normal and material at (x, y).
   GroundSample Sample(double x, double y) const;
   /// Material at (x, y) (of the grid cell containing the point).
@@ -160,6 +163,9 @@ class Terrain {
 
   /// Height of grid vertex (i, j) [m], computed from the seed (what its tile holds).
   double VertexHeight(int i, int j) const;
+  /// VertexHeight(i, j), read from its tile (generated if not held): for many
+  /// vertices near each other.
+  double GridHeight(int i, int j) const;
   /// Material index (into materials()) of grid cell (i, j), computed from the
   /// regions at the cell's centre (what its tile holds).
   std::uint8_t CellMaterial(int i, int j) const;
@@ -194,6 +200,10 @@ class Terrain {
     const TerrainTile* tile;
   };
   Facet FacetAt(double x, double y) const;
+  // The cell under (x, y) and the point's place in it.
+  Facet CellAt(double x, double y) const;
+  // Fills the facet's heights from the corners h00, h10, h01, h11.
+  static void SetSlopes(double h00, double h10, double h01, double h11, Facet* f);
   // The tile holding grid cell (i, j).
   const TerrainTile& TileOfCell(int i, int j) const;
   TerrainTile GenerateTile(int ti, int tj) const;

@@ -22,6 +22,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -37,13 +38,25 @@ struct TerrainVertex {
   float s, t;        // texture coordinates [repeats]
 };
 
-/// Levels of detail of a Terrain's grid, and the meshes of its chunks.
+/// A rectangle of a terrain's grid vertices, [i0, i1] × [j0, j1].
+struct GridWindow {
+  int i0 = 0, j0 = 0, i1 = 0, j1 = 0;
+  bool operator==(const GridWindow& o) const {
+    return i0 == o.i0 && j0 == o.j0 && i1 == o.i1 && j1 == o.j1;
+  }
+  /// The whole grid of `terrain`.
+  static GridWindow Whole(const Terrain& terrain) {
+    return {0, 0, terrain.cols() - 1, terrain.rows() - 1};
+  }
+};
+
+/// Levels of detail of a window of a Terrain's grid, and the meshes of its chunks.
 class TerrainDetail {
  public:
   /// Coarsest level: every 8th grid vertex.
   static constexpr int kMaxLevel = 3;
   /// Most grid cells it meshes: it holds every level's heights and normals over
-  /// the whole grid.
+  /// its window.
   static constexpr double kMaxCells = 16e6;
 
   /// A square of `chunk_cells` cells (fewer at the far edges) of one material.
@@ -65,10 +78,16 @@ class TerrainDetail {
     const Chunk* chunk = nullptr;        // the chunk it was built for
   };
 
-  /// `full_detail_m` ≤ 0 draws the full grid everywhere. Throws
-  /// std::invalid_argument when `chunk_cells` is not a positive multiple of 2^kMaxLevel
-  /// or the grid has more than kMaxCells cells.
-  TerrainDetail(const Terrain& terrain, double full_detail_m, int chunk_cells = 16);
+  /// The grid's vertices in `window` (the whole grid by default), whose corners other
+  /// than the grid's own must be multiples of `chunk_cells`; `full_detail_m` ≤ 0 draws
+  /// the full grid everywhere. A vertex's levels do not depend on the window: heights
+  /// beyond it are read from the terrain. Throws std::invalid_argument when
+  /// `chunk_cells` is not a positive multiple of 2^kMaxLevel, the window is not one
+  /// of the grid's, or it has more than kMaxCells cells.
+  TerrainDetail(const Terrain& terrain, double full_detail_m, int chunk_cells = 16,
+                std::optional<GridWindow> window = std::nullopt);
+
+  const GridWindow& window() const { return window_; }
 
   const std::vector<Chunk>& chunks() const { return chunks_; }
   double full_detail_m() const { return full_detail_m_; }
@@ -89,12 +108,18 @@ class TerrainDetail {
                  Mesh* mesh) const;
 
  private:
-  std::size_t Index(int i, int j) const { return static_cast<std::size_t>(j) * cols_ + i; }
+  // Index of grid vertex (i, j) in the window's arrays.
+  std::size_t Index(int i, int j) const {
+    return static_cast<std::size_t>(j - window_.j0) * cols_ + (i - window_.i0);
+  }
+  void BuildLevels(const Terrain& terrain);
+  void BuildChunks(const Terrain& terrain, int chunk_cells);
   void DistanceRange(const Chunk& c, const Eigen::Vector2d& p, double* d_min, double* d_max) const;
 
   const Terrain& terrain_;
   double full_detail_m_;
-  int cols_, rows_;
+  GridWindow window_;
+  int cols_, rows_;  // vertices of the window
   // Per level: height and unit normal at every grid vertex.
   std::array<std::vector<float>, kMaxLevel + 1> z_;
   std::array<std::vector<Eigen::Vector3f>, kMaxLevel + 1> n_;
