@@ -111,10 +111,14 @@ FarTerrain::FarTerrain(const Terrain& terrain, const GridWindow& inner, double r
   for (int level = TerrainDetail::kMaxLevel; level <= kMaxLevel && !covers(outer_); ++level) {
     const int s = 1 << level;
     // Rings kRingQuads wide, their outer edge on the next ring's lattice; the last
-    // reaches the goal.
+    // reaches the goal (and holds the rings within).
     GridWindow out = Grown(outer_, kRingQuads * s, 2 * s, terrain);
     const bool last = level == kMaxLevel || covers(out);
-    if (last) out = Grown(goal, 0, s, terrain);
+    if (last) {
+      out = Grown({std::min(goal.i0, outer_.i0), std::min(goal.j0, outer_.j0),
+                   std::max(goal.i1, outer_.i1), std::max(goal.j1, outer_.j1)},
+                  0, s, terrain);
+    }
     RingLattice ring = SampleRing(terrain, out, s);
     if (!last) StitchOuterEdges(terrain, out, s, &ring);
     AddQuads(terrain, ring, outer_, s, level > TerrainDetail::kMaxLevel);
@@ -145,8 +149,6 @@ void FarTerrain::AddVertex(Piece* p, double x, double y, double z, const Eigen::
   p->box.extend(Eigen::Vector3d(x, y, z));
 }
 
-// The ring's quads outside `in`, two triangles each along the (a, b)–(a+1, b+1)
-// diagonal, in the block and material piece they belong to.
 // The ring's quads outside `in`, two triangles each along the (a, b)–(a+1, b+1)
 // diagonal, in the block and material piece they belong to. With `meet_finer`, a
 // quad with a side on `in`'s edge also takes the finer ring's vertex on that side

@@ -132,7 +132,6 @@ struct Renderer::Gl {
   std::unique_ptr<TerrainWindow> window;              // which part of the grid is near
   std::optional<TerrainWindow::Placement> placement;  // where it is now
   std::unique_ptr<TerrainDetail> detail;              // the near window's levels
-  std::unique_ptr<FarTerrain> far;                    // the rings beyond it
   std::vector<TerrainDrawable> terrain_drawables;
   std::size_t terrain_drawable_count = 0;  // drawables[0, count) are the terrain's
   std::vector<OccluderSpec> occluders;
@@ -270,8 +269,8 @@ struct Renderer::Gl {
     for (const TerrainMaterial& m : terrain->materials()) {
       meters_per_repeat.push_back(Texture(m.name, m.albedo).meters_per_repeat);
     }
-    far = std::make_unique<FarTerrain>(*terrain, w, far_m, meters_per_repeat);
-    for (const FarTerrain::Piece& piece : far->pieces()) {
+    FarTerrain far(*terrain, w, far_m, meters_per_repeat);
+    for (const FarTerrain::Piece& piece : far.pieces()) {
       const TerrainMaterial& material = terrain->materials()[piece.material];
       TerrainDrawable t;
       t.fixed = true;
@@ -337,7 +336,11 @@ struct Renderer::Gl {
 
   void DrawTerrain(TerrainDrawable& t, const Eigen::Vector2d& center_xy) {
     if (t.fixed) {
-      if (!t.built) Upload(t);
+      if (!t.built) {
+        Upload(t);
+        t.mesh.vertices = {};  // the buffer objects hold them now
+        t.mesh.indices = {};
+      }
       t.built = true;
     } else {
       const TerrainDetail::Chunk& chunk = detail->chunks()[t.chunk];
