@@ -16,7 +16,6 @@
 #include <map>
 #include <optional>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -41,31 +40,22 @@ const std::array<cv::Vec3d, 8> kPalette = {{{0.8, 0.8, 0.8},
                                             {0.3, 0.7, 0.35},
                                             {0.45, 0.85, 0.5}}};
 
-// The lowest and highest grid heights.
-std::pair<double, double> HeightRange(const Terrain& t) {
-  double lo = 1e300, hi = -1e300;
+// Every grid vertex's height, row-major, computed once from the seed.
+std::vector<double> GridHeights(const Terrain& t) {
+  std::vector<double> h;
+  h.reserve(static_cast<std::size_t>(t.cols()) * t.rows());
   for (int j = 0; j < t.rows(); ++j) {
-    for (int i = 0; i < t.cols(); ++i) {
-      lo = std::min(lo, t.VertexHeight(i, j));
-      hi = std::max(hi, t.VertexHeight(i, j));
-    }
+    for (int i = 0; i < t.cols(); ++i) h.push_back(t.VertexHeight(i, j));
   }
-  return {lo, hi};
+  return h;
 }
 
-void PrintStatistics(const Terrain& t) {
+void PrintStatistics(const Terrain& t, const std::vector<double>& h) {
   double sum = 0.0, sum_sq = 0.0;
-  const double n = static_cast<double>(t.cols()) * t.rows();
-  for (int j = 0; j < t.rows(); ++j) {
-    for (int i = 0; i < t.cols(); ++i) sum += t.VertexHeight(i, j);
-  }
+  const double n = static_cast<double>(h.size());
+  for (const double z : h) sum += z;
   const double mean = sum / n;
-  for (int j = 0; j < t.rows(); ++j) {
-    for (int i = 0; i < t.cols(); ++i) {
-      const double d = t.VertexHeight(i, j) - mean;
-      sum_sq += d * d;
-    }
-  }
+  for (const double z : h) sum_sq += (z - mean) * (z - mean);
   std::vector<double> slopes;
   std::map<int, long> cells_per_material;
   const double c = t.cell_size_m();
@@ -82,8 +72,8 @@ void PrintStatistics(const Terrain& t) {
   std::sort(slopes.begin(), slopes.end());
   std::printf("extent      [%.2f, %.2f] x [%.2f, %.2f] m, %d x %d grid points of %.3f m\n",
               t.x_min(), t.x_max(), t.y_min(), t.y_max(), t.cols(), t.rows(), c);
-  const auto [lo, hi] = HeightRange(t);
-  std::printf("height      min %.4f  max %.4f  mean %.4f  std %.4f m\n", lo, hi, mean,
+  const auto [lo, hi] = std::minmax_element(h.begin(), h.end());
+  std::printf("height      min %.4f  max %.4f  mean %.4f  std %.4f m\n", *lo, *hi, mean,
               std::sqrt(sum_sq / n));
   std::printf("slope       rms %.4f  p95 %.4f  max %.4f (tan of the tilt)\n",
               std::sqrt(slope_sq / static_cast<double>(slopes.size())),
@@ -95,10 +85,9 @@ void PrintStatistics(const Terrain& t) {
   }
 }
 
-cv::Mat Relief(const Terrain& t) {
+cv::Mat Relief(const Terrain& t, double lo, double hi) {
   cv::Mat image(t.rows(), t.cols(), CV_8UC3);
   const double c = t.cell_size_m();
-  const auto [lo, hi] = HeightRange(t);
   const double span = std::max(hi - lo, 1e-9);
   for (int j = 0; j < t.rows(); ++j) {
     for (int i = 0; i < t.cols(); ++i) {
@@ -137,8 +126,10 @@ int main(int argc, char** argv) {
     const trackbed::scenario::Scenario s = trackbed::scenario::LoadScenario(file, overrides);
     // The closed loop's terrain seed (runner/closed_loop.cpp).
     const Terrain t(s.scene.terrain, trackbed::split_mix::Stream(s.seed, 0));
-    PrintStatistics(t);
-    if (!png.empty() && !cv::imwrite(png, Relief(t))) {
+    const std::vector<double> heights = GridHeights(t);
+    PrintStatistics(t, heights);
+    const auto [lo, hi] = std::minmax_element(heights.begin(), heights.end());
+    if (!png.empty() && !cv::imwrite(png, Relief(t, *lo, *hi))) {
       std::fprintf(stderr, "terrain_report: could not write %s\n", png.c_str());
       return 1;
     }

@@ -134,7 +134,8 @@ TEST(TerrainPagingTest, APagedWorldsNearGroundIsASmallWorldsAndPagingOpensNoCrac
            ((ground(u - 1, v) && ground(u + 1, v)) || (ground(u, v - 1) && ground(u, v + 1)));
   };
   const auto inside_small = [&](const Eigen::Vector3d& p) {
-    return p.x() > -28.8 && p.x() < 22.4 && p.y() > -28.8 && p.y() < 22.4;
+    const Eigen::Vector4d& e = small_options.extent_m;
+    return p.x() > e[0] && p.x() < e[2] && p.y() > e[1] && p.y() < e[3];
   };
   int added = 0, near_cracks = 0, beyond = 0, beyond_paged = 0, beyond_whole = 0;
   int near = 0, near_same = 0;

@@ -41,8 +41,6 @@ struct TerrainTile {
   std::uint8_t CellMaterial(int i, int j) const {
     return cell_material[static_cast<std::size_t>(j - j0) * (cols - 1) + (i - i0)];
   }
-  /// Bytes of its grid data.
-  std::size_t bytes() const { return heights.size() * sizeof(double) + cell_material.size(); }
 };
 
 /// The tiles a terrain holds, at most `capacity` of them.
