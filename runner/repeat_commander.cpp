@@ -1,6 +1,7 @@
 // Teach & repeat's repeat pass as a commander (see repeat_commander.h).
 #include "trackbed/runner/repeat_commander.h"
 
+#include <chrono>
 #include <stdexcept>
 #include <string>
 
@@ -25,8 +26,10 @@ ControlOutput RepeatCommander::Update(const ControlInput& input) {
     undistorter_->Undistort(*input.left_image, &undistorted_);
     image = &undistorted_;
   }
+  const auto start = std::chrono::steady_clock::now();
   const teach_repeat::RepeatCommand c = repeater_->Update(*image, input.t_s);
-  if (on_step_) on_step_({input.t_s, c});
+  const std::chrono::duration<double> took = std::chrono::steady_clock::now() - start;
+  if (on_step_) on_step_({input.t_s, c, took.count()});
   features_lost_ = c.features_lost;
   features_recovered_ = c.features_recovered;
   ControlOutput out;

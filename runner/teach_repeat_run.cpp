@@ -44,9 +44,12 @@ std::uintmax_t FolderBytes(const std::filesystem::path& folder) {
 }
 
 // The teach pass: the scenario's own drive, images into the builder with the no-slip
-// wheel odometry at each image (metadata; 3D teaching scales milestones by it).
+// wheel odometry at each image (metadata; 3D teaching scales milestones by it). Each
+// completed milestone's key image goes into `map_dir` at once, so a long route's key
+// images are not all held.
 teach_repeat::TeachMap Teach(const scenario::Scenario& scenario, const RobotBuild& robot,
-                             const fs::path& dir, std::vector<Eigen::Vector2d>* taught_path) {
+                             const fs::path& dir, const fs::path& map_dir,
+                             std::vector<Eigen::Vector2d>* taught_path) {
   scenario::Scenario teach = scenario;
   teach.teach_repeat.enabled = false;
   const scenario::RobotSpec& rs = scenario.robot;
@@ -72,7 +75,9 @@ teach_repeat::TeachMap Teach(const scenario::Scenario& scenario, const RobotBuil
     odometry.AddEncoderSample(f.t_s, f.ticks[0], f.ticks[1]);
     cv::Mat image;
     undistorter.Undistort(perception::AsCvMat(*f.left), &image);
-    builder.AddImage(image, f.t_s, odometry.pose());
+    if (builder.AddImage(image, f.t_s, odometry.pose()).milestone_closed) {
+      builder.SpillKeyImages(map_dir.string());
+    }
   };
   extra.on_sample = [&](const RunSample& s) {
     taught_path->push_back(s.chassis.T_world_body.translation().head<2>());
@@ -226,6 +231,30 @@ void WriteRecoveryPlot(const scenario::Scenario& scenario, const TeachRepeatMetr
   WriteBarPlot(dir / "teach_repeat_recovery.png", title, "recovered of lost [%]", bars, 100.0);
 }
 
+// teach_repeat_timing.png: the repeater's time per frame along the route, with its
+// median over every 100 frames (flat when the cost does not grow with the route).
+void WriteRepeatTimePlot(const scenario::Scenario& scenario, const std::vector<RepeatStep>& steps,
+                         const fs::path& dir) {
+  PlotSeries frames{"per frame", {}}, medians{"median of 100 frames", {}};
+  std::vector<double> block;
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    frames.points.emplace_back(steps[k].t_s, 1e3 * steps[k].repeater_s);
+    block.push_back(1e3 * steps[k].repeater_s);
+    if (block.size() == 100 || k + 1 == steps.size()) {
+      const auto mid = block.begin() + static_cast<std::ptrdiff_t>(block.size() / 2);
+      std::nth_element(block.begin(), mid, block.end());
+      medians.points.emplace_back(steps[k].t_s, *mid);
+      block.clear();
+    }
+  }
+  PlotSeries milestone{"active milestone", {}};
+  for (const RepeatStep& s : steps) milestone.points.emplace_back(s.t_s, s.command.milestone);
+  WriteTimePlot(
+      dir / "teach_repeat_timing.png",
+      scenario.scene.name + ": repeater time per frame (" + scenario.teach_repeat.method + ")",
+      {{"repeater [ms]", {frames, medians}}, {"milestone", {milestone}}});
+}
+
 }  // namespace
 
 RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& dir) {
@@ -237,10 +266,10 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
   // One robot for both passes (the same as built, calibrated once).
   const RobotBuild robot = BuildRunRobot(scenario);
   if (tr.map.empty()) {
-    map = Teach(scenario, robot, dir / "teach", &taught);
+    map = Teach(scenario, robot, dir / "teach", dir / "teach_map", &taught);
     teach_repeat::SaveTeachMap(map, (dir / "teach_map").string());
   } else {
-    map = teach_repeat::LoadTeachMap(tr.map);
+    map = teach_repeat::LoadTeachMap(tr.map, teach_repeat::KeyImageLoading::kOnDemand);
     taught = TaughtPathBeside(tr.map);
   }
 
@@ -272,19 +301,28 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
   csv << "t,status,v_mps,yaw_rate_radps,milestone,switched,features,tracked,votes_left,"
          "votes_right,votes_straight,mean_error_px,lost,recovered,lateral_offset_m,"
          "heading_error_rad,fallback_2d,progress\n";
+  // teach_repeat_timing.csv: the repeater's wall-clock time per frame (machine-dependent,
+  // kept apart so that teach_repeat.csv is the same on every machine).
+  std::ofstream timing_csv(dir / "teach_repeat_timing.csv", std::ios::out | std::ios::trunc);
+  timing_csv << "t,milestone,timing_repeater_ms\n";
+  std::vector<RepeatStep> steps;  // per repeat frame (the time plot)
   RunObservers extra;
   std::vector<CumulativeRecovery> counts;  // per repeat frame
-  const auto log_step = [&](const std::pair<double, teach_repeat::RepeatCommand>& step) {
-    const teach_repeat::RepeatCommand& c = step.second;
-    counts.push_back({step.first, c.features_lost, c.features_recovered});
+  const auto log_step = [&](const RepeatStep& step) {
+    const teach_repeat::RepeatCommand& c = step.command;
+    counts.push_back({step.t_s, c.features_lost, c.features_recovered});
+    steps.push_back(step);
     char line[512];
-    std::snprintf(
-        line, sizeof(line), "%.6f,%s,%.6g,%.6g,%d,%d,%d,%d,%d,%d,%d,%.6g,%d,%d,%.6g,%.6g,%d,%.6g\n",
-        step.first, teach_repeat::ToString(c.status), c.twist.v_mps, c.twist.yaw_rate_radps,
-        c.milestone, c.switched ? 1 : 0, c.features, c.tracked, c.votes_left, c.votes_right,
-        c.votes_straight, c.mean_error_px, c.lost, c.recovered, c.lateral_offset_m,
-        c.heading_error_rad, c.fallback_2d ? 1 : 0, c.progress);
+    std::snprintf(line, sizeof(line),
+                  "%.6f,%s,%.6g,%.6g,%d,%d,%d,%d,%d,%d,%d,%.6g,%d,%d,%.6g,%.6g,%d,%.6g\n", step.t_s,
+                  teach_repeat::ToString(c.status), c.twist.v_mps, c.twist.yaw_rate_radps,
+                  c.milestone, c.switched ? 1 : 0, c.features, c.tracked, c.votes_left,
+                  c.votes_right, c.votes_straight, c.mean_error_px, c.lost, c.recovered,
+                  c.lateral_offset_m, c.heading_error_rad, c.fallback_2d ? 1 : 0, c.progress);
     csv << line;
+    std::snprintf(line, sizeof(line), "%.6f,%d,%.4f\n", step.t_s, c.milestone,
+                  1e3 * step.repeater_s);
+    timing_csv << line;
   };
   extra.on_sample = [&](const RunSample& s) {
     repeated.push_back(s.chassis.T_world_body.translation().head<2>());
@@ -299,6 +337,11 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
   RunMetrics m = ClosedLoop(repeat, std::move(options)).Run();
   csv.close();
   if (!csv) throw std::runtime_error((dir / "teach_repeat.csv").string() + ": cannot write");
+  timing_csv.close();
+  if (!timing_csv) {
+    throw std::runtime_error((dir / "teach_repeat_timing.csv").string() + ": cannot write");
+  }
+  WriteRepeatTimePlot(scenario, steps, dir);
 
   TeachRepeatMetrics t;
   t.method = tr.method;

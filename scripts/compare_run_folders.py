@@ -2,7 +2,8 @@
 """Compares two folders of run folders file by file, byte for byte, except the
 fields that measure the machine rather than the run (wall_time_s,
 real_time_factor, timing.*, memory.*, host and start time in JSON files, the same
-columns and metrics in the sweep summaries) and the logs that quote them. Exit 0 when everything else is identical.
+columns and metrics in the sweep summaries, the *_timing files of per-frame times) and the
+logs that quote them. Exit 0 when everything else is identical.
 
     python3 scripts/compare_run_folders.py runs/golden_before runs/golden_after
 
@@ -64,14 +65,14 @@ NEW_KEYS = False
 def same(a, b):
     if a.suffix in (".log", ".md") or a.name in ("stdout.txt", "stderr.txt", "summary.json"):
         return True  # these quote wall times and paths; their data is in the files above
+    if a.stem.endswith("_timing"):
+        return True  # wall-clock time per frame (teach_repeat_timing.csv and its plot)
     if NEW_KEYS and a.suffix in (".json", ".yaml"):
         try:
             load = json.loads if a.suffix == ".json" else yaml.safe_load
             return contained(strip_json(load(a.read_text())), strip_json(load(b.read_text())))
         except (json.JSONDecodeError, yaml.YAMLError, UnicodeDecodeError):
             pass
-    if a.suffix in (".log", ".md") or a.name in ("stdout.txt", "stderr.txt", "summary.json"):
-        return True  # these quote wall times and paths; their data is in the files above
     if a.suffix == ".json":
         try:
             return strip_json(json.loads(a.read_text())) == strip_json(json.loads(b.read_text()))

@@ -260,6 +260,12 @@ TeachStep MilestoneBuilder::AddImage(const cv::Mat& gray, double t_s,
   return step;
 }
 
+void MilestoneBuilder::SpillKeyImages(const std::string& dir) {
+  for (; spilled_ < map_.milestones.size(); ++spilled_) {
+    SpillKeyImage(dir, spilled_, &map_.milestones[spilled_]);
+  }
+}
+
 TeachMap MilestoneBuilder::Finish() {
   if (open_ && previous_.image > first_image_) CloseMilestone(previous_, MilestoneCut::kEndOfTeach);
   TeachMap done = std::move(map_);
@@ -268,6 +274,7 @@ TeachMap MilestoneBuilder::Finish() {
   map_.camera = camera_;
   map_.patch_size_px = options_.patch_size_px;
   open_ = false;
+  spilled_ = 0;
   previous_ = Snapshot{};
   prev_pyramid_ = perception::TrackingPyramid{};
   return done;

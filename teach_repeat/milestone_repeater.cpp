@@ -2,6 +2,7 @@
 #include "trackbed/teach_repeat/milestone_repeater.h"
 #include "trackbed/perception/opencv_views.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -64,6 +65,7 @@ RepeatCommand MilestoneRepeater::Update(const cv::Mat& gray, double t_s) {
   tracks_->BuildPyramid(gray, &curr_pyramid_);
   if (!started_) {
     const int start = settings_.start_milestone;
+    HoldKeyImages(start);
     StartMilestone(start,
                    detail::StartGuesses(map_.milestones[static_cast<std::size_t>(start)], gray));
     started_ = true;
@@ -78,11 +80,25 @@ RepeatCommand MilestoneRepeater::Update(const cv::Mat& gray, double t_s) {
 
 void MilestoneRepeater::StartMilestone(int index, const std::vector<cv::Point2f>& guesses) {
   milestone_ = index;
+  HoldKeyImages(index);
   const Milestone& m = map_.milestones[static_cast<std::size_t>(index)];
   tracks_->Start(m, curr_pyramid_, guesses);
   switch_->Reset();
   frames_in_milestone_ = 0;
   MilestoneStarted(m);
+}
+
+void MilestoneRepeater::HoldKeyImages(int index) {
+  const int first = index;
+  const int last = std::min(index + 1, static_cast<int>(map_.milestones.size()) - 1);
+  for (int k = held_first_; k <= held_last_; ++k) {
+    if (k < first || k > last) ReleaseKeyImage(&map_.milestones[static_cast<std::size_t>(k)]);
+  }
+  for (int k = first; k <= last; ++k) {
+    LoadKeyImage(map_.camera, &map_.milestones[static_cast<std::size_t>(k)]);
+  }
+  held_first_ = first;
+  held_last_ = last;
 }
 
 void MilestoneRepeater::Finish(RepeatCommand* cmd) {

@@ -344,7 +344,9 @@ void TeachMap::Validate() const {
         !m.T_first_last.matrix().allFinite()) {
       throw std::invalid_argument(where + "non-finite number");
     }
-    if (m.key_image.type() != CV_8UC1 || m.key_image.size() != perception::CvImageSize(camera)) {
+    const bool on_file_only = m.key_image.empty() && !m.key_image_file.empty();
+    if (!on_file_only &&
+        (m.key_image.type() != CV_8UC1 || m.key_image.size() != perception::CvImageSize(camera))) {
       throw std::invalid_argument(where + "key image must be CV_8UC1 of the camera's size " +
                                   std::to_string(camera.width_px) + "x" +
                                   std::to_string(camera.height_px));
@@ -367,6 +369,61 @@ void TeachMap::Validate() const {
 
 // --- Save. --------------------------------------------------------------------------------
 
+namespace {
+
+/// Milestone `m`'s key image as a PNG file at `to`: encoded when held in memory, else a
+/// hard link to (or, across file systems, a copy of) its file, which is kept.
+void PutKeyImage(const Milestone& m, const fs::path& to) {
+  if (!m.key_image.empty()) {
+    std::vector<unsigned char> png;
+    if (!cv::imencode(".png", m.key_image, png)) {
+      throw std::runtime_error("SaveTeachMap: " + to.string() + ": PNG encoding failed");
+    }
+    WriteFile(to, std::string(png.begin(), png.end()));
+    return;
+  }
+  std::error_code ec;
+  fs::create_hard_link(m.key_image_file, to, ec);
+  if (ec) fs::copy_file(m.key_image_file, to, ec);
+  if (ec) {
+    throw std::runtime_error("SaveTeachMap: " + to.string() + ": cannot copy the key image " +
+                             m.key_image_file + ": " + ec.message());
+  }
+}
+
+/// The map's key images as a fresh key_images/ in `root`, so that no image of an earlier,
+/// longer map remains. They are put into key_images.new/ first and it replaces the old
+/// folder only then, so key images held in that folder's files (a spilled or on-demand
+/// map saved where it lies) are linked before the folder goes.
+void WriteKeyImages(const TeachMap& map, const fs::path& root) {
+  const fs::path key_dir = root / kKeyImageDir;
+  const fs::path fresh = root / (std::string(kKeyImageDir) + ".new");
+  std::error_code ec;
+  fs::remove_all(fresh, ec);
+  fs::create_directories(fresh, ec);
+  if (ec) throw std::runtime_error("SaveTeachMap: " + fresh.string() + ": cannot create directory");
+  for (std::size_t k = 0; k < map.milestones.size(); ++k) {
+    const Milestone& m = map.milestones[k];
+    const fs::path name = fs::path(KeyImageName(k)).filename();
+    if (m.key_image.empty() &&
+        fs::equivalent(fs::path(m.key_image_file).parent_path(), key_dir, ec) &&
+        fs::path(m.key_image_file).filename() != name) {
+      throw std::invalid_argument("SaveTeachMap: milestones[" + std::to_string(k) +
+                                  "]: its key image " + m.key_image_file +
+                                  " would be replaced by another milestone's");
+    }
+    PutKeyImage(m, fresh / name);
+  }
+  fs::remove_all(key_dir, ec);
+  if (!ec) fs::rename(fresh, key_dir, ec);
+  if (ec) {
+    throw std::runtime_error("SaveTeachMap: " + key_dir.string() +
+                             ": cannot replace: " + ec.message());
+  }
+}
+
+}  // namespace
+
 void SaveTeachMap(const TeachMap& map, const std::string& dir) {
   map.Validate();
   const fs::path root(dir);
@@ -376,20 +433,7 @@ void SaveTeachMap(const TeachMap& map, const std::string& dir) {
     throw std::runtime_error("SaveTeachMap: " + dir + ": cannot create directory");
   }
 
-  // Key images: a fresh key_images/ so that no image of an earlier, longer map remains.
-  const fs::path key_dir = root / kKeyImageDir;
-  fs::remove_all(key_dir, ec);
-  fs::create_directories(key_dir, ec);
-  if (ec)
-    throw std::runtime_error("SaveTeachMap: " + key_dir.string() + ": cannot create directory");
-  for (std::size_t k = 0; k < map.milestones.size(); ++k) {
-    std::vector<unsigned char> png;
-    if (!cv::imencode(".png", map.milestones[k].key_image, png)) {
-      throw std::runtime_error("SaveTeachMap: " + (root / KeyImageName(k)).string() +
-                               ": PNG encoding failed");
-    }
-    WriteFile(root / KeyImageName(k), std::string(png.begin(), png.end()));
-  }
+  WriteKeyImages(map, root);
 
   // Patches.
   const std::size_t count = map.feature_count();
@@ -519,36 +563,70 @@ TeachMap MapFromFile(const MapFile& f) {
   return map;
 }
 
-/// Milestone `path`'s key image, file `key_path`: an 8-bit grey PNG of the camera's size.
+// A PNG starts with its 8-byte signature and ends with the IEND chunk; checking both
+// reports a truncated file as such (and keeps libpng from complaining on stderr).
+const std::string kPngSignature("\x89PNG\r\n\x1a\n", 8);
+const std::string kPngEnd("IEND\xae\x42\x60\x82", 8);
+
+std::string KeyImageSizeWanted(const geometry::PinholeCamera& camera) {
+  return ": expected an 8-bit grey image of " + std::to_string(camera.width_px) + "x" +
+         std::to_string(camera.height_px) + " px (the camera's size)";
+}
+
+/// Key image file `key_path` (of milestone `path`; `who` begins the messages): an 8-bit
+/// grey PNG of the camera's size, decoded.
 cv::Mat ReadKeyImage(const fs::path& key_path, const std::string& path,
-                     const geometry::PinholeCamera& camera) {
+                     const geometry::PinholeCamera& camera, const std::string& who) {
   const std::optional<std::string> png = ReadFile(key_path);
   if (!png) {
-    throw std::runtime_error("LoadTeachMap: " + key_path.string() + ": key image of " + path +
+    throw std::runtime_error(who + ": " + key_path.string() + ": key image of " + path +
                              " missing or unreadable");
   }
-  // A PNG starts with its 8-byte signature and ends with the IEND chunk; checking both
-  // reports a truncated file as such (and keeps libpng from complaining on stderr).
-  static const std::string kPngSignature("\x89PNG\r\n\x1a\n", 8);
-  static const std::string kPngEnd("IEND\xae\x42\x60\x82", 8);
   if (png->size() < 20 || png->compare(0, 8, kPngSignature) != 0 ||
       png->compare(png->size() - 8, 8, kPngEnd) != 0) {
-    throw std::runtime_error("LoadTeachMap: " + key_path.string() +
+    throw std::runtime_error(who + ": " + key_path.string() +
                              ": not a decodable image (not a complete PNG file: truncated?)");
   }
   const std::vector<unsigned char> bytes(png->begin(), png->end());
   cv::Mat image = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
   if (image.empty()) {
-    throw std::runtime_error("LoadTeachMap: " + key_path.string() +
+    throw std::runtime_error(who + ": " + key_path.string() +
                              ": not a decodable image (truncated?)");
   }
   if (image.type() != CV_8UC1 || image.size() != perception::CvImageSize(camera)) {
-    throw std::runtime_error("LoadTeachMap: " + key_path.string() +
-                             ": expected an 8-bit grey image of " +
-                             std::to_string(camera.width_px) + "x" +
-                             std::to_string(camera.height_px) + " px (the camera's size)");
+    throw std::runtime_error(who + ": " + key_path.string() + KeyImageSizeWanted(camera));
   }
   return image;
+}
+
+/// Checks key image file `key_path` (of milestone `path`) without decoding it: a complete
+/// PNG (signature, IEND at the end) whose header (IHDR) says 8-bit grey of the camera's
+/// size. LoadKeyImage decodes it later.
+void CheckKeyImageFile(const fs::path& key_path, const std::string& path,
+                       const geometry::PinholeCamera& camera) {
+  const std::string where = "LoadTeachMap: " + key_path.string();
+  std::ifstream in(key_path, std::ios::binary);
+  if (!in) throw std::runtime_error(where + ": key image of " + path + " missing or unreadable");
+  std::string head(33, '\0'), tail(8, '\0');
+  in.read(&head[0], 33);
+  const bool head_read = in.gcount() == 33;
+  in.seekg(-8, std::ios::end);
+  in.read(&tail[0], 8);
+  if (!head_read || !in || head.compare(0, 8, kPngSignature) != 0 || tail != kPngEnd ||
+      head.compare(12, 4, "IHDR") != 0) {
+    throw std::runtime_error(where +
+                             ": not a decodable image (not a complete PNG file: truncated?)");
+  }
+  const auto be32 = [&head](std::size_t at) {
+    std::uint32_t v = 0;
+    for (std::size_t i = 0; i < 4; ++i) v = (v << 8) | static_cast<unsigned char>(head[at + i]);
+    return v;
+  };
+  const bool grey8 = head[24] == 8 && head[25] == 0;
+  if (!grey8 || be32(16) != static_cast<std::uint32_t>(camera.width_px) ||
+      be32(20) != static_cast<std::uint32_t>(camera.height_px)) {
+    throw std::runtime_error(where + KeyImageSizeWanted(camera));
+  }
 }
 
 /// The patch file map.json names (`patch_path`), checked against the map's patch size
@@ -615,7 +693,7 @@ fs::path FileInMap(const fs::path& root, const std::string& key, const std::stri
 
 }  // namespace
 
-TeachMap LoadTeachMap(const std::string& dir) {
+TeachMap LoadTeachMap(const std::string& dir, KeyImageLoading key_images) {
   const fs::path root(dir);
   if (!fs::is_directory(root)) {
     throw std::runtime_error("LoadTeachMap: " + dir + ": no such directory");
@@ -635,8 +713,13 @@ TeachMap LoadTeachMap(const std::string& dir) {
   }
   for (std::size_t k = 0; k < map.milestones.size(); ++k) {
     const std::string key = archive::JoinIndex("milestones", k);
-    map.milestones[k].key_image = ReadKeyImage(
-        FileInMap(root, key + ".key_image", file.milestones[k].key_image), key, map.camera);
+    const fs::path key_file = FileInMap(root, key + ".key_image", file.milestones[k].key_image);
+    if (key_images == KeyImageLoading::kAll) {
+      map.milestones[k].key_image = ReadKeyImage(key_file, key, map.camera, "LoadTeachMap");
+    } else {
+      CheckKeyImageFile(key_file, key, map.camera);
+      map.milestones[k].key_image_file = key_file.string();
+    }
   }
   AssignPatches(ReadPatchFile(FileInMap(root, "patches_file", file.patches_file),
                               map.feature_count(), map.patch_size_px),
@@ -647,6 +730,39 @@ TeachMap LoadTeachMap(const std::string& dir) {
     throw std::runtime_error("LoadTeachMap: " + map_path.string() + ": " + e.what());
   }
   return map;
+}
+
+// --- Key images held on disk. --------------------------------------------------------------
+
+void LoadKeyImage(const geometry::PinholeCamera& camera, Milestone* m) {
+  if (!m->key_image.empty()) return;
+  if (m->key_image_file.empty()) {
+    throw std::runtime_error("LoadKeyImage: the milestone holds no key image and names no file");
+  }
+  m->key_image = ReadKeyImage(m->key_image_file, "the milestone", camera, "LoadKeyImage");
+}
+
+void ReleaseKeyImage(Milestone* m) {
+  if (!m->key_image_file.empty()) m->key_image.release();
+}
+
+void SpillKeyImage(const std::string& dir, std::size_t index, Milestone* m) {
+  if (m->key_image.empty()) {
+    throw std::invalid_argument("SpillKeyImage: milestone " + std::to_string(index) +
+                                " holds no key image");
+  }
+  const fs::path file = fs::path(dir) / KeyImageName(index);
+  std::error_code ec;
+  fs::create_directories(file.parent_path(), ec);
+  if (ec) {
+    throw std::runtime_error("SpillKeyImage: " + file.parent_path().string() +
+                             ": cannot create directory");
+  }
+  Milestone on_file;
+  on_file.key_image = m->key_image;
+  PutKeyImage(on_file, file);
+  m->key_image_file = file.string();
+  m->key_image.release();
 }
 
 }  // namespace trackbed::teach_repeat

@@ -14,12 +14,20 @@
 
 namespace trackbed::runner {
 
+/// One repeat frame, as RepeatCommander's observer sees it.
+struct RepeatStep {
+  double t_s = 0.0;  ///< the frame's time [s]
+  teach_repeat::RepeatCommand command;
+  /// Wall-clock time the repeater took on the frame [s] (machine-dependent).
+  double repeater_s = 0.0;
+};
+
 class RepeatCommander : public Commander {
  public:
-  /// `repeater` must outlive this. `on_step` (may be empty) sees every frame's time and
-  /// command. `undistorter` (may be null: the images are a pinhole's) undistorts each
-  /// left image as the map's images were.
-  using StepObserver = std::function<void(const std::pair<double, teach_repeat::RepeatCommand>&)>;
+  /// `repeater` must outlive this. `on_step` (may be empty) sees every frame's time,
+  /// command and the repeater's time. `undistorter` (may be null: the images are a
+  /// pinhole's) undistorts each left image as the map's images were.
+  using StepObserver = std::function<void(const RepeatStep&)>;
   RepeatCommander(teach_repeat::Repeater* repeater, double effective_gauge_m, StepObserver on_step,
                   std::shared_ptr<const perception::LensUndistorter> undistorter = nullptr);
 

@@ -133,6 +133,12 @@ class MilestoneBuilder {
   /// The builder is empty afterwards and may teach a new route.
   TeachMap Finish();
 
+  /// Writes the key images of the milestones completed so far into map directory `dir`
+  /// and drops them from memory (SpillKeyImage, teach_map.h), so that teaching a long
+  /// route holds only the open milestone's key image; Finish's map names their files.
+  /// Throws std::runtime_error naming the file for I/O failures.
+  void SpillKeyImages(const std::string& dir);
+
   /// Milestones completed so far.
   int milestones() const { return static_cast<int>(map_.milestones.size()); }
   const MilestoneBuilderOptions& options() const { return options_; }
@@ -175,6 +181,7 @@ class MilestoneBuilder {
   perception::FeatureTracker tracker_;
   TeachMap map_;
   bool open_ = false;
+  std::size_t spilled_ = 0;  // milestones whose key images SpillKeyImages wrote
   int first_image_ = 0;
   cv::Mat key_image_;
   Snapshot previous_;  // the open milestone at the previous image

@@ -13,6 +13,11 @@
 //     milestone begins instead: its features are tracked from its key image, starting at
 //     their key-image positions moved by the global image shift (phase correlation).
 // After it this image's pyramid becomes the previous one.
+//
+// A map whose key images are held in their files (teach_map.h) is read as the repeat
+// goes: when a milestone becomes active its key image and the next one's are read, and
+// the key images behind are dropped, so memory and per-frame cost do not grow with the
+// route.
 #pragma once
 
 #include <cstdint>
@@ -104,12 +109,16 @@ class MilestoneRepeater : public Repeater {
   /// Throws std::invalid_argument unless `gray` is a CV_8UC1 image of the map's camera
   /// size and `t_s` is finite and, once started, not before the last frame's time.
   void CheckInput(const cv::Mat& gray, double t_s) const;
+  /// Holds the key images of milestones index … index + 1 in memory and drops those held
+  /// before that are not among them (only key images that have a file).
+  void HoldKeyImages(int index);
 
   MilestoneRepeaterSettings settings_;
   perception::TrackingPyramid prev_pyramid_, curr_pyramid_;
   bool started_ = false;
   double last_t_s_ = 0.0;
   int too_few_frames_ = 0;
+  int held_first_ = 0, held_last_ = -1;  ///< the milestones whose key images are held
   RepeatStatus status_ = RepeatStatus::kDriving;
 };
 

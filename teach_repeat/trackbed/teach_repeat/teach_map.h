@@ -12,6 +12,13 @@
 // recover features lost to an occluder. The first image of each milestone (its key
 // image) is kept: a repeat starts a milestone's tracks by KLT from it.
 //
+// Key images are most of a map (a 640x480 image is 307 KB; a milestone's features about
+// 15 KB), so a long route's map need not hold them all: a milestone's key image may stay
+// in its PNG file (Milestone::key_image_file) and be read when the milestone comes near
+// (LoadKeyImage, ReleaseKeyImage; the repeater holds a few milestones ahead). A map
+// loaded with KeyImageLoading::kOnDemand, and one taught with
+// MilestoneBuilder::SpillKeyImages, hold their key images that way.
+//
 // On disk a map is a directory (docs/teach_repeat.md has the full description):
 //   map.json          — format "trackbed.teach_map", version 1: camera, teach images'
 //                       times and odometry (metadata), milestones with their features;
@@ -92,8 +99,12 @@ struct Milestone {
   /// scale (0 when the teach recorded no odometry).
   double baseline_m = 0.0;
   std::vector<MilestoneFeature> features;
-  /// The first image (CV_8UC1, the camera's size).
+  /// The first image (CV_8UC1, the camera's size), when held in memory; empty when it
+  /// is held in key_image_file only.
   cv::Mat key_image;
+  /// The key image's PNG file (an 8-bit grey PNG of the camera's size, as SaveTeachMap
+  /// writes), when the map keeps it on disk; empty for a key image held in memory only.
+  std::string key_image_file;
 };
 
 /// One teach image's metadata.
@@ -123,10 +134,30 @@ struct TeachMap {
 /// The current version of the on-disk format.
 constexpr int kTeachMapFormatVersion = 1;
 
+/// Reads milestone `m`'s key image from its key_image_file into key_image (nothing when
+/// it is held already). Throws std::runtime_error naming the file when it is missing,
+/// not a complete PNG, or not an 8-bit grey image of `camera`'s size.
+void LoadKeyImage(const geometry::PinholeCamera& camera, Milestone* m);
+/// Drops milestone `m`'s key image from memory when it is held in key_image_file too.
+void ReleaseKeyImage(Milestone* m);
+/// Writes milestone `index`'s key image into map directory `dir` (its key_images/ folder,
+/// created if missing), names that file in key_image_file and drops the image from
+/// memory. SaveTeachMap into the same `dir` keeps the file. Throws std::runtime_error
+/// naming the file for I/O failures, std::invalid_argument when no key image is held.
+void SpillKeyImage(const std::string& dir, std::size_t index, Milestone* m);
+
 /// Writes `map` into directory `dir` (created if missing; an existing map.json,
-/// patches.bin and key_images/ in it are replaced). Throws std::invalid_argument for an
-/// invalid map, std::runtime_error naming the file for I/O failures.
+/// patches.bin and key_images/ in it are replaced). Key images held in their files are
+/// linked or copied from them, not decoded. Throws std::invalid_argument for an invalid
+/// map, std::runtime_error naming the file for I/O failures.
 void SaveTeachMap(const TeachMap& map, const std::string& dir);
+
+/// How LoadTeachMap reads the key images.
+enum class KeyImageLoading {
+  kAll,       ///< every key image read and held in memory
+  kOnDemand,  ///< only checked (a complete 8-bit grey PNG of the camera's size, by its
+              ///< header); each milestone names its file, read by LoadKeyImage
+};
 
 /// Reads a map written by SaveTeachMap. Throws std::runtime_error whose message names
 /// the file and what is wrong: a missing directory or file, JSON that does not parse, a
@@ -134,6 +165,6 @@ void SaveTeachMap(const TeachMap& map, const std::string& dir);
 /// path, e.g. `milestones[3].features[7]`), counts that disagree (features vs patches), a
 /// truncated or oversized patch file, a key image that is missing, unreadable or of the
 /// wrong size.
-TeachMap LoadTeachMap(const std::string& dir);
+TeachMap LoadTeachMap(const std::string& dir, KeyImageLoading key_images = KeyImageLoading::kAll);
 
 }  // namespace trackbed::teach_repeat

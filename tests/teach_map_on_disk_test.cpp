@@ -1,0 +1,205 @@
+// Key images held on disk (teach_map.h): a map taught with its key images spilled as it
+// goes is the same map, byte for byte on disk; a map loaded on demand checks its key
+// images without decoding them, reads the same pixels later and saves to the same bytes;
+// both repeaters driven from such a map give the same commands as from the map in memory
+// while holding at most two key images.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+
+#include "teach_repeat_test_scene.h"
+#include "trackbed/navigation/diff_drive.h"
+#include "trackbed/teach_repeat/milestone_builder.h"
+#include "trackbed/teach_repeat/repeater_factory.h"
+#include "trackbed/teach_repeat/teach_map.h"
+
+namespace trackbed::teach_repeat {
+namespace {
+
+namespace fs = std::filesystem;
+using estimation::Pose2;
+using testing::CameraPose;
+using testing::CorridorScene;
+using testing::TestCamera;
+
+fs::path Scratch(const std::string& name) {
+  const fs::path dir = fs::path(::testing::TempDir()) / ("trackbed_teach_map_on_disk_" + name);
+  fs::remove_all(dir);
+  return dir;
+}
+
+std::string ReadBytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+/// Every file under `a` is in `b` with the same bytes, and `b` has no other file.
+void ExpectSameFiles(const fs::path& a, const fs::path& b) {
+  std::size_t files = 0, other = 0;
+  for (const fs::directory_entry& e : fs::recursive_directory_iterator(a)) {
+    if (!e.is_regular_file()) continue;
+    const fs::path relative = fs::relative(e.path(), a);
+    EXPECT_TRUE(ReadBytes(e.path()) == ReadBytes(b / relative)) << relative << " differs";
+    ++files;
+  }
+  for (const fs::directory_entry& e : fs::recursive_directory_iterator(b)) {
+    other += e.is_regular_file();
+  }
+  EXPECT_EQ(files, other);
+}
+
+/// A straight teach down the corridor, 2 cm per image, milestones every 10 images; with
+/// `spill_dir` the key images are spilled there as each milestone closes.
+TeachMap TeachStraight(TeachMode mode, int images, const std::string& spill_dir = "") {
+  const CorridorScene scene;
+  MilestoneBuilderOptions options;
+  options.mode = mode;
+  options.interval_images = 10;
+  MilestoneBuilder builder(TestCamera(), options);
+  for (int k = 0; k < images; ++k) {
+    const Pose2 pose{0.02 * k, 0.0, 0.0};
+    const TeachStep step = builder.AddImage(scene.Render(CameraPose(pose)), 0.1 * k, pose);
+    if (!spill_dir.empty() && step.milestone_closed) builder.SpillKeyImages(spill_dir);
+  }
+  return builder.Finish();
+}
+
+int KeyImagesHeld(const TeachMap& map) {
+  int held = 0;
+  for (const Milestone& m : map.milestones) held += m.key_image.empty() ? 0 : 1;
+  return held;
+}
+
+TEST(TeachMapOnDiskTest, SpillingWhileTeachingSavesTheSameMap) {
+  const fs::path held = Scratch("held"), spilled = Scratch("spilled");
+  const TeachMap in_memory = TeachStraight(TeachMode::k2d, 65);
+  const TeachMap on_disk = TeachStraight(TeachMode::k2d, 65, spilled.string());
+  ASSERT_EQ(in_memory.milestones.size(), 7u);
+  // Only the milestone still open at the end of the teach holds its key image.
+  EXPECT_EQ(KeyImagesHeld(on_disk), 1);
+  EXPECT_FALSE(on_disk.milestones.front().key_image_file.empty());
+  SaveTeachMap(in_memory, held.string());
+  SaveTeachMap(on_disk, spilled.string());  // where its key images lie
+  ExpectSameFiles(held, spilled);
+  EXPECT_FALSE(fs::exists(spilled / "key_images.new"));
+  fs::remove_all(held);
+  fs::remove_all(spilled);
+}
+
+TEST(TeachMapOnDiskTest, OnDemandLoadingReadsTheSamePixelsAndSavesTheSameBytes) {
+  const fs::path a = Scratch("a"), b = Scratch("b");
+  SaveTeachMap(TeachStraight(TeachMode::k3d, 41), a.string());
+  const TeachMap all = LoadTeachMap(a.string());
+  TeachMap lazy = LoadTeachMap(a.string(), KeyImageLoading::kOnDemand);
+  EXPECT_EQ(KeyImagesHeld(lazy), 0);
+  SaveTeachMap(lazy, b.string());  // linked or copied, never decoded
+  ExpectSameFiles(a, b);
+  SaveTeachMap(lazy, a.string());  // in place: the files it names survive
+  ExpectSameFiles(b, a);
+  ASSERT_EQ(lazy.milestones.size(), all.milestones.size());
+  for (std::size_t k = 0; k < all.milestones.size(); ++k) {
+    Milestone& m = lazy.milestones[k];
+    LoadKeyImage(lazy.camera, &m);
+    EXPECT_EQ(cv::norm(m.key_image, all.milestones[k].key_image, cv::NORM_INF), 0.0);
+    ReleaseKeyImage(&m);
+    EXPECT_TRUE(m.key_image.empty());
+  }
+  // A key image held in memory only is never released.
+  Milestone only_in_memory = all.milestones[0];
+  ReleaseKeyImage(&only_in_memory);
+  EXPECT_FALSE(only_in_memory.key_image.empty());
+  fs::remove_all(a);
+  fs::remove_all(b);
+}
+
+/// LoadTeachMap(kOnDemand) must throw a runtime_error whose message holds every part.
+void ExpectOnDemandError(const fs::path& dir, const std::vector<std::string>& parts) {
+  try {
+    LoadTeachMap(dir.string(), KeyImageLoading::kOnDemand);
+    ADD_FAILURE() << "loading " << dir << " succeeded";
+  } catch (const std::runtime_error& e) {
+    const std::string message = e.what();
+    for (const std::string& part : parts) {
+      EXPECT_NE(message.find(part), std::string::npos) << "\"" << part << "\" not in: " << message;
+    }
+  }
+}
+
+TEST(TeachMapOnDiskTest, OnDemandLoadingChecksEveryKeyImageFileUpFront) {
+  const fs::path dir = Scratch("bad");
+  const fs::path key = dir / "key_images" / "000001.png";
+  const auto write = [&key](const std::string& bytes) {
+    std::ofstream(key, std::ios::binary | std::ios::trunc) << bytes;
+  };
+  SaveTeachMap(TeachStraight(TeachMode::k2d, 31), dir.string());
+  const std::string png = ReadBytes(key);
+  write(png.substr(0, png.size() - 1));
+  ExpectOnDemandError(dir, {"000001.png", "not a complete PNG file"});
+  std::vector<unsigned char> small, colour;
+  cv::imencode(".png", cv::Mat(10, 10, CV_8UC1, cv::Scalar(3)), small);
+  write(std::string(small.begin(), small.end()));
+  ExpectOnDemandError(dir, {"000001.png", "8-bit grey image of 640x480"});
+  cv::imencode(".png", cv::Mat(480, 640, CV_8UC3, cv::Scalar(3, 4, 5)), colour);
+  write(std::string(colour.begin(), colour.end()));
+  ExpectOnDemandError(dir, {"000001.png", "8-bit grey image of 640x480"});
+  fs::remove(key);
+  ExpectOnDemandError(dir, {"000001.png", "milestones[1]", "missing"});
+
+  // A file that goes bad after the load is named when the repeat reads it.
+  write(png);
+  TeachMap lazy = LoadTeachMap(dir.string(), KeyImageLoading::kOnDemand);
+  write(png.substr(0, 40));
+  try {
+    LoadKeyImage(lazy.camera, &lazy.milestones[1]);
+    ADD_FAILURE() << "a truncated key image was read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("000001.png"), std::string::npos) << e.what();
+  }
+  fs::remove_all(dir);
+}
+
+TEST(TeachMapOnDiskTest, RepeatersDriveTheSameFromAMapOnDiskHoldingTwoKeyImages) {
+  const CorridorScene scene;
+  for (const TeachMode mode : {TeachMode::k2d, TeachMode::k3d}) {
+    SCOPED_TRACE(ToString(mode));
+    const fs::path dir = Scratch(std::string("repeat_") + ToString(mode));
+    SaveTeachMap(TeachStraight(mode, 81), dir.string());
+    FunnelLaneOptions o2;
+    o2.forward_speed_mps = 0.2;
+    Localizer3dOptions o3;
+    o3.forward_speed_mps = 0.2;
+    const auto all = MakeRepeater(ToString(mode), LoadTeachMap(dir.string()), o2, o3);
+    const auto lazy = MakeRepeater(ToString(mode),
+                                   LoadTeachMap(dir.string(), KeyImageLoading::kOnDemand), o2, o3);
+    Pose2 pose{0.0, 0.05, 0.02};
+    int frames = 0, most_held = 0;
+    for (; frames < 150; ++frames) {
+      const cv::Mat image = scene.Render(CameraPose(pose));
+      const RepeatCommand a = all->Update(image, 0.1 * frames);
+      const RepeatCommand b = lazy->Update(image, 0.1 * frames);
+      ASSERT_EQ(a.milestone, b.milestone) << "frame " << frames;
+      ASSERT_EQ(a.twist.v_mps, b.twist.v_mps) << "frame " << frames;
+      ASSERT_EQ(a.twist.yaw_rate_radps, b.twist.yaw_rate_radps) << "frame " << frames;
+      ASSERT_EQ(a.status, b.status);
+      most_held = std::max(most_held, KeyImagesHeld(lazy->map()));
+      if (a.status != RepeatStatus::kDriving) break;
+      pose = navigation::IntegrateTwist(pose, a.twist, 0.1);
+    }
+    std::printf("%s: %d frames, %zu milestones, at most %d key images held\n", ToString(mode),
+                frames, all->map().milestones.size(), most_held);
+    EXPECT_EQ(KeyImagesHeld(all->map()), static_cast<int>(all->map().milestones.size()));
+    EXPECT_GE(lazy->map().milestones.size(), 5u);
+    EXPECT_LE(most_held, 2);
+    fs::remove_all(dir);
+  }
+}
+
+}  // namespace
+}  // namespace trackbed::teach_repeat
