@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
 """Writes scenes/outdoor_km.yaml: the outdoor park grown to a square kilometre (the
 park's ground, materials and robot, a route of about 1.07 km), so the terrain is
-paged and drawn by distance. The route is deterministic, so the file is the same on
-every run of this script:
+paged and drawn by distance; with --tr-long, scenes/tr_long.yaml: visual teach &
+repeat over the first 520 m of the same loop. The route is deterministic, so the file
+is the same on every run of this script:
 
     python3 scripts/outdoor_km_scene.py > scenes/outdoor_km.yaml
+    python3 scripts/outdoor_km_scene.py --tr-long > scenes/tr_long.yaml
 
 The loop is r(θ) = 160 + 15 sin 5θ m around the origin (five lobes, curvature radius
 at least about 60 m), sampled every 2 m of arc. It crosses grass (the default), a
@@ -13,6 +15,7 @@ trees and benches are scattered by density over the loop's surroundings, kept
 1.5 m clear of it.
 """
 import math
+import sys
 
 R0, WIGGLE, LOBES = 160.0, 15.0, 5
 
@@ -43,24 +46,61 @@ def fmt(x):
     return f"{x:.2f}".rstrip("0").rstrip(".")
 
 
+TR_LONG_M = 520.0  # teach & repeat: 520 m of the loop …
+TR_START_DEG = 20.0  # … from this polar angle, counter-clockwise
+TR_TEACH_SPEED, TR_REPEAT_SPEED = 0.2, 0.1  # [m/s], as scenes/tr_outdoor.yaml
+
+
+def header(length, speed, tr_long):
+    if not tr_long:
+        return [
+            "# The outdoor park grown to a square kilometre (issue 29): the park's rough grass,",
+            "# its materials and robot, over 1 km x 1 km, and a loop of %.0f m that crosses"
+            % length,
+            "# grass, a band of dry sand, a paved path and sandy loam, with uneven soil. The",
+            "# terrain is held in tiles and drawn in detail only near the robot",
+            "# (docs/rendering.md). Written by",
+            "#   python3 scripts/outdoor_km_scene.py > scenes/outdoor_km.yaml",
+            "seed: 1",
+            "duration_s: %d" % (math.ceil(length / speed / 10) * 10 + 20),
+        ]
+    return [
+        "# Visual teach & repeat over %.0f m outdoors (issue 29): half of" % length,
+        "# scenes/outdoor_km.yaml's loop, over grass, paving and sandy loam, taught at %s m/s"
+        % fmt(speed),
+        "# and repeated from the images at %s m/s. The teach map's key images stay on disk"
+        % fmt(TR_REPEAT_SPEED),
+        "# and are read as the repeat reaches them (docs/teach_repeat.md). Written by",
+        "#   python3 scripts/outdoor_km_scene.py --tr-long > scenes/tr_long.yaml",
+        "#   trackbed run scenes/tr_long.yaml --out runs/tr_long --set teach_repeat.method=3d",
+        "seed: 1",
+        "duration_s: %d" % (math.ceil(length / TR_REPEAT_SPEED / 10) * 10 + 100),
+    ]
+
+
 def main():
+    tr_long = "--tr-long" in sys.argv[1:]
     waypoints, length = route()
+    if tr_long:
+        # The open route along the loop from TR_START_DEG, past the band of dry sand
+        # (too few features there to repeat from: docs/results), up to TR_LONG_M of path.
+        start = min(range(len(waypoints)), key=lambda k: abs(
+            math.atan2(waypoints[k][1], waypoints[k][0]) - math.radians(TR_START_DEG)))
+        waypoints = waypoints[start:] + waypoints[:start]
+        kept, along = waypoints[:1], 0.0
+        for a, b in zip(waypoints, waypoints[1:]):
+            along += math.dist(a, b)
+            kept.append(b)
+            if along >= TR_LONG_M:
+                break
+        waypoints, length = kept, along
     x0, y0 = waypoints[0]
     x1, y1 = waypoints[1]
     yaw = math.degrees(math.atan2(y1 - y0, x1 - x0))
-    speed = 0.4
-    duration = math.ceil(length / speed / 10) * 10 + 20
-    lines = [
-        "# The outdoor park grown to a square kilometre (issue 29): the park's rough grass,",
-        "# its materials and robot, over 1 km x 1 km, and a loop of %.0f m that crosses" % length,
-        "# grass, a band of dry sand, a paved path and sandy loam, with uneven soil. The",
-        "# terrain is held in tiles and drawn in detail only near the robot",
-        "# (docs/rendering.md). Written by",
-        "#   python3 scripts/outdoor_km_scene.py > scenes/outdoor_km.yaml",
-        "seed: 1",
-        "duration_s: %d" % duration,
+    speed = TR_TEACH_SPEED if tr_long else 0.4
+    lines = header(length, speed, tr_long) + [
         "scene:",
-        "  name: outdoor_km",
+        "  name: %s" % ("tr_long" if tr_long else "outdoor_km"),
         "  terrain:",
         "    extent_m: [-500, -500, 500, 500]",
         "    cell_size_m: 0.1",
@@ -91,10 +131,18 @@ def main():
         "  stereo: {enabled: true}",
         "drive:",
         "  mode: path",
-        "  closed: true",
+    ] + ([] if tr_long else ["  closed: true"]) + [
         "  speed_mps: %s" % fmt(speed),
         "  lookahead_m: 0.6",
     ]
+    if tr_long:
+        lines += [
+            "teach_repeat:",
+            "  enabled: true",
+            "  method: 2d",
+            "  repeat_speed_mps: %s" % fmt(TR_REPEAT_SPEED),
+            "  repeat_turn_rate_deg_s: 8",
+        ]
     pts = ", ".join("[%s, %s]" % (fmt(x), fmt(y)) for x, y in waypoints)
     # Wrapped at about 90 columns.
     wrapped, line = [], "  waypoints: ["
@@ -105,7 +153,11 @@ def main():
             line = "              "
         line += piece + ", "
     wrapped.append(line.rstrip(", ") + "]")
-    print("\n".join(lines + wrapped))
+    if tr_long:
+        # teach_repeat follows the drive's keys.
+        print("\n".join(lines[:-5] + wrapped + lines[-5:]))
+    else:
+        print("\n".join(lines + wrapped))
 
 
 if __name__ == "__main__":
