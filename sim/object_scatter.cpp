@@ -45,7 +45,6 @@ double PathDistance(const Eigen::Vector2d& p,
 StaticObject Candidate(const ObjectScatter& s, const ObjectType& type, double cell_m,
                        std::int64_t i, std::int64_t j, std::uint64_t h) {
   StaticObject o;
-  o.scattered = true;
   o.kind = s.type;
   o.shape = type.shape;
   o.appearance = type.appearance;

@@ -439,116 +439,44 @@ struct Renderer::Gl {
     }
   }
 
-  // Object `o`'s body (a box, or a cylinder up to its height) in the display list being
-  // compiled, with its texture bound before when `bind`. Returns its bounds.
-  Eigen::AlignedBox3d EmitBody(const StaticObject& o, bool bind) {
-    const GlTexture& tex = Texture(o.appearance);
-    if (bind) glBindTexture(GL_TEXTURE_2D, tex.name);
-    glPushMatrix();
-    glTranslated(o.center_m.x(), o.center_m.y(), o.base_z_m);
-    Eigen::AlignedBox3d box;
-    if (o.shape == StaticObject::Shape::kBox) {
-      glRotated(units::Degrees(o.yaw_rad), 0, 0, 1);
-      glTranslated(0, 0, o.size_m.z() / 2);
-      DrawBox(o.size_m, tex.meters_per_repeat);
-      const double r = 0.5 * o.size_m.head<2>().norm();
-      box = Eigen::AlignedBox3d(
-          Eigen::Vector3d(o.center_m.x() - r, o.center_m.y() - r, o.base_z_m),
-          Eigen::Vector3d(o.center_m.x() + r, o.center_m.y() + r, o.base_z_m + o.size_m.z()));
-    } else {
-      DrawCylinder(o.radius_m, o.height_m, tex.meters_per_repeat);
-      box = Eigen::AlignedBox3d(
-          Eigen::Vector3d(o.center_m.x() - o.radius_m, o.center_m.y() - o.radius_m, o.base_z_m),
-          Eigen::Vector3d(o.center_m.x() + o.radius_m, o.center_m.y() + o.radius_m,
-                          o.base_z_m + o.height_m));
-    }
-    glPopMatrix();
-    return box;
-  }
-
-  // Makes the textures object `o` is drawn with: outside a display list, so that they
-  // are made once rather than compiled into it.
-  void PrepareTextures(const StaticObject& o) {
-    Texture(o.appearance);
-    if (HasCrown(o)) Texture("leaves");
-  }
-
-  bool HasCrown(const StaticObject& o) const {
-    return o.shape == StaticObject::Shape::kCylinder && o.kind == "tree" && appearance.tree_crowns;
-  }
-
-  // A tree's crown (visual-only foliage, a third of the trunk's height across) on top of
-  // its trunk, with the leaves' texture bound before when `bind`. Returns the bounds of
-  // the crown and the trunk under it. (The matrix steps and the bounds' sums are those
-  // the renderer always took, so that a tree's pixels keep their bits.)
-  Eigen::AlignedBox3d EmitCrown(const StaticObject& o, bool bind) {
-    const double crown = TreeCrownRadius(o);
-    const GlTexture& leaves = Texture("leaves");
-    if (bind) glBindTexture(GL_TEXTURE_2D, leaves.name);
-    glPushMatrix();
-    glTranslated(o.center_m.x(), o.center_m.y(), o.base_z_m);
-    glTranslated(0, 0, o.height_m);
-    DrawSphere(crown, leaves.meters_per_repeat);
-    glPopMatrix();
-    return Eigen::AlignedBox3d(
-        Eigen::Vector3d(o.center_m.x() - crown, o.center_m.y() - crown, o.base_z_m),
-        Eigen::Vector3d(o.center_m.x() + crown, o.center_m.y() + crown,
-                        o.base_z_m + (o.height_m + crown)));
-  }
-
-  // Scattered objects in batches: one display list per kObjectBatchM square of the
-  // ground, its bodies grouped by texture, then its crowns. Hundreds of small objects
-  // drawn one by one cost llvmpipe more in draws and texture changes than in pixels;
-  // culled by the square's bounds instead of each object's, they cost a few draws.
-  void BuildObjectBatches(const std::vector<const StaticObject*>& scattered) {
-    constexpr double kObjectBatchM = 16.0;
-    std::map<std::pair<long, long>, std::vector<const StaticObject*>> cells;
-    for (const StaticObject* o : scattered) {
-      cells[{std::lround(std::floor(o->center_m.x() / kObjectBatchM)),
-             std::lround(std::floor(o->center_m.y() / kObjectBatchM))}]
-          .push_back(o);
-    }
-    for (auto& [cell, objects] : cells) {
-      std::stable_sort(objects.begin(), objects.end(),
-                       [](const StaticObject* a, const StaticObject* b) {
-                         return a->appearance < b->appearance;
-                       });
-      for (const StaticObject* o : objects) PrepareTextures(*o);
-      Drawable d;
-      d.list = glGenLists(1);
-      glNewList(d.list, GL_COMPILE);
-      for (std::size_t k = 0; k < objects.size(); ++k) {
-        const bool bind = k == 0 || objects[k]->appearance != objects[k - 1]->appearance;
-        d.box.extend(EmitBody(*objects[k], bind));
-      }
-      bool bound = false;
-      for (const StaticObject* o : objects) {
-        if (!HasCrown(*o)) continue;
-        d.box.extend(EmitCrown(*o, !bound));
-        bound = true;
-      }
-      glEndList();
-      drawables.push_back(d);
-    }
-  }
-
   void BuildObjects(const World& world) {
-    std::vector<const StaticObject*> scattered;
     for (const StaticObject& o : world.objects()) {
-      if (o.scattered) {
-        scattered.push_back(&o);
-        continue;
-      }
-      PrepareTextures(o);
+      const GlTexture& tex = Texture(o.appearance);
       Drawable d;
       d.list = glGenLists(1);
       glNewList(d.list, GL_COMPILE);
-      d.box = EmitBody(o, true);
-      if (HasCrown(o)) d.box.extend(EmitCrown(o, true));
+      glBindTexture(GL_TEXTURE_2D, tex.name);
+      glPushMatrix();
+      glTranslated(o.center_m.x(), o.center_m.y(), o.base_z_m);
+      if (o.shape == StaticObject::Shape::kBox) {
+        glRotated(units::Degrees(o.yaw_rad), 0, 0, 1);
+        glTranslated(0, 0, o.size_m.z() / 2);
+        DrawBox(o.size_m, tex.meters_per_repeat);
+        const double r = 0.5 * o.size_m.head<2>().norm();
+        d.box = Eigen::AlignedBox3d(
+            Eigen::Vector3d(o.center_m.x() - r, o.center_m.y() - r, o.base_z_m),
+            Eigen::Vector3d(o.center_m.x() + r, o.center_m.y() + r, o.base_z_m + o.size_m.z()));
+      } else {
+        DrawCylinder(o.radius_m, o.height_m, tex.meters_per_repeat);
+        double top = o.height_m, reach = o.radius_m;
+        if (o.kind == "tree" && appearance.tree_crowns) {
+          // Visual-only foliage: a crown a third of the trunk's height across.
+          const double crown = TreeCrownRadius(o);
+          const GlTexture& leaves = Texture("leaves");
+          glBindTexture(GL_TEXTURE_2D, leaves.name);
+          glTranslated(0, 0, o.height_m);
+          DrawSphere(crown, leaves.meters_per_repeat);
+          top += crown;
+          reach = std::max(reach, crown);
+        }
+        d.box = Eigen::AlignedBox3d(
+            Eigen::Vector3d(o.center_m.x() - reach, o.center_m.y() - reach, o.base_z_m),
+            Eigen::Vector3d(o.center_m.x() + reach, o.center_m.y() + reach, o.base_z_m + top));
+      }
+      glPopMatrix();
       glEndList();
       drawables.push_back(d);
     }
-    BuildObjectBatches(scattered);
     if (appearance.ceiling_height_m > 0.0) {
       const Terrain& t = *terrain;
       const GlTexture& tex = Texture("ceiling");

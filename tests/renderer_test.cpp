@@ -132,60 +132,6 @@ TEST(RendererTest, SameSceneAndSeedGiveIdenticalBytesWithoutADisplay) {
   EXPECT_NE(r2.gl_description().find("llvmpipe"), std::string::npos) << r2.gl_description();
 }
 
-// Scattered objects are drawn in batches by area (one draw per 16 m square) rather
-// than one by one: the same pixels, seen from inside a grove and from outside it.
-TEST(RendererTest, ScatteredObjectsDrawnInBatchesGiveTheSamePixels) {
-  std::vector<StaticObject> one_by_one;
-  for (int i = 0; i < 12; ++i) {
-    for (int j = 0; j < 6; ++j) {
-      StaticObject o;
-      o.shape = (i + j) % 5 == 0 ? StaticObject::Shape::kBox : StaticObject::Shape::kCylinder;
-      o.kind = o.shape == StaticObject::Shape::kBox ? "bench" : "tree";
-      o.appearance = o.shape == StaticObject::Shape::kBox ? "wood" : "bark";
-      o.center_m = {3.0 + 4.3 * i + 0.7 * (j % 2), -12.0 + 4.1 * j};
-      o.base_z_m = 0.0;
-      o.radius_m = 0.15 + 0.02 * (i % 4);
-      o.height_m = 2.0 + 0.5 * (j % 3);
-      o.size_m = {1.5, 0.45, 0.45};
-      o.yaw_rad = 0.3 * i;
-      one_by_one.push_back(o);
-    }
-  }
-  std::vector<StaticObject> batched = one_by_one;
-  for (StaticObject& o : batched) o.scattered = true;
-  SceneAppearance a = Flat();
-  a.tree_crowns = true;
-  const robot::StereoRig rig = LevelRig();
-  // 0: one by one, 1: in batches, 2: no objects (to show that the views see them).
-  std::vector<GrayImage> images[3];
-  for (int variant = 0; variant < 3; ++variant) {
-    const World world = MakeWorld(variant == 0   ? one_by_one
-                                  : variant == 1 ? batched
-                                                 : std::vector<StaticObject>{});
-    Renderer renderer(world, a, {}, 5, 640, 480, 0.05, 120.0);
-    for (const Eigen::Vector3d& at :
-         {Eigen::Vector3d(0, 0, 0.7), Eigen::Vector3d(20, -1, 0.7), Eigen::Vector3d(60, 10, 3.0)}) {
-      Eigen::Isometry3d T_world_body = Eigen::Isometry3d::Identity();
-      T_world_body.translation() = at;
-      T_world_body.linear() =
-          Eigen::AngleAxisd(at.x() > 50 ? 3.0 : 0.1, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-      GrayImage gray;
-      renderer.Render(rig.intrinsics(), T_world_body * rig.T_body_left(), 0.0, &gray, nullptr);
-      images[variant].push_back(gray);
-    }
-  }
-  for (std::size_t k = 0; k < images[0].size(); ++k) {
-    std::size_t differ = 0, objects = 0;
-    for (std::size_t p = 0; p < images[0][k].pixels.size(); ++p) {
-      differ += images[0][k].pixels[p] != images[1][k].pixels[p];
-      objects += images[0][k].pixels[p] != images[2][k].pixels[p];
-    }
-    std::printf("view %zu: %zu object pixels, %zu differ when batched\n", k, objects, differ);
-    EXPECT_GT(objects, 10000u) << "view " << k;
-    EXPECT_EQ(differ, 0u) << "view " << k;
-  }
-}
-
 // Rough grass, as outdoors: the far terrain at lower detail leaves the near
 // ground's pixels as they are, changes far ones, and gives both cameras of a
 // pair the same ground.

@@ -34,9 +34,6 @@ struct StaticObject {
   /// Whether it is a physical obstacle; visual-only dressing (doors and posters
   /// flat on a wall) is drawn but not simulated.
   bool collides = true;
-  /// Placed by a scatter rule (`scene.scatter`): one of many, which the renderer draws in
-  /// batches by area rather than one by one.
-  bool scattered = false;
 
   void Validate() const;
 };
