@@ -233,22 +233,20 @@ void WriteRecoveryPlot(const scenario::Scenario& scenario, const TeachRepeatMetr
 
 // teach_repeat_timing.png: the repeater's time per frame along the route, with its
 // median over every 100 frames (flat when the cost does not grow with the route).
-void WriteRepeatTimePlot(const scenario::Scenario& scenario, const std::vector<RepeatStep>& steps,
-                         const fs::path& dir) {
-  PlotSeries frames{"per frame", {}}, medians{"median of 100 frames", {}};
+// `frames` holds (t [s], time [ms]) and `milestone` (t [s], active milestone) per frame.
+void WriteRepeatTimePlot(const scenario::Scenario& scenario, const PlotSeries& frames,
+                         const PlotSeries& milestone, const fs::path& dir) {
+  PlotSeries medians{"median of 100 frames", {}};
   std::vector<double> block;
-  for (std::size_t k = 0; k < steps.size(); ++k) {
-    frames.points.emplace_back(steps[k].t_s, 1e3 * steps[k].repeater_s);
-    block.push_back(1e3 * steps[k].repeater_s);
-    if (block.size() == 100 || k + 1 == steps.size()) {
+  for (std::size_t k = 0; k < frames.points.size(); ++k) {
+    block.push_back(frames.points[k].y());
+    if (block.size() == 100 || k + 1 == frames.points.size()) {
       const auto mid = block.begin() + static_cast<std::ptrdiff_t>(block.size() / 2);
       std::nth_element(block.begin(), mid, block.end());
-      medians.points.emplace_back(steps[k].t_s, *mid);
+      medians.points.emplace_back(frames.points[k].x(), *mid);
       block.clear();
     }
   }
-  PlotSeries milestone{"active milestone", {}};
-  for (const RepeatStep& s : steps) milestone.points.emplace_back(s.t_s, s.command.milestone);
   WriteTimePlot(
       dir / "teach_repeat_timing.png",
       scenario.scene.name + ": repeater time per frame (" + scenario.teach_repeat.method + ")",
@@ -305,13 +303,15 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
   // kept apart so that teach_repeat.csv is the same on every machine).
   std::ofstream timing_csv(dir / "teach_repeat_timing.csv", std::ios::out | std::ios::trunc);
   timing_csv << "t,milestone,timing_repeater_ms\n";
-  std::vector<RepeatStep> steps;  // per repeat frame (the time plot)
+  // The time plot's series, per repeat frame.
+  PlotSeries frame_ms{"per frame", {}}, milestone{"active milestone", {}};
   RunObservers extra;
   std::vector<CumulativeRecovery> counts;  // per repeat frame
   const auto log_step = [&](const RepeatStep& step) {
     const teach_repeat::RepeatCommand& c = step.command;
     counts.push_back({step.t_s, c.features_lost, c.features_recovered});
-    steps.push_back(step);
+    frame_ms.points.emplace_back(step.t_s, 1e3 * step.repeater_s);
+    milestone.points.emplace_back(step.t_s, c.milestone);
     char line[512];
     std::snprintf(line, sizeof(line),
                   "%.6f,%s,%.6g,%.6g,%d,%d,%d,%d,%d,%d,%d,%.6g,%d,%d,%.6g,%.6g,%d,%.6g\n", step.t_s,
@@ -341,7 +341,7 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
   if (!timing_csv) {
     throw std::runtime_error((dir / "teach_repeat_timing.csv").string() + ": cannot write");
   }
-  WriteRepeatTimePlot(scenario, steps, dir);
+  WriteRepeatTimePlot(scenario, frame_ms, milestone, dir);
 
   TeachRepeatMetrics t;
   t.method = tr.method;
