@@ -24,6 +24,16 @@ const std::vector<float>& UnitNormals() {
   return table;
 }
 
+// x rounded to the nearest integer, ties to even (std::nearbyint's result in the default
+// rounding mode), for 0 <= x < 2^22: adding 1.5 * 2^23 leaves no fraction bits, so the
+// float addition rounds x. Inline, where nearbyint is a library call per pixel; clamping
+// before rounding gives the same integers, since rounding is monotone and the bounds
+// (0 and the ADC's largest number, at most 65535) are integers.
+inline float RoundToEven(float x) {
+  constexpr float kShift = 12582912.0f;  // 1.5 * 2^23
+  return (x + kShift) - kShift;
+}
+
 }  // namespace
 
 void PhotometricOptions::Validate() const {
@@ -99,8 +109,8 @@ void ImageSensor::Apply(double exposure, std::uint64_t seed, std::uint64_t frame
     const float sigma = std::sqrt(std::max(signal, 0.0f) + read2);
     const float charge =
         clipped_render && px[i] == 255 ? full_well : signal + offset_map_[i] + sigma * n;
-    const float dn = std::min(std::max(std::nearbyint(charge * dn_per_e), 0.0f), dn_max);
-    px[i] = static_cast<std::uint8_t>(std::nearbyint(dn * grey_per_dn));
+    const float dn = RoundToEven(std::min(std::max(charge * dn_per_e, 0.0f), dn_max));
+    px[i] = static_cast<std::uint8_t>(RoundToEven(dn * grey_per_dn));
   }
 }
 
