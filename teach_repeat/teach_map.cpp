@@ -58,13 +58,15 @@ std::uint64_t GetUint(const std::string& in, std::size_t offset, int bytes) {
   return value;
 }
 
-void WriteFile(const fs::path& path, const std::string& bytes) {
+/// Writes `bytes` to `path`; errors begin with `who` (the public function writing).
+void WriteFile(const fs::path& path, const std::string& bytes, const char* who = "SaveTeachMap") {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out)
-    throw std::runtime_error("SaveTeachMap: " + path.string() + ": cannot open for writing");
+  if (!out) {
+    throw std::runtime_error(std::string(who) + ": " + path.string() + ": cannot open for writing");
+  }
   out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   out.close();
-  if (!out) throw std::runtime_error("SaveTeachMap: " + path.string() + ": write failed");
+  if (!out) throw std::runtime_error(std::string(who) + ": " + path.string() + ": write failed");
 }
 
 std::optional<std::string> ReadFile(const fs::path& path) {
@@ -372,22 +374,24 @@ void TeachMap::Validate() const {
 namespace {
 
 /// Milestone `m`'s key image as a PNG file at `to`: encoded when held in memory, else a
-/// hard link to (or, across file systems, a copy of) its file, which is kept.
-void PutKeyImage(const Milestone& m, const fs::path& to) {
+/// hard link to (or, across file systems, a copy of) its file, which is kept. Errors begin
+/// with `who`.
+void PutKeyImage(const Milestone& m, const fs::path& to, const char* who = "SaveTeachMap") {
   if (!m.key_image.empty()) {
     std::vector<unsigned char> png;
     if (!cv::imencode(".png", m.key_image, png)) {
-      throw std::runtime_error("SaveTeachMap: " + to.string() + ": PNG encoding failed");
+      throw std::runtime_error(std::string(who) + ": " + to.string() + ": PNG encoding failed");
     }
-    WriteFile(to, std::string(png.begin(), png.end()));
+    WriteFile(to, std::string(png.begin(), png.end()), who);
     return;
   }
   std::error_code ec;
   fs::create_hard_link(m.key_image_file, to, ec);
   if (ec) fs::copy_file(m.key_image_file, to, ec);
   if (ec) {
-    throw std::runtime_error("SaveTeachMap: " + to.string() + ": cannot copy the key image " +
-                             m.key_image_file + ": " + ec.message());
+    throw std::runtime_error(std::string(who) + ": " + to.string() +
+                             ": cannot copy the key image " + m.key_image_file + ": " +
+                             ec.message());
   }
 }
 
@@ -760,7 +764,7 @@ void SpillKeyImage(const std::string& dir, std::size_t index, Milestone* m) {
   }
   Milestone on_file;
   on_file.key_image = m->key_image;
-  PutKeyImage(on_file, file);
+  PutKeyImage(on_file, file, "SpillKeyImage");
   m->key_image_file = file.string();
   m->key_image.release();
 }

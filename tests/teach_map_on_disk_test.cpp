@@ -165,6 +165,25 @@ TEST(TeachMapOnDiskTest, OnDemandLoadingChecksEveryKeyImageFileUpFront) {
   fs::remove_all(dir);
 }
 
+TEST(TeachMapOnDiskTest, ASpillThatCannotWriteSaysSoAndKeepsTheImage) {
+  const fs::path dir = Scratch("spill_blocked");
+  // Where the key image would go, a folder: the file cannot be opened for writing.
+  fs::create_directories(dir / "key_images" / "000000.png");
+  Milestone m;
+  m.key_image = cv::Mat(480, 640, CV_8UC1, cv::Scalar(7));
+  try {
+    SpillKeyImage(dir.string(), 0, &m);
+    ADD_FAILURE() << "spilling into a folder succeeded";
+  } catch (const std::runtime_error& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind("SpillKeyImage: ", 0), 0u) << message;
+    EXPECT_NE(message.find("000000.png"), std::string::npos) << message;
+  }
+  EXPECT_FALSE(m.key_image.empty());  // still held: nothing was lost
+  EXPECT_TRUE(m.key_image_file.empty());
+  fs::remove_all(dir);
+}
+
 TEST(TeachMapOnDiskTest, RepeatersDriveTheSameFromAMapOnDiskHoldingTwoKeyImages) {
   const CorridorScene scene;
   for (const TeachMode mode : {TeachMode::k2d, TeachMode::k3d}) {
