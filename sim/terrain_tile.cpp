@@ -3,6 +3,8 @@
 
 #include <stdexcept>
 
+#include "trackbed/common/least_recently_used.h"
+
 namespace trackbed::sim {
 
 TerrainTileCache::TerrainTileCache(std::size_t capacity) : capacity_(capacity) {
@@ -14,13 +16,7 @@ const std::shared_ptr<const TerrainTile>& TerrainTileCache::Get(int ti, int tj,
   const auto key = std::make_pair(ti, tj);
   auto it = tiles_.find(key);
   if (it == tiles_.end()) {
-    if (tiles_.size() >= capacity_) {
-      auto oldest = tiles_.begin();
-      for (auto e = tiles_.begin(); e != tiles_.end(); ++e) {
-        if (e->second.used < oldest->second.used) oldest = e;
-      }
-      tiles_.erase(oldest);
-    }
+    if (tiles_.size() >= capacity_) tiles_.erase(LeastRecentlyUsed(tiles_));
     it = tiles_.emplace(key, Entry{std::make_shared<const TerrainTile>(generate(ti, tj)), 0}).first;
     ++generated_;
   }

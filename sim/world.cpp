@@ -9,6 +9,7 @@
 #include <BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h>
 #include <btBulletDynamicsCommon.h>
 
+#include "trackbed/common/least_recently_used.h"
 #include "trackbed/common/option_error.h"
 
 namespace trackbed::sim {
@@ -118,10 +119,7 @@ struct World::BulletParts {
   // Takes the least recently used tiles out beyond `keep`.
   void DropGround(std::size_t keep) {
     while (ground.size() > keep) {
-      auto oldest = ground.begin();
-      for (auto it = ground.begin(); it != ground.end(); ++it) {
-        if (it->second.used < oldest->second.used) oldest = it;
-      }
+      const auto oldest = LeastRecentlyUsed(ground);
       dynamics.removeCollisionObject(oldest->second.body.get());
       ground.erase(oldest);
     }
