@@ -301,6 +301,7 @@ std::string MetricsJson(const RunMetrics& m) {
                          {"recovery_rate_pooled", finite_or_null(t.recovery_rate_pooled)},
                          {"milestones", t.milestones},
                          {"teach_images", t.teach_images},
+                         {"switches_by_distance", t.switches_by_distance},
                          {"map_size_mb", t.map_size_mb},
                          {"map_mb_per_100m", finite_or_null(t.map_mb_per_100m)}};
     nlohmann::ordered_json places = nlohmann::ordered_json::array();

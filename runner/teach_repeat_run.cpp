@@ -140,10 +140,14 @@ class StopsForCrossings final : public teach_repeat::Repeater {
   teach_repeat::RepeatCommand Update(const cv::Mat& gray, double t_s) override {
     teach_repeat::RepeatCommand c = inner_->Update(gray, t_s);
     for (const auto& [start, end] : windows_) {
-      if (t_s >= start && t_s < end) c.twist = {};
+      if (t_s >= start && t_s < end) {
+        c.twist = {};
+        inner_->SetExecutedSpeed(0.0);  // held: no distance driven toward the next frame
+      }
     }
     return c;
   }
+  void SetExecutedSpeed(double v_mps) override { inner_->SetExecutedSpeed(v_mps); }
   const char* method() const override { return inner_->method(); }
   const teach_repeat::TeachMap& map() const override { return inner_->map(); }
 
@@ -278,6 +282,7 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
   teach_repeat::FunnelLaneOptions o2;
   o2.forward_speed_mps = tr.repeat_speed_mps;
   o2.turn_rate_radps = units::Radians(tr.repeat_turn_rate_deg_s);
+  o2.max_milestone_overrun = tr.max_milestone_overrun;
   teach_repeat::Localizer3dOptions o3;
   o3.forward_speed_mps = tr.repeat_speed_mps;
   o3.max_yaw_rate_radps = units::Radians(tr.repeat_turn_rate_deg_s);
@@ -307,9 +312,11 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
   PlotSeries frame_ms{"per frame", {}}, milestone{"active milestone", {}};
   RunObservers extra;
   std::vector<CumulativeRecovery> counts;  // per repeat frame
+  int switches_by_distance = 0;
   const auto log_step = [&](const RepeatStep& step) {
     const teach_repeat::RepeatCommand& c = step.command;
     counts.push_back({step.t_s, c.features_lost, c.features_recovered});
+    switches_by_distance += c.switched_by_distance ? 1 : 0;
     frame_ms.points.emplace_back(step.t_s, 1e3 * step.repeater_s);
     milestone.points.emplace_back(step.t_s, c.milestone);
     char line[512];
@@ -348,6 +355,7 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
   t.status = m.stop_reason.rfind("repeat ", 0) == 0 ? m.stop_reason.substr(7) : m.stop_reason;
   t.milestones = milestones;
   t.teach_images = teach_images;
+  t.switches_by_distance = switches_by_distance;
   t.map_size_mb = map_bytes / 1e6;
   t.features_lost = m.repeat_features_lost;
   t.features_recovered = m.repeat_features_recovered;

@@ -39,6 +39,11 @@ void FunnelLaneOptions::Validate() const {
                       "must be in [0, 1) (got " + option_check::Describe(min_net_vote) + ")");
   }
   option_check::NonNegative("switch_hysteresis_px", switch_hysteresis_px);
+  if (!(max_milestone_overrun == 0.0 || max_milestone_overrun >= 1.0)) {
+    throw OptionError(
+        "max_milestone_overrun",
+        "must be 0 (off) or >= 1 (got " + option_check::Describe(max_milestone_overrun) + ")");
+  }
   option_check::AtLeast("min_frames_per_milestone", min_frames_per_milestone, 1);
   option_check::AtLeast("min_features", min_features, 1);
   option_check::AtLeast("lost_patience_frames", lost_patience_frames, 1);
@@ -87,7 +92,11 @@ void FunnelLaneRepeater::RepeatFrame(const cv::Mat& /*gray*/, RepeatCommand* cmd
         !taught_flow_measurable_ ||
         (progress.valid ? progress.progress >= options_.switch_progress : passed_minimum);
   }
-  const bool passed = passed_progress && frames_in_milestone_ > options_.min_frames_per_milestone;
+  // The distance bound (file comment): driven past the milestone by the command alone.
+  const bool overran = options_.max_milestone_overrun > 0.0 && taught_flow_measurable_ &&
+                       DrivenInMilestone() > options_.max_milestone_overrun * m->baseline_m;
+  const bool passed =
+      (passed_progress || overran) && frames_in_milestone_ > options_.min_frames_per_milestone;
   cmd->mean_error_px = switch_->error_px();
   if (passed) {
     if (milestone_ + 1 >= static_cast<int>(map_.milestones.size())) {
@@ -98,6 +107,7 @@ void FunnelLaneRepeater::RepeatFrame(const cv::Mat& /*gray*/, RepeatCommand* cmd
     const std::vector<cv::Point2f> guesses = detail::ShiftedGuesses(*m, tracks_->tracks(), next);
     StartMilestone(milestone_ + 1, guesses);
     cmd->switched = true;
+    cmd->switched_by_distance = !passed_progress;
     m = &next;
     frame = detail::EvaluateFunnel(map_.camera, *m, tracks_->tracks(), options_.remove_rotation);
     switch_->Update(frame);

@@ -52,6 +52,7 @@ void MilestoneRepeater::CheckInput(const cv::Mat& gray, double t_s) const {
 
 RepeatCommand MilestoneRepeater::Update(const cv::Mat& gray, double t_s) {
   CheckInput(gray, t_s);
+  if (started_) driven_in_milestone_m_ += executed_v_mps_ * (t_s - last_t_s_);
   last_t_s_ = t_s;
   RepeatCommand cmd;
   cmd.milestone = milestone_;
@@ -75,6 +76,7 @@ RepeatCommand MilestoneRepeater::Update(const cv::Mat& gray, double t_s) {
   ++frames_in_milestone_;
   RepeatFrame(gray, &cmd);
   std::swap(prev_pyramid_, curr_pyramid_);
+  executed_v_mps_ = cmd.twist.v_mps;
   return cmd;
 }
 
@@ -85,6 +87,7 @@ void MilestoneRepeater::StartMilestone(int index, const std::vector<cv::Point2f>
   tracks_->Start(m, curr_pyramid_, guesses);
   switch_->Reset();
   frames_in_milestone_ = 0;
+  driven_in_milestone_m_ = 0.0;
   MilestoneStarted(m);
 }
 

@@ -576,6 +576,15 @@ TEST(ScenarioYamlTest, APosePathIsCarriedAtCarSpeedsAndCheckedOnTheTerrain) {
   EXPECT_EQ(ParseScenario(pose_path, "test.yaml").drive.mode, DriveSpec::Mode::kPosePath);
 }
 
+TEST(ScenarioYamlTest, TheDistanceBoundIsOffOrAtLeastOneBaseline) {
+  EXPECT_EQ(ParseScenario(kMinimal, "test.yaml").teach_repeat.max_milestone_overrun, 2.0);
+  EXPECT_EQ(ErrorOf(kMinimal, {{"teach_repeat.max_milestone_overrun", "0"}}), "");
+  EXPECT_EQ(ErrorOf(kMinimal, {{"teach_repeat.max_milestone_overrun", "1.5"}}), "");
+  EXPECT_NE(ErrorOf(kMinimal, {{"teach_repeat.max_milestone_overrun", "0.5"}})
+                .find("teach_repeat.max_milestone_overrun: must be 0 (off) or >= 1 (got 0.5)"),
+            std::string::npos);
+}
+
 TEST(ScenarioYamlTest, APublishedCameraIsGivenByItsFocalLengthAndPrincipalPoint) {
   const Scenario s = ParseScenario(
       std::string(kMinimal) +

@@ -223,6 +223,7 @@ TEST(FunnelLaneRepeaterTest, OccludedFeaturesAreLostAndNotRecovered) {
       testing::DrawOccluder(&image, {static_cast<float>(-60 + 40 * (k - 2)), 260.0f}, 90.0);
     }
     const RepeatCommand c = repeater.Update(image, 0.1 * k);
+    repeater.SetExecutedSpeed(0.0);  // held still, as the runner's stop for crossings
     if (k == 1) before = c;
     after = c;
   }
@@ -233,6 +234,39 @@ TEST(FunnelLaneRepeaterTest, OccludedFeaturesAreLostAndNotRecovered) {
   std::printf("2D, occluder: tracked %d -> %d, lost %lld, recovered %lld\n", before.tracked,
               after.tracked, static_cast<long long>(after.features_lost - before.features_lost),
               static_cast<long long>(after.features_recovered));
+}
+
+TEST(FunnelLaneRepeaterTest, DistanceBoundPassesAMilestoneTheImagesCannotPlace) {
+  // The camera sees the key image of milestone 0 however far the robot drives (as on
+  // ground whose images do not show the approach): without the bound the milestone is
+  // never passed; with it, once twice its taught baseline has been driven. A robot held
+  // still drives nothing, however long.
+  const CorridorScene scene;
+  const TeachMap& map = TeachStraight(scene, 41);
+  const double baseline = map.milestones[0].baseline_m;
+  ASSERT_GT(baseline, 0.1);
+  const cv::Mat stuck = scene.Render(CameraPose({}));
+  const auto first_switch = [&](double overrun, bool held, RepeatCommand* at) {
+    FunnelLaneOptions options = FastRepeat();
+    options.max_milestone_overrun = overrun;
+    options.lost_patience_frames = 1000;
+    FunnelLaneRepeater repeater(map, options);
+    for (int k = 0; k < 100; ++k) {
+      *at = repeater.Update(stuck, 0.1 * k);
+      if (held) repeater.SetExecutedSpeed(0.0);
+      if (at->switched) return k;
+    }
+    return -1;
+  };
+  RepeatCommand at;
+  EXPECT_EQ(first_switch(0.0, false, &at), -1);
+  EXPECT_EQ(first_switch(2.0, true, &at), -1);
+  const int k = first_switch(2.0, false, &at);
+  // 0.2 m/s for 0.1 s per frame: passed at the first frame beyond 2 * baseline.
+  EXPECT_EQ(k, static_cast<int>(std::floor(2.0 * baseline / 0.02 + 1e-9)) + 1);
+  EXPECT_TRUE(at.switched_by_distance);
+  EXPECT_EQ(at.milestone, 1);
+  std::printf("2D, distance bound: baseline %.3f m, passed at frame %d\n", baseline, k);
 }
 
 TEST(FunnelLaneRepeaterTest, BlankImagesEndTheRepeatAsLostAfterThePatience) {
@@ -276,6 +310,14 @@ TEST(FunnelLaneRepeaterTest, BadInputAndOptionsAreRejected) {
     FAIL() << "expected OptionError";
   } catch (const OptionError& e) {
     EXPECT_EQ(e.field(), "min_net_vote");
+  }
+  o = {};
+  o.max_milestone_overrun = 0.5;
+  try {
+    FunnelLaneRepeater bad(map, o);
+    FAIL() << "expected OptionError";
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.field(), "max_milestone_overrun");
   }
   o = {};
   o.tracker.pyramid_levels = 9;

@@ -41,6 +41,9 @@ TEST(TeachRepeatOutdoorTest, OnRoughGroundWithSlipTheRepeatStaysOnTheRoute) {
   EXPECT_LT(t.lateral_rms_m, 0.15);
   EXPECT_LT(t.lateral_max_m, 0.25);
   EXPECT_LT(t.end_point_error_m, 0.25);
+  // The images pass every milestone here: the distance bound is for ground whose images
+  // cannot (docs/teach_repeat.md, "Distance bound").
+  EXPECT_EQ(t.switches_by_distance, 0);
   // The repeat crossed the sand and slipped there.
   ASSERT_TRUE(m.slip_by_material.count("dry_sand"));
   EXPECT_GT(m.slip_by_material.at("dry_sand").mean_abs_ratio(), 0.02);

@@ -61,6 +61,8 @@ struct TeachRepeatMetrics {
   std::vector<Place> places;
   int milestones = 0;
   int teach_images = 0;
+  /// 2D: milestone switches made by the distance bound, not by the images.
+  int switches_by_distance = 0;
   /// The teach map's folder on disk [MB] (10^6 bytes), and per 100 m of taught path.
   double map_size_mb = 0.0;
   double map_mb_per_100m = 0.0;

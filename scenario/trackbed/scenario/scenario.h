@@ -414,6 +414,9 @@ struct TeachRepeatSpec {
   /// 0.05 m/s, 4°/s).
   double repeat_speed_mps = 0.05;
   double repeat_turn_rate_deg_s = 4.0;
+  /// 2D: a milestone is passed at the latest after this many times its taught baseline
+  /// driven in it; 0: off, else >= 1 (FunnelLaneOptions::max_milestone_overrun).
+  double max_milestone_overrun = 2.0;
   /// The repeat starts at robot.start moved by this offset (in the start's frame) …
   StartPose start_offset;
   /// … and by a seeded perturbation of up to 5 cm and 2° (false: none).
@@ -440,6 +443,7 @@ struct TeachRepeatSpec {
     a->Visit("map", &map);
     a->Visit("repeat_speed_mps", &repeat_speed_mps);
     a->Visit("repeat_turn_rate_deg_s", &repeat_turn_rate_deg_s);
+    a->Visit("max_milestone_overrun", &max_milestone_overrun);
     a->Visit("start_offset", &start_offset);
     a->Visit("start_perturbation", &start_perturbation);
     a->Visit("occluders", &occluders);

@@ -76,6 +76,18 @@
 //   the vote says straight but the common offset c of the progress fit exceeds
 //   `heading_deadband_px`, the robot turns toward the taught heading at that place
 //   (c > 0: features right of where the teach saw them, the robot turned left: right).
+// * Distance bound (ours, default). The images can lose the place within a milestone
+//   while still steering: on low-texture ground seen mostly far away the progress fit
+//   wanders (back below 0 while the robot drives on) and the error has no clear minimum,
+//   so the robot keeps the milestone for metres; in a curve it then steers to a heading
+//   taught metres behind and drifts to the outside (4 m behind and 1.1 m outside after
+//   40 m of sandy loam: docs/results/2026-12-06-long-routes.md). Bearing-only
+//   navigation takes the distance along the path from odometry (Krajník et al. 2010,
+//   "Simple yet stable bearing-only navigation", J. Field Robotics 27(5)); here it only
+//   bounds the images: a milestone whose taught flow is measurable is passed once the
+//   repeat has driven `max_milestone_overrun` times its taught baseline in it, counted
+//   from the commands' forward speed as executed (Repeater::SetExecutedSpeed: a robot
+//   held still drives nothing; wheel slip makes the bound later, never earlier).
 // * Starting a milestone. The first milestone's features are tracked from its key image
 //   starting at their key-image positions moved by the global image shift (phase
 //   correlation, EstimateImageShift); a later milestone's, moved by the median
@@ -122,6 +134,10 @@ struct FunnelLaneOptions {
   MilestoneProgressOptions progress;
   /// Remove the common rotation from the x-errors before switching (file comment).
   bool remove_rotation = true;
+  /// Distance bound (file comment, "Distance bound"): a milestone is passed at the latest
+  /// once the repeat has driven this many times its taught baseline in it (its commands'
+  /// forward speed as executed); 0 turns the bound off, else >= 1.
+  double max_milestone_overrun = 2.0;
   /// Frames a milestone stays active at least before it may be switched, >= 1.
   int min_frames_per_milestone = 3;
   /// Fewer tracked features than this is "too few": the robot goes straight, >= 1.

@@ -71,6 +71,7 @@ class MilestoneRepeater : public Repeater {
   /// std::invalid_argument, naming the repeater, for an image or time it cannot take.
   RepeatCommand Update(const cv::Mat& gray, double t_s) final;
   const TeachMap& map() const final { return map_; }
+  void SetExecutedSpeed(double v_mps) final { executed_v_mps_ = v_mps; }
 
  protected:
   /// Throws std::invalid_argument, naming settings.name, for a map without milestones or
@@ -88,6 +89,9 @@ class MilestoneRepeater : public Repeater {
   /// into the current image, starting at `guesses` (one per feature); the 2D switch and
   /// the frame count start over; then MilestoneStarted.
   void StartMilestone(int index, const std::vector<cv::Point2f>& guesses);
+  /// Distance driven since the active milestone became active [m]: the forward speed
+  /// of each command as executed (SetExecutedSpeed) times the time to the next frame.
+  double DrivenInMilestone() const { return driven_in_milestone_m_; }
   /// Ends the repeat (the last milestone was passed): status kFinished, with the
   /// cumulative counters.
   void Finish(RepeatCommand* cmd);
@@ -117,6 +121,8 @@ class MilestoneRepeater : public Repeater {
   perception::TrackingPyramid prev_pyramid_, curr_pyramid_;
   bool started_ = false;
   double last_t_s_ = 0.0;
+  double executed_v_mps_ = 0.0;         ///< the last command's forward speed, as executed
+  double driven_in_milestone_m_ = 0.0;  ///< see DrivenInMilestone
   int too_few_frames_ = 0;
   int held_first_ = 0, held_last_ = -1;  ///< the milestones whose key images are held
   RepeatStatus status_ = RepeatStatus::kDriving;

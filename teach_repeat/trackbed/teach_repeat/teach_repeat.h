@@ -50,10 +50,11 @@ struct RepeatCommand {
   RepeatStatus status = RepeatStatus::kDriving;
   /// Forward speed [m/s] and yaw rate [rad/s] (> 0 turns left, counter-clockwise).
   estimation::BodyTwist twist;
-  int milestone = 0;      ///< active milestone (after a switch in this frame)
-  bool switched = false;  ///< a milestone switch happened in this frame
-  int features = 0;       ///< features of the active milestone
-  int tracked = 0;        ///< of those, tracked in this image
+  int milestone = 0;                  ///< active milestone (after a switch in this frame)
+  bool switched = false;              ///< a milestone switch happened in this frame
+  bool switched_by_distance = false;  ///< that by the 2D distance bound, not the images
+  int features = 0;                   ///< features of the active milestone
+  int tracked = 0;                    ///< of those, tracked in this image
   /// Too few tracked features in this frame (< min_features): the command goes straight.
   bool too_few_features = false;
   /// The steering decision (2D, and 3D when falling back to the vote).
@@ -98,6 +99,10 @@ class Repeater {
   /// not decreasing). Throws std::invalid_argument otherwise. Once the status is not
   /// kDriving it stays so and the command is zero.
   virtual RepeatCommand Update(const cv::Mat& gray, double t_s) = 0;
+  /// The forward speed the robot actually drove after the last Update, when something
+  /// above the repeater changed its command (a supervisor holding the robot: 0). The 2D
+  /// repeater's distance bound counts the distance driven from it. Default: ignored.
+  virtual void SetExecutedSpeed(double /*v_mps*/) {}
   /// "2d" or "3d".
   virtual const char* method() const = 0;
   virtual const TeachMap& map() const = 0;
