@@ -257,6 +257,29 @@ void WriteRepeatTimePlot(const scenario::Scenario& scenario, const PlotSeries& f
       {{"repeater [ms]", {frames, medians}}, {"milestone", {milestone}}});
 }
 
+/// The repeater the scenario asks for over `map`, held still through each crossing's
+/// window when teach_repeat.stop_for_crossings.
+std::unique_ptr<teach_repeat::Repeater> MakeRunRepeater(const scenario::TeachRepeatSpec& tr,
+                                                        teach_repeat::TeachMap map) {
+  teach_repeat::FunnelLaneOptions o2;
+  o2.forward_speed_mps = tr.repeat_speed_mps;
+  o2.turn_rate_radps = units::Radians(tr.repeat_turn_rate_deg_s);
+  o2.max_milestone_overrun = tr.max_milestone_overrun;
+  teach_repeat::Localizer3dOptions o3;
+  o3.forward_speed_mps = tr.repeat_speed_mps;
+  o3.max_yaw_rate_radps = units::Radians(tr.repeat_turn_rate_deg_s);
+  std::unique_ptr<teach_repeat::Repeater> repeater =
+      teach_repeat::MakeRepeater(tr.method, std::move(map), o2, o3);
+  if (tr.stop_for_crossings && !tr.occluders.empty()) {
+    std::vector<std::pair<double, double>> windows;
+    for (const sim::OccluderSpec& o : tr.occluders) {
+      windows.push_back(PlaceWindow(o, tr.recovery_window_s));
+    }
+    repeater = std::make_unique<StopsForCrossings>(std::move(repeater), std::move(windows));
+  }
+  return repeater;
+}
+
 }  // namespace
 
 RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& dir) {
@@ -279,24 +302,9 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
       FolderBytes(tr.map.empty() ? dir / "teach_map" : std::filesystem::path(tr.map)));
   const scenario::Scenario repeat = RepeatScenario(scenario);
 
-  teach_repeat::FunnelLaneOptions o2;
-  o2.forward_speed_mps = tr.repeat_speed_mps;
-  o2.turn_rate_radps = units::Radians(tr.repeat_turn_rate_deg_s);
-  o2.max_milestone_overrun = tr.max_milestone_overrun;
-  teach_repeat::Localizer3dOptions o3;
-  o3.forward_speed_mps = tr.repeat_speed_mps;
-  o3.max_yaw_rate_radps = units::Radians(tr.repeat_turn_rate_deg_s);
   const int milestones = static_cast<int>(map.milestones.size());
   const int teach_images = static_cast<int>(map.images.size());
-  std::unique_ptr<teach_repeat::Repeater> repeater =
-      teach_repeat::MakeRepeater(tr.method, std::move(map), o2, o3);
-  if (tr.stop_for_crossings && !tr.occluders.empty()) {
-    std::vector<std::pair<double, double>> windows;
-    for (const sim::OccluderSpec& o : tr.occluders) {
-      windows.push_back(PlaceWindow(o, tr.recovery_window_s));
-    }
-    repeater = std::make_unique<StopsForCrossings>(std::move(repeater), std::move(windows));
-  }
+  std::unique_ptr<teach_repeat::Repeater> repeater = MakeRunRepeater(tr, std::move(map));
 
   std::vector<Eigen::Vector2d> repeated;
   // teach_repeat.csv: what the repeater saw and did at every frame.
