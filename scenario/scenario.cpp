@@ -271,11 +271,7 @@ void TeachRepeatSpec::Validate() const {
   OneOf("method", method, {"2d", "3d"});
   option_check::Positive("repeat_speed_mps", repeat_speed_mps);
   option_check::Positive("repeat_turn_rate_deg_s", repeat_turn_rate_deg_s);
-  if (!(max_milestone_overrun == 0.0 || max_milestone_overrun >= 1.0)) {
-    throw OptionError(
-        "max_milestone_overrun",
-        "must be 0 (off) or >= 1 (got " + option_check::Describe(max_milestone_overrun) + ")");
-  }
+  option_check::OffOrAtLeast("max_milestone_overrun", max_milestone_overrun, 1.0);
   Finite("start_offset.x_m", start_offset.x_m);
   Finite("start_offset.y_m", start_offset.y_m);
   Finite("start_offset.yaw_deg", start_offset.yaw_deg);

@@ -39,11 +39,7 @@ void FunnelLaneOptions::Validate() const {
                       "must be in [0, 1) (got " + option_check::Describe(min_net_vote) + ")");
   }
   option_check::NonNegative("switch_hysteresis_px", switch_hysteresis_px);
-  if (!(max_milestone_overrun == 0.0 || max_milestone_overrun >= 1.0)) {
-    throw OptionError(
-        "max_milestone_overrun",
-        "must be 0 (off) or >= 1 (got " + option_check::Describe(max_milestone_overrun) + ")");
-  }
+  option_check::OffOrAtLeast("max_milestone_overrun", max_milestone_overrun, 1.0);
   option_check::AtLeast("min_frames_per_milestone", min_frames_per_milestone, 1);
   option_check::AtLeast("min_features", min_features, 1);
   option_check::AtLeast("lost_patience_frames", lost_patience_frames, 1);

@@ -583,6 +583,9 @@ TEST(ScenarioYamlTest, TheDistanceBoundIsOffOrAtLeastOneBaseline) {
   EXPECT_NE(ErrorOf(kMinimal, {{"teach_repeat.max_milestone_overrun", "0.5"}})
                 .find("teach_repeat.max_milestone_overrun: must be 0 (off) or >= 1 (got 0.5)"),
             std::string::npos);
+  EXPECT_NE(ErrorOf(kMinimal, {{"teach_repeat.max_milestone_overrun", ".inf"}})
+                .find("teach_repeat.max_milestone_overrun: must be 0 (off) or >= 1"),
+            std::string::npos);
 }
 
 TEST(ScenarioYamlTest, APublishedCameraIsGivenByItsFocalLengthAndPrincipalPoint) {
