@@ -17,6 +17,7 @@
 #include <CLI/CLI.hpp>
 
 #include "teach_repeat_test_scene.h"
+#include "trackbed/common/median.h"
 #include "trackbed/navigation/diff_drive.h"
 #include "trackbed/teach_repeat/milestone_builder.h"
 #include "trackbed/teach_repeat/repeater_factory.h"
@@ -31,12 +32,6 @@ double ThreadCpuSeconds() {
   timespec t{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-double Median(std::vector<double> v) {
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
 }
 
 // Teaches `length_m` of corridor at 2 cm per image into `dir` (key images spilled as

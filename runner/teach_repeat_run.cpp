@@ -13,6 +13,7 @@
 #include <tuple>
 #include <utility>
 
+#include "trackbed/common/median.h"
 #include "trackbed/common/random.h"
 #include "trackbed/common/units.h"
 #include "trackbed/estimation/trajectory_io.h"
@@ -245,9 +246,7 @@ void WriteRepeatTimePlot(const scenario::Scenario& scenario, const PlotSeries& f
   for (std::size_t k = 0; k < frames.points.size(); ++k) {
     block.push_back(frames.points[k].y());
     if (block.size() == 100 || k + 1 == frames.points.size()) {
-      const auto mid = block.begin() + static_cast<std::ptrdiff_t>(block.size() / 2);
-      std::nth_element(block.begin(), mid, block.end());
-      medians.points.emplace_back(frames.points[k].x(), *mid);
+      medians.points.emplace_back(frames.points[k].x(), Median(block));
       block.clear();
     }
   }

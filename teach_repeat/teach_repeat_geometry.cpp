@@ -11,6 +11,7 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "trackbed/common/median.h"
 #include "trackbed/common/option_error.h"
 #include "trackbed/common/se3.h"
 #include "trackbed/estimation/pose2.h"
@@ -18,18 +19,6 @@
 
 namespace trackbed::teach_repeat {
 namespace {
-
-double Median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  const std::size_t mid = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid), values.end());
-  double m = values[mid];
-  if (values.size() % 2 == 0) {
-    m = 0.5 *
-        (m + *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid)));
-  }
-  return m;
-}
 
 Eigen::Vector2d Normalised(const geometry::PinholeCamera& c, const cv::Point2f& p) {
   return {(p.x - c.cx) / c.fx, (p.y - c.cy) / c.fy};
