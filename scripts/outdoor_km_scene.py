@@ -83,7 +83,8 @@ def main():
     waypoints, length = route()
     if tr_long:
         # The open route along the loop from TR_START_DEG, past the band of dry sand
-        # (too few features there to repeat from: docs/results), up to TR_LONG_M of path.
+        # (too few features there to repeat from:
+        # docs/results/2026-12-06-long-routes.md), up to TR_LONG_M of path.
         start = min(range(len(waypoints)), key=lambda k: abs(
             math.atan2(waypoints[k][1], waypoints[k][0]) - math.radians(TR_START_DEG)))
         waypoints = waypoints[start:] + waypoints[:start]
@@ -135,14 +136,6 @@ def main():
         "  speed_mps: %s" % fmt(speed),
         "  lookahead_m: 0.6",
     ]
-    if tr_long:
-        lines += [
-            "teach_repeat:",
-            "  enabled: true",
-            "  method: 2d",
-            "  repeat_speed_mps: %s" % fmt(TR_REPEAT_SPEED),
-            "  repeat_turn_rate_deg_s: 8",
-        ]
     pts = ", ".join("[%s, %s]" % (fmt(x), fmt(y)) for x, y in waypoints)
     # Wrapped at about 90 columns.
     wrapped, line = [], "  waypoints: ["
@@ -153,11 +146,15 @@ def main():
             line = "              "
         line += piece + ", "
     wrapped.append(line.rstrip(", ") + "]")
-    if tr_long:
-        # teach_repeat follows the drive's keys.
-        print("\n".join(lines[:-5] + wrapped + lines[-5:]))
-    else:
-        print("\n".join(lines + wrapped))
+    # teach_repeat follows the drive's keys.
+    teach_repeat = [
+        "teach_repeat:",
+        "  enabled: true",
+        "  method: 2d",
+        "  repeat_speed_mps: %s" % fmt(TR_REPEAT_SPEED),
+        "  repeat_turn_rate_deg_s: 8",
+    ] if tr_long else []
+    print("\n".join(lines + wrapped + teach_repeat))
 
 
 if __name__ == "__main__":
