@@ -63,8 +63,8 @@ inline void InRange(const char* field, double value, double lo, double hi) {
 /// Throws unless `value` is 0 (a feature turned off) or finite and >= `minimum`.
 inline void OffOrAtLeast(const char* field, double value, double minimum) {
   if (!(value == 0.0 || (std::isfinite(value) && value >= minimum))) {
-    throw OptionError(field, "must be 0 (off) or >= " + Describe(minimum) + " (got " +
-                                 Describe(value) + ")");
+    throw OptionError(
+        field, "must be 0 (off) or >= " + Describe(minimum) + " (got " + Describe(value) + ")");
   }
 }
 
