@@ -121,6 +121,12 @@ def main():
         "    soil_variation: {amplitude: 0.3, correlation_length_m: 2}",
         "  appearance:",
         "    terrain_full_detail_m: 2",
+    ] + ([] if tr_long else [
+        # The park's target is speed; tr_long's repeats are measured on full detail.
+        "    # Far trees with fewer facets where their outline moves by under half a",
+        "    # pixel (docs/rendering.md).",
+        "    object_far_error_px: 0.5",
+    ]) + [
         "  scatter:",
         "    - {type: tree, density_per_100m2: 0.4, region_m: [-200, -200, 200, 200],",
         "       radius_m: [0.15, 0.35], height_m: [3, 7], materials: [grass, sandy_loam],",

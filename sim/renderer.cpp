@@ -27,6 +27,7 @@
 #include "trackbed/common/option_error.h"
 #include "trackbed/common/units.h"
 #include "trackbed/sim/far_terrain.h"
+#include "trackbed/sim/object_detail.h"
 #include "trackbed/sim/procedural_texture.h"
 #include "trackbed/sim/terrain_detail.h"
 #include "trackbed/sim/terrain_window.h"
@@ -40,6 +41,7 @@ void SceneAppearance::Validate() const {
   option_check::InRange("diffuse", diffuse, 0.0, 1.0);
   option_check::InRange("sky_gray", sky_gray, 0.0, 1.0);
   option_check::NonNegative("terrain_full_detail_m", terrain_full_detail_m);
+  option_check::NonNegative("object_far_error_px", object_far_error_px);
   option_check::NonNegative("ceiling_height_m", ceiling_height_m);
   if (lighting) option_check::Nested("lighting", *lighting);
   if (texture_size_px < 16 || texture_size_px > 2048 ||
@@ -62,10 +64,18 @@ std::uint64_t TextureNameHash(const std::string& s) {
   return h;
 }
 
+// A coarser version of an object, drawn from the distance where it departs from
+// the full one by less than the bound in pixels.
+struct FarVersion {
+  GLuint list = 0;
+  double extra_sag_m = 0.0;  // its silhouette's departure from the full version
+};
+
 struct Drawable {
-  GLuint list = 0;          // display list of an object, or
-  int terrain = -1;         // index of a terrain drawable
-  Eigen::AlignedBox3d box;  // world-frame bounds, for culling
+  GLuint list = 0;                       // display list of an object, or
+  int terrain = -1;                      // index of a terrain drawable
+  Eigen::AlignedBox3d box;               // world-frame bounds, for culling
+  std::vector<FarVersion> far_versions;  // coarser and coarser
 };
 
 // A texture as uploaded: GL name and world size of one repeat.
@@ -439,42 +449,86 @@ struct Renderer::Gl {
     }
   }
 
+  // The version of an object to draw: the coarsest whose silhouette departs from
+  // the full one's by less than `object_far_error_px` at its distance from the
+  // detail centre (both cameras of a pair draw the same), its nearest side's.
+  GLuint ObjectList(const Drawable& d, double focal_px,
+                    const Eigen::Vector2d& detail_center_xy) const {
+    if (d.far_versions.empty()) return d.list;
+    const Eigen::Vector2d center = d.box.center().head<2>();
+    const double reach = 0.5 * d.box.sizes().head<2>().maxCoeff();
+    const double distance = (center - detail_center_xy).norm() - reach;
+    GLuint list = d.list;
+    for (const FarVersion& v : d.far_versions) {
+      if (distance < FarVersionDistance(v.extra_sag_m, focal_px, appearance.object_far_error_px))
+        break;
+      list = v.list;
+    }
+    return list;
+  }
+
+  // One object's display list; a tree's with the facets of `level`. Its textures
+  // are made before the list is compiled: made inside it, their upload would be
+  // compiled into the list instead of done.
+  GLuint CompileObject(const StaticObject& o, const TreeTessellation& level) {
+    const GlTexture& tex = Texture(o.appearance);
+    const bool crown = o.kind == "tree" && appearance.tree_crowns;
+    const GlTexture& leaves = crown ? Texture("leaves") : tex;
+    const GLuint list = glGenLists(1);
+    glNewList(list, GL_COMPILE);
+    glBindTexture(GL_TEXTURE_2D, tex.name);
+    glPushMatrix();
+    glTranslated(o.center_m.x(), o.center_m.y(), o.base_z_m);
+    if (o.shape == StaticObject::Shape::kBox) {
+      glRotated(units::Degrees(o.yaw_rad), 0, 0, 1);
+      glTranslated(0, 0, o.size_m.z() / 2);
+      DrawBox(o.size_m, tex.meters_per_repeat);
+    } else {
+      DrawCylinder(o.radius_m, o.height_m, tex.meters_per_repeat, level.trunk_slices);
+      if (crown) {
+        // Visual-only foliage: a crown a third of the trunk's height across.
+        glBindTexture(GL_TEXTURE_2D, leaves.name);
+        glTranslated(0, 0, o.height_m);
+        DrawSphere(TreeCrownRadius(o), leaves.meters_per_repeat, level.crown_slices,
+                   level.crown_stacks);
+      }
+    }
+    glPopMatrix();
+    glEndList();
+    return list;
+  }
+
+  // World-frame bounds of an object as drawn, crown included.
+  Eigen::AlignedBox3d DrawnBounds(const StaticObject& o) const {
+    if (o.shape == StaticObject::Shape::kBox) {
+      const double r = 0.5 * o.size_m.head<2>().norm();
+      return Eigen::AlignedBox3d(
+          Eigen::Vector3d(o.center_m.x() - r, o.center_m.y() - r, o.base_z_m),
+          Eigen::Vector3d(o.center_m.x() + r, o.center_m.y() + r, o.base_z_m + o.size_m.z()));
+    }
+    double top = o.height_m, reach = o.radius_m;
+    if (o.kind == "tree" && appearance.tree_crowns) {
+      top += TreeCrownRadius(o);
+      reach = std::max(reach, TreeCrownRadius(o));
+    }
+    return Eigen::AlignedBox3d(
+        Eigen::Vector3d(o.center_m.x() - reach, o.center_m.y() - reach, o.base_z_m),
+        Eigen::Vector3d(o.center_m.x() + reach, o.center_m.y() + reach, o.base_z_m + top));
+  }
+
   void BuildObjects(const World& world) {
     for (const StaticObject& o : world.objects()) {
-      const GlTexture& tex = Texture(o.appearance);
       Drawable d;
-      d.list = glGenLists(1);
-      glNewList(d.list, GL_COMPILE);
-      glBindTexture(GL_TEXTURE_2D, tex.name);
-      glPushMatrix();
-      glTranslated(o.center_m.x(), o.center_m.y(), o.base_z_m);
-      if (o.shape == StaticObject::Shape::kBox) {
-        glRotated(units::Degrees(o.yaw_rad), 0, 0, 1);
-        glTranslated(0, 0, o.size_m.z() / 2);
-        DrawBox(o.size_m, tex.meters_per_repeat);
-        const double r = 0.5 * o.size_m.head<2>().norm();
-        d.box = Eigen::AlignedBox3d(
-            Eigen::Vector3d(o.center_m.x() - r, o.center_m.y() - r, o.base_z_m),
-            Eigen::Vector3d(o.center_m.x() + r, o.center_m.y() + r, o.base_z_m + o.size_m.z()));
-      } else {
-        DrawCylinder(o.radius_m, o.height_m, tex.meters_per_repeat);
-        double top = o.height_m, reach = o.radius_m;
-        if (o.kind == "tree" && appearance.tree_crowns) {
-          // Visual-only foliage: a crown a third of the trunk's height across.
-          const double crown = TreeCrownRadius(o);
-          const GlTexture& leaves = Texture("leaves");
-          glBindTexture(GL_TEXTURE_2D, leaves.name);
-          glTranslated(0, 0, o.height_m);
-          DrawSphere(crown, leaves.meters_per_repeat);
-          top += crown;
-          reach = std::max(reach, crown);
+      d.list = CompileObject(o, kTreeLevels[0]);
+      d.box = DrawnBounds(o);
+      const bool tree = o.kind == "tree" && o.shape != StaticObject::Shape::kBox;
+      if (tree && appearance.object_far_error_px > 0.0) {
+        const double crown = appearance.tree_crowns ? TreeCrownRadius(o) : 0.0;
+        for (std::size_t l = 1; l < kTreeLevels.size(); ++l) {
+          d.far_versions.push_back({CompileObject(o, kTreeLevels[l]),
+                                    TreeLevelExtraSag(crown, o.radius_m, kTreeLevels[l])});
         }
-        d.box = Eigen::AlignedBox3d(
-            Eigen::Vector3d(o.center_m.x() - reach, o.center_m.y() - reach, o.base_z_m),
-            Eigen::Vector3d(o.center_m.x() + reach, o.center_m.y() + reach, o.base_z_m + top));
       }
-      glPopMatrix();
-      glEndList();
       drawables.push_back(d);
     }
     if (appearance.ceiling_height_m > 0.0) {
@@ -694,7 +748,7 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
     if (d.terrain >= 0) {
       g.DrawTerrain(g.terrain_drawables[static_cast<std::size_t>(d.terrain)], center_xy);
     } else {
-      glCallList(d.list);
+      glCallList(g.ObjectList(d, K.fx, center_xy));
     }
   }
   glBindBuffer(GL_ARRAY_BUFFER, 0);

@@ -2,7 +2,11 @@
 // depth is metric, stereo disparity is f·b/Z, images are reproducible.
 #include "trackbed/sim/renderer.h"
 #include "trackbed/sim/camera_exposure.h"
+#include "trackbed/sim/object_detail.h"
+#include "trackbed/sim/scene_lighting.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
@@ -187,6 +191,77 @@ TEST(RendererTest, FarTerrainDetailLeavesTheNearGroundUnchanged) {
   Renderer r_alone(world, lod, {}, 3, 640, 480, 0.05, 120.0);
   r_alone.Render(rig.intrinsics(), right, 0.0, &r2, nullptr, &center);
   EXPECT_EQ(r1.pixels, r2.pixels);
+}
+
+// Trees with far versions (object_far_error_px): those near the detail centre keep
+// every byte; farther ones are drawn with fewer facets, and their silhouettes move
+// only at their edges, by less than a pixel.
+TEST(RendererTest, FarTreesMoveTheirSilhouettesOnlyAtTheirEdges) {
+  struct Placed {
+    double x, y, height;
+  };
+  const Placed placed[] = {{14, -3, 6}, {45, 4, 6}, {95, -6, 5}, {112, 8, 6}};
+  std::vector<StaticObject> trees;
+  for (const Placed& p : placed) {
+    StaticObject tree;
+    tree.shape = StaticObject::Shape::kCylinder;
+    tree.kind = "tree";
+    tree.appearance = "bark";
+    tree.center_m = {p.x, p.y};
+    tree.radius_m = 0.3;
+    tree.height_m = p.height;
+    trees.push_back(tree);
+  }
+  const World world = test::FlatWorld(trees, {-2, -20, 130, 20});
+  const robot::StereoRig rig = LevelRig();
+  const geometry::PinholeCamera K = rig.intrinsics();
+  SceneAppearance full = Flat(), far = Flat();
+  full.tree_crowns = far.tree_crowns = true;
+  far.object_far_error_px = 0.5;
+  // The level each tree is drawn at, by the rule the renderer applies.
+  std::vector<int> levels;
+  for (const StaticObject& o : world.objects()) {
+    const double crown = TreeCrownRadius(o), reach = std::max(crown, o.radius_m);
+    int level = 0;
+    for (std::size_t l = 1; l < kTreeLevels.size(); ++l) {
+      const double sag = TreeLevelExtraSag(crown, o.radius_m, kTreeLevels[l]);
+      if (o.center_m.norm() - reach >= FarVersionDistance(sag, K.fx, 0.5)) level = l;
+    }
+    levels.push_back(level);
+  }
+  EXPECT_EQ(levels, (std::vector<int>{0, 1, 2, 2}));
+  const Eigen::Vector2d center = Body().translation().head<2>();
+  Renderer r_full(world, full, {}, 3, 640, 480, 0.05, 120.0);
+  Renderer r_far(world, far, {}, 3, 640, 480, 0.05, 120.0);
+  GrayImage a, b;
+  DepthImage za, zb;
+  r_full.Render(K, Body() * rig.T_body_left(), 0.0, &a, &za, &center);
+  r_far.Render(K, Body() * rig.T_body_left(), 0.0, &b, &zb, &center);
+  const auto covered_differently = [](float z1, float z2) { return std::abs(z1 - z2) > 0.5f; };
+  int near = 0, near_same = 0, moved = 0, moved_inside = 0;
+  for (int v = 1; v + 1 < a.height; ++v) {
+    for (int u = 1; u + 1 < a.width; ++u) {
+      if (za.at(u, v) < 20.0f) {  // the near tree and the ground before it
+        ++near;
+        near_same += a.at(u, v) == b.at(u, v) && za.at(u, v) == zb.at(u, v);
+      }
+      if (!covered_differently(za.at(u, v), zb.at(u, v))) continue;
+      ++moved;
+      bool at_edge = false;  // the full version's silhouette passes beside it
+      for (int dv = -1; dv <= 1; ++dv) {
+        for (int du = -1; du <= 1; ++du) {
+          at_edge = at_edge || covered_differently(za.at(u, v), za.at(u + du, v + dv));
+        }
+      }
+      moved_inside += !at_edge;
+    }
+  }
+  std::printf("near: %d of %d pixels identical; %d pixels covered differently, %d off an edge\n",
+              near_same, near, moved, moved_inside);
+  EXPECT_GT(near, 20000);
+  EXPECT_EQ(near_same, near);
+  EXPECT_GT(moved, 0);  // the far versions were drawn
+  EXPECT_EQ(moved_inside, 0);
 }
 
 // The body's pose over an exposure (BodyMotion::PoseAfter, which the camera's warps in

@@ -45,6 +45,10 @@ struct SceneAppearance {
   /// from 2× to 3×, every 8th from 4× to 6× this distance (TerrainDetail). 0: the
   /// full grid everywhere.
   double terrain_full_detail_m = 0.0;
+  /// Trees drawn with fewer facets where that moves their silhouette by less than
+  /// this many pixels, judged from the detail centre (object_detail.h) [px]. 0:
+  /// every object at full detail.
+  double object_far_error_px = 0.0;
   /// Light that changes across the scene: shadows and lit zones (scene_lighting.h).
   /// Absent: the whole scene is lit alike, by the fixed-function pipeline.
   std::optional<SceneLighting> lighting;
@@ -64,6 +68,7 @@ struct SceneAppearance {
     a->Visit("tree_crowns", &tree_crowns);
     a->Visit("texture_size_px", &texture_size_px);
     a->Visit("terrain_full_detail_m", &terrain_full_detail_m);
+    a->Visit("object_far_error_px", &object_far_error_px);
     a->Visit("lighting", &lighting, archive::kOmitEmpty);
   }
 };
