@@ -1,12 +1,14 @@
 // Fuzzes teach maps on disk (teach_map.h): the input up to its first NUL byte is map.json,
-// the rest patches.bin (absent without a NUL byte), written into a temporary map folder
-// (one per process, rewritten for each input) whose key_images/ holds four 32x24 grey PNGs
-// written once at start-up (milestones 0-3 of a map whose camera is 32x24). A map that
-// loads is saved into a second folder and loaded again.
+// the rest patches.bin (absent without a NUL byte) — after features.bin when the rest
+// starts with its magic (TBFEATS1), as long as its header's count says — written into a
+// temporary map folder (one per process, rewritten for each input) whose key_images/
+// holds four 32x24 grey PNGs written once at start-up (milestones 0-3 of a map whose
+// camera is 32x24). A map that loads is saved into a second folder and loaded again.
 //
 // Finding: a crash, a sanitizer report, a hang or an out-of-memory, an exception other
 // than std::runtime_error from LoadTeachMap, or a loaded map that cannot be saved and
 // loaded again.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -52,6 +54,20 @@ void Write(const fs::path& path, const std::string& bytes) {
   trackbed::fuzz::WriteFile("teach_map_fuzz", path, bytes);
 }
 
+// A feature file at the front of `rest`: its header and the records its count says, as
+// far as `rest` goes; taken off `rest`.
+std::string TakeFeatures(std::string* rest) {
+  std::uint64_t count = 0;
+  for (int i = 0; i < 8 && 16 + i < static_cast<int>(rest->size()); ++i) {
+    count |= static_cast<std::uint64_t>(static_cast<unsigned char>((*rest)[16 + i])) << (8 * i);
+  }
+  const bool whole = rest->size() < 24 || count > (rest->size() - 24) / 40;
+  const std::size_t bytes = whole ? rest->size() : 24 + 40 * count;
+  std::string features = rest->substr(0, bytes);
+  rest->erase(0, bytes);
+  return features;
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -60,8 +76,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::size_t nul = input.find('\0');
   Write(dirs.map / "map.json", input.substr(0, nul));
   std::error_code ec;
+  fs::remove(dirs.map / "features.bin", ec);
   if (nul != std::string::npos) {
-    Write(dirs.map / "patches.bin", input.substr(nul + 1));
+    std::string rest = input.substr(nul + 1);
+    if (rest.compare(0, 8, "TBFEATS1") == 0) Write(dirs.map / "features.bin", TakeFeatures(&rest));
+    Write(dirs.map / "patches.bin", rest);
   } else {
     fs::remove(dirs.map / "patches.bin", ec);
   }

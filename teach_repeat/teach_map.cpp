@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -33,6 +34,16 @@ constexpr char kPatchFile[] = "patches.bin";
 constexpr char kKeyImageDir[] = "key_images";
 constexpr char kPatchMagic[8] = {'T', 'B', 'P', 'A', 'T', 'C', 'H', '1'};
 constexpr std::size_t kPatchHeaderBytes = 8 + 4 + 4 + 8;
+constexpr char kFeatureFile[] = "features.bin";
+constexpr char kFeatureMagic[8] = {'T', 'B', 'F', 'E', 'A', 'T', 'S', '1'};
+constexpr std::size_t kFeatureHeaderBytes = 8 + 4 + 4 + 8;
+// One feature in features.bin: first_px, last_px (4 float32), p_first (3 float64).
+constexpr std::size_t kFeatureRecordBytes = 4 * 4 + 3 * 8;
+// The oldest map.json this build reads: version 1 listed the features in it.
+constexpr int kOldestTeachMapVersion = 1;
+// A milestone's features at most (thousands in practice): bounds what a count in
+// map.json can make a reader allocate before the feature file is checked.
+constexpr std::int64_t kMostFeaturesPerMilestone = 1 << 24;
 // map.json's messages say what they found, as scenario files' do.
 constexpr archive::Wording kWording = archive::Wording::kDetailed;
 
@@ -55,6 +66,30 @@ std::uint64_t GetUint(const std::string& in, std::size_t offset, int bytes) {
   for (int i = 0; i < bytes; ++i) {
     value |= static_cast<std::uint64_t>(static_cast<unsigned char>(in[offset + i])) << (8 * i);
   }
+  return value;
+}
+
+// IEEE 754 numbers by their bits, little-endian as the integers.
+void PutFloat(std::string* out, float value) {
+  std::uint32_t bits = 0;
+  std::memcpy(&bits, &value, sizeof bits);
+  PutUint(out, bits, 4);
+}
+void PutDouble(std::string* out, double value) {
+  std::uint64_t bits = 0;
+  std::memcpy(&bits, &value, sizeof bits);
+  PutUint(out, bits, 8);
+}
+float GetFloat(const std::string& in, std::size_t offset) {
+  const auto bits = static_cast<std::uint32_t>(GetUint(in, offset, 4));
+  float value = 0.0f;
+  std::memcpy(&value, &bits, sizeof value);
+  return value;
+}
+double GetDouble(const std::string& in, std::size_t offset) {
+  const std::uint64_t bits = GetUint(in, offset, 8);
+  double value = 0.0;
+  std::memcpy(&value, &bits, sizeof value);
   return value;
 }
 
@@ -159,7 +194,6 @@ struct MilestoneFile {
   double baseline_m = 0.0;
   std::string key_image;  ///< the key image's file, relative to the map's directory
   std::int64_t feature_count = 0;
-  std::vector<FeatureRow> features;
 
   template <class Archive>
   void Serialize(Archive* a) {
@@ -180,6 +214,16 @@ struct MilestoneFile {
     a->Visit("baseline_m", &baseline_m, archive::kRequiredAtOnce);
     a->Visit("key_image", &key_image, archive::kRequiredAtOnce);
     a->Visit("feature_count", &feature_count, archive::kRequiredAtOnce);
+  }
+};
+
+/// One of `milestones` in a version 1 map.json, which listed the features there.
+struct MilestoneFileV1 : MilestoneFile {
+  std::vector<FeatureRow> features;
+
+  template <class Archive>
+  void Serialize(Archive* a) {
+    MilestoneFile::Serialize(a);
     a->Visit("features", &features, archive::kRequiredAtOnce);
   }
 };
@@ -193,8 +237,18 @@ struct MapFile {
   int patch_size_px = 0;
   std::string patches_file;  ///< the patch file, relative to the map's directory
   std::int64_t patch_count = 0;
+  std::string features_file;  ///< the feature file (version 2 on), relative to the map's directory
   ImagesFile images;
-  std::vector<MilestoneFile> milestones;
+  std::vector<MilestoneFile> milestones;       // version 2 on
+  std::vector<MilestoneFileV1> milestones_v1;  // version 1
+
+  /// Milestone `k` of either version's list.
+  const MilestoneFile& milestone(std::size_t k) const {
+    return version < 2 ? milestones_v1[k] : milestones[k];
+  }
+  std::size_t milestone_count() const {
+    return version < 2 ? milestones_v1.size() : milestones.size();
+  }
 
   template <class Archive>
   void Serialize(Archive* a) {
@@ -203,9 +257,10 @@ struct MapFile {
       a->Fail("format", "expected \"" + std::string(kFormatName) + "\", found \"" + format + "\"");
     }
     a->Visit("version", &version, archive::kRequiredAtOnce);
-    if (version != kTeachMapFormatVersion) {
+    if (version < kOldestTeachMapVersion || version > kTeachMapFormatVersion) {
       a->Fail("version", "unsupported version " + std::to_string(version) +
-                             " (this build reads version " +
+                             " (this build reads versions " +
+                             std::to_string(kOldestTeachMapVersion) + " to " +
                              std::to_string(kTeachMapFormatVersion) + ")");
     }
     a->VisitEnum(
@@ -216,8 +271,13 @@ struct MapFile {
     a->Visit("patch_size_px", &patch_size_px, archive::kRequiredAtOnce);
     a->Visit("patches_file", &patches_file, archive::kRequiredAtOnce);
     a->Visit("patch_count", &patch_count, archive::kRequiredAtOnce);
+    if (version >= 2) a->Visit("features_file", &features_file, archive::kRequiredAtOnce);
     a->Visit("images", &images, archive::kRequiredAtOnce);
-    a->Visit("milestones", &milestones, archive::kRequiredAtOnce);
+    if (version >= 2) {
+      a->Visit("milestones", &milestones, archive::kRequiredAtOnce);
+    } else {
+      a->Visit("milestones", &milestones_v1, archive::kRequiredAtOnce);
+    }
   }
 };
 
@@ -238,12 +298,6 @@ MilestoneFile MilestoneToFile(const Milestone& m, std::size_t index) {
   f.baseline_m = m.baseline_m;
   f.key_image = KeyImageName(index);
   f.feature_count = static_cast<std::int64_t>(m.features.size());
-  for (const MilestoneFeature& feature : m.features) {
-    // float → double is exact, and so is the way back on loading.
-    FeatureRow& row = f.features.emplace_back();
-    row << feature.first_px.x, feature.first_px.y, feature.last_px.x, feature.last_px.y,
-        feature.p_first;
-  }
   return f;
 }
 
@@ -255,6 +309,7 @@ MapFile MapToFile(const TeachMap& map) {
   f.patch_size_px = map.patch_size_px;
   f.patches_file = kPatchFile;
   f.patch_count = static_cast<std::int64_t>(map.feature_count());
+  f.features_file = kFeatureFile;
   f.images.count = static_cast<std::int64_t>(map.images.size());
   for (const TeachImageRecord& r : map.images) {
     f.images.t_s.push_back(r.t_s);
@@ -428,6 +483,27 @@ void WriteKeyImages(const TeachMap& map, const fs::path& root) {
 
 }  // namespace
 
+namespace {
+
+/// features.bin's bytes: every feature, milestone by milestone.
+std::string FeatureBlob(const TeachMap& map) {
+  const std::size_t count = map.feature_count();
+  std::string blob(kFeatureMagic, kFeatureMagic + 8);
+  PutUint(&blob, kFeatureRecordBytes, 4);
+  PutUint(&blob, 0, 4);
+  PutUint(&blob, count, 8);
+  blob.reserve(kFeatureHeaderBytes + count * kFeatureRecordBytes);
+  for (const Milestone& m : map.milestones) {
+    for (const MilestoneFeature& f : m.features) {
+      for (float v : {f.first_px.x, f.first_px.y, f.last_px.x, f.last_px.y}) PutFloat(&blob, v);
+      for (int i = 0; i < 3; ++i) PutDouble(&blob, f.p_first[i]);
+    }
+  }
+  return blob;
+}
+
+}  // namespace
+
 void SaveTeachMap(const TeachMap& map, const std::string& dir) {
   map.Validate();
   const fs::path root(dir);
@@ -456,6 +532,7 @@ void SaveTeachMap(const TeachMap& map, const std::string& dir) {
     }
   }
   WriteFile(root / kPatchFile, patches);
+  WriteFile(root / kFeatureFile, FeatureBlob(map));
 
   // map.json, in its file form, one space per level of indentation.
   WriteFile(root / kMapFile, archive::ToJson(archive::Write(MapToFile(map)), 1) + "\n");
@@ -512,10 +589,10 @@ Milestone MilestoneFromFile(const MilestoneFile& f, const std::string& path,
   if (previous != nullptr && f.first_image < previous->last_image) {
     throw archive::Error(path + ".first_image", "starts before the previous milestone ends");
   }
-  if (f.feature_count < 0 || static_cast<std::size_t>(f.feature_count) != f.features.size()) {
-    throw archive::Error(path, "inconsistent counts: feature_count is " +
-                                   std::to_string(f.feature_count) + " but " +
-                                   std::to_string(f.features.size()) + " features are listed");
+  if (f.feature_count < 0 || f.feature_count > kMostFeaturesPerMilestone) {
+    throw archive::Error(path + ".feature_count",
+                         "must be in [0, " + std::to_string(kMostFeaturesPerMilestone) + "] (got " +
+                             std::to_string(f.feature_count) + ")");
   }
   Milestone m;
   m.first_image = f.first_image;
@@ -529,14 +606,23 @@ Milestone MilestoneFromFile(const MilestoneFile& f, const std::string& path,
   }
   m.reprojection_error_px = f.reprojection_error_px;
   m.baseline_m = f.baseline_m;
-  m.features.resize(f.features.size());
+  return m;
+}
+
+/// A version 1 milestone's features, listed in map.json, checked against its count.
+void FeaturesFromRows(const MilestoneFileV1& f, const std::string& path, Milestone* m) {
+  if (static_cast<std::size_t>(f.feature_count) != f.features.size()) {
+    throw archive::Error(path, "inconsistent counts: feature_count is " +
+                                   std::to_string(f.feature_count) + " but " +
+                                   std::to_string(f.features.size()) + " features are listed");
+  }
+  m->features.resize(f.features.size());
   for (std::size_t i = 0; i < f.features.size(); ++i) {
     const FeatureRow& row = f.features[i];
-    m.features[i].first_px = {static_cast<float>(row[0]), static_cast<float>(row[1])};
-    m.features[i].last_px = {static_cast<float>(row[2]), static_cast<float>(row[3])};
-    m.features[i].p_first = row.tail<3>();
+    m->features[i].first_px = {static_cast<float>(row[0]), static_cast<float>(row[1])};
+    m->features[i].last_px = {static_cast<float>(row[2]), static_cast<float>(row[3])};
+    m->features[i].p_first = row.tail<3>();
   }
-  return m;
 }
 
 /// The map map.json describes, without key images and patches. Throws archive::Error
@@ -553,12 +639,15 @@ TeachMap MapFromFile(const MapFile& f) {
   }
   map.patch_size_px = f.patch_size_px;
   ImagesFromFile(f.images, &map);
-  for (std::size_t k = 0; k < f.milestones.size(); ++k) {
-    map.milestones.push_back(MilestoneFromFile(f.milestones[k], archive::JoinIndex("milestones", k),
-                                               k > 0 ? &map.milestones[k - 1] : nullptr,
-                                               map.images.size()));
+  std::size_t features = 0;
+  for (std::size_t k = 0; k < f.milestone_count(); ++k) {
+    const std::string path = archive::JoinIndex("milestones", k);
+    const MilestoneFile& mf = f.milestone(k);
+    map.milestones.push_back(
+        MilestoneFromFile(mf, path, k > 0 ? &map.milestones[k - 1] : nullptr, map.images.size()));
+    if (f.version < 2) FeaturesFromRows(f.milestones_v1[k], path, &map.milestones.back());
+    features += static_cast<std::size_t>(mf.feature_count);
   }
-  const std::size_t features = map.feature_count();
   if (f.patch_count < 0 || static_cast<std::size_t>(f.patch_count) != features) {
     throw archive::Error("patch_count", "inconsistent counts: " + std::to_string(f.patch_count) +
                                             " patches for " + std::to_string(features) +
@@ -663,6 +752,51 @@ std::string ReadPatchFile(const fs::path& patch_path, std::size_t total_features
   return std::move(*blob);
 }
 
+/// The feature file map.json names (version 2 on), checked against the features its
+/// milestones count (`total_features`). Returns its bytes.
+std::string ReadFeatureFile(const fs::path& path, std::size_t total_features) {
+  std::optional<std::string> blob = ReadFile(path);
+  const std::string where = "LoadTeachMap: " + path.string() + ": ";
+  if (!blob) throw std::runtime_error(where + "missing or unreadable");
+  if (blob->size() < kFeatureHeaderBytes || blob->compare(0, 8, kFeatureMagic, 8) != 0) {
+    throw std::runtime_error(where + "not a trackbed feature file (bad magic or truncated header)");
+  }
+  const std::uint64_t record = GetUint(*blob, 8, 4);
+  const std::uint64_t count = GetUint(*blob, 16, 8);
+  if (record != kFeatureRecordBytes) {
+    throw std::runtime_error(where + "records of " + std::to_string(record) +
+                             " bytes, this build reads " + std::to_string(kFeatureRecordBytes));
+  }
+  if (count != total_features) {
+    throw std::runtime_error(where + "inconsistent counts: holds " + std::to_string(count) +
+                             " features, map.json's milestones count " +
+                             std::to_string(total_features));
+  }
+  const std::uint64_t expected = kFeatureHeaderBytes + count * kFeatureRecordBytes;
+  if (blob->size() != expected) {
+    throw std::runtime_error(where + (blob->size() < expected ? "truncated" : "trailing bytes") +
+                             ": " + std::to_string(blob->size()) + " bytes, expected " +
+                             std::to_string(expected));
+  }
+  return std::move(*blob);
+}
+
+/// Hands the features of a checked feature file (ReadFeatureFile) to the milestones, as
+/// many to each as map.json counts.
+void AssignFeatures(const std::string& blob, const MapFile& file, TeachMap* map) {
+  std::size_t offset = kFeatureHeaderBytes;
+  for (std::size_t k = 0; k < map->milestones.size(); ++k) {
+    std::vector<MilestoneFeature>& features = map->milestones[k].features;
+    features.resize(static_cast<std::size_t>(file.milestones[k].feature_count));
+    for (MilestoneFeature& f : features) {
+      f.first_px = {GetFloat(blob, offset), GetFloat(blob, offset + 4)};
+      f.last_px = {GetFloat(blob, offset + 8), GetFloat(blob, offset + 12)};
+      for (int i = 0; i < 3; ++i) f.p_first[i] = GetDouble(blob, offset + 16 + 8 * i);
+      offset += kFeatureRecordBytes;
+    }
+  }
+}
+
 /// Hands the patches of a checked patch file (ReadPatchFile) to the features, milestone
 /// by milestone, feature by feature.
 void AssignPatches(const std::string& blob, TeachMap* map) {
@@ -717,13 +851,20 @@ TeachMap LoadTeachMap(const std::string& dir, KeyImageLoading key_images) {
   }
   for (std::size_t k = 0; k < map.milestones.size(); ++k) {
     const std::string key = archive::JoinIndex("milestones", k);
-    const fs::path key_file = FileInMap(root, key + ".key_image", file.milestones[k].key_image);
+    const fs::path key_file = FileInMap(root, key + ".key_image", file.milestone(k).key_image);
     if (key_images == KeyImageLoading::kAll) {
       map.milestones[k].key_image = ReadKeyImage(key_file, key, map.camera, "LoadTeachMap");
     } else {
       CheckKeyImageFile(key_file, key, map.camera);
       map.milestones[k].key_image_file = key_file.string();
     }
+  }
+  if (file.version >= 2) {
+    std::size_t listed = 0;
+    for (const MilestoneFile& m : file.milestones)
+      listed += static_cast<std::size_t>(m.feature_count);
+    AssignFeatures(ReadFeatureFile(FileInMap(root, "features_file", file.features_file), listed),
+                   file, &map);
   }
   AssignPatches(ReadPatchFile(FileInMap(root, "patches_file", file.patches_file),
                               map.feature_count(), map.patch_size_px),

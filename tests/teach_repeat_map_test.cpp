@@ -3,6 +3,7 @@
 // wrong-version maps, and for unknown keys and wrong types in map.json (by dotted path).
 #include "trackbed/teach_repeat/teach_map.h"
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -171,12 +172,42 @@ TEST(TeachMapTest, RoundTripIsExactAndSavingAgainGivesTheSameBytes) {
   EXPECT_TRUE(fs::exists(first / "patches.bin"));
   EXPECT_TRUE(fs::exists(first / "key_images" / "000001.png"));
   EXPECT_EQ(fs::file_size(first / "patches.bin"), 24u + 47u * 121u);
+  EXPECT_EQ(fs::file_size(first / "features.bin"), 24u + 47u * 40u);
   const TeachMap loaded = LoadTeachMap(first.string());
   ExpectEqual(map, loaded);
   SaveTeachMap(loaded, second.string());
   ExpectSameFiles(first, second);
   fs::remove_all(first);
   fs::remove_all(second);
+}
+
+// Version 1 listed every feature in map.json, with no features.bin: such a map still
+// loads, and saving it writes version 2's files, the same as saving the map itself.
+TEST(TeachMapTest, AVersion1MapLoadsAndSavesAsVersion2) {
+  const TeachMap map = RandomMap(9);
+  const fs::path v2 = Scratch("v2"), v1 = Scratch("v1"), again = Scratch("v1_saved");
+  SaveTeachMap(map, v2.string());
+  fs::copy(v2, v1, fs::copy_options::recursive);
+  fs::remove(v1 / "features.bin");
+  Replace(v1 / "map.json", "\"version\": 2", "\"version\": 1");
+  Replace(v1 / "map.json", " \"features_file\": \"features.bin\",\n", "");
+  for (const Milestone& m : map.milestones) {
+    std::string rows;
+    for (const MilestoneFeature& f : m.features) {
+      char row[256];
+      std::snprintf(row, sizeof row, "%s[%.9g, %.9g, %.9g, %.9g, %.17g, %.17g, %.17g]",
+                    rows.empty() ? "" : ", ", f.first_px.x, f.first_px.y, f.last_px.x, f.last_px.y,
+                    f.p_first.x(), f.p_first.y(), f.p_first.z());
+      rows += row;
+    }
+    const std::string count = "\"feature_count\": " + std::to_string(m.features.size());
+    Replace(v1 / "map.json", count + "\n", count + ",\n   \"features\": [" + rows + "]\n");
+  }
+  const TeachMap loaded = LoadTeachMap(v1.string());
+  ExpectEqual(map, loaded);
+  SaveTeachMap(loaded, again.string());
+  ExpectSameFiles(v2, again);
+  for (const fs::path& dir : {v1, v2, again}) fs::remove_all(dir);
 }
 
 TEST(TeachMapTest, ATaughtMapRoundTrips) {
@@ -219,6 +250,9 @@ TEST(TeachMapTest, MissingMapsAreClearErrors) {
   fs::remove(dir / "patches.bin");
   ExpectLoadError(dir, {"patches.bin", "missing"});
   SaveTeachMap(RandomMap(3), dir.string());
+  fs::remove(dir / "features.bin");
+  ExpectLoadError(dir, {"features.bin", "missing"});
+  SaveTeachMap(RandomMap(3), dir.string());
   fs::remove(dir / "key_images" / "000001.png");
   ExpectLoadError(dir, {"000001.png", "milestones[1]", "missing"});
   fs::remove_all(dir);
@@ -227,8 +261,8 @@ TEST(TeachMapTest, MissingMapsAreClearErrors) {
 TEST(TeachMapTest, WrongVersionOrFormatIsNamed) {
   const fs::path dir = Scratch("version");
   SaveTeachMap(RandomMap(4), dir.string());
-  Replace(dir / "map.json", "\"version\": 1", "\"version\": 2");
-  ExpectLoadError(dir, {"map.json", "version", "unsupported version 2", "reads version 1"});
+  Replace(dir / "map.json", "\"version\": 2", "\"version\": 3");
+  ExpectLoadError(dir, {"map.json", "version", "unsupported version 3", "reads versions 1 to 2"});
   SaveTeachMap(RandomMap(4), dir.string());
   Replace(dir / "map.json", "trackbed.teach_map", "something.else");
   ExpectLoadError(dir, {"map.json", "format", "something.else"});
@@ -252,6 +286,15 @@ TEST(TeachMapTest, TruncatedFilesAreClearErrors) {
   ExpectLoadError(dir, {"patches.bin", "bad magic or truncated header"});
 
   SaveTeachMap(RandomMap(5), dir.string());
+  const std::string features = ReadBytes(dir / "features.bin");
+  WriteBytes(dir / "features.bin", features.substr(0, features.size() - 1));
+  ExpectLoadError(dir, {"features.bin", "truncated", std::to_string(features.size())});
+  WriteBytes(dir / "features.bin", features + "x");
+  ExpectLoadError(dir, {"features.bin", "trailing bytes"});
+  WriteBytes(dir / "features.bin", ReadBytes(dir / "patches.bin"));
+  ExpectLoadError(dir, {"features.bin", "not a trackbed feature file"});
+
+  SaveTeachMap(RandomMap(5), dir.string());
   const std::string png = ReadBytes(dir / "key_images" / "000000.png");
   WriteBytes(dir / "key_images" / "000000.png", png.substr(0, 40));
   ExpectLoadError(dir, {"000000.png", "not a decodable image"});
@@ -262,7 +305,20 @@ TEST(TeachMapTest, InconsistentCountsAndBadValuesAreNamed) {
   const fs::path dir = Scratch("inconsistent");
   SaveTeachMap(RandomMap(6), dir.string());
   Replace(dir / "map.json", "\"feature_count\": 20", "\"feature_count\": 21");
-  ExpectLoadError(dir, {"map.json", "milestones[0]", "inconsistent counts", "feature_count is 21"});
+  Replace(dir / "map.json", "\"patch_count\": 47", "\"patch_count\": 48");
+  ExpectLoadError(
+      dir, {"features.bin", "inconsistent counts", "holds 47 features", "milestones count 48"});
+
+  SaveTeachMap(RandomMap(6), dir.string());
+  Replace(dir / "map.json", "\"feature_count\": 20", "\"feature_count\": -1");
+  ExpectLoadError(dir, {"map.json", "milestones[0].feature_count", "must be in [0, ", "got -1"});
+
+  // Records of another size.
+  SaveTeachMap(RandomMap(6), dir.string());
+  std::string features = ReadBytes(dir / "features.bin");
+  features[8] = 56;
+  WriteBytes(dir / "features.bin", features);
+  ExpectLoadError(dir, {"features.bin", "records of 56 bytes"});
 
   SaveTeachMap(RandomMap(6), dir.string());
   Replace(dir / "map.json", "\"patch_count\": 47", "\"patch_count\": 46");
@@ -305,12 +361,15 @@ TEST(TeachMapTest, FilesOutsideTheMapsFolderAreRefused) {
       {"\"key_images/000000.png\"", "\"/etc/hostname\""},
       {"\"key_images/000000.png\"", "\"key_images/../../x.png\""},
       {"\"patches.bin\"", "\"../patches.bin\""},
-      {"\"patches.bin\"", "\"\""}};
+      {"\"patches.bin\"", "\"\""},
+      {"\"features.bin\"", "\"../features.bin\""}};
   for (const auto& [from, to] : edits) {
     SCOPED_TRACE(to);
     SaveTeachMap(RandomMap(6), dir.string());
     Replace(dir / "map.json", from, to);
-    const std::string key = from == "\"patches.bin\"" ? "patches_file" : "milestones[0].key_image";
+    const std::string key = from == "\"patches.bin\""    ? "patches_file"
+                            : from == "\"features.bin\"" ? "features_file"
+                                                         : "milestones[0].key_image";
     ExpectLoadError(dir, {"map.json", key, "not a file inside the map's folder"});
   }
   fs::remove_all(dir);
@@ -347,9 +406,9 @@ TEST(TeachMapTest, UnknownKeysAndWrongTypesNameTheirPath) {
       {"\"odometry\": [\n   null",
        "\"odometry\": [\n   [1, 2, \"x\"]",
        {"map.json: images.odometry[0][2]: expected a number, got the quoted string \"x\""}},
-      {"\"features\": [\n    [",
-       "\"features\": [\n    [1, 2], [",
-       {"map.json: milestones[0].features[0]: expected a list of 7 numbers, got a list of 2"}},
+      {"\"feature_count\": 20",
+       "\"feature_count\": 20, \"features\": []",
+       {"map.json: milestones[0].features: unknown key (allowed: first_image,"}},
       {"\"images\": {", "\"images\": {\"count\": 1, ", {"map.json: images.count: duplicate key"}},
   };
   for (const JsonEdit& edit : edits) {

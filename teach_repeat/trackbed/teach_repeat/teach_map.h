@@ -20,8 +20,14 @@
 // MilestoneBuilder::SpillKeyImages, hold their key images that way.
 //
 // On disk a map is a directory (docs/teach_repeat.md has the full description):
-//   map.json          — format "trackbed.teach_map", version 1: camera, teach images'
-//                       times and odometry (metadata), milestones with their features;
+//   map.json          — format "trackbed.teach_map", version 2: camera, teach images'
+//                       times and odometry (metadata), milestones and their feature
+//                       counts (version 1, still read, listed the features here too);
+//   features.bin      — every feature's positions and 3-D point, milestone by milestone:
+//                       magic "TBFEATS1", uint32 40 (bytes per feature), uint32 0, uint64
+//                       count, then per feature first_px, last_px (float32) and p_first
+//                       (float64), little endian. Binary, so that reading a long route's
+//                       map does not build a document of every number first;
 //   patches.bin       — every feature's patch, milestone by milestone, feature by feature:
 //                       magic "TBPATCH1", uint32 side, uint32 0, uint64 count (little
 //                       endian), then count·side² bytes (row-major, 8-bit grey);
@@ -131,8 +137,8 @@ struct TeachMap {
   void Validate() const;
 };
 
-/// The current version of the on-disk format.
-constexpr int kTeachMapFormatVersion = 1;
+/// The version of the on-disk format this build writes (it reads 1 too).
+constexpr int kTeachMapFormatVersion = 2;
 
 /// Reads milestone `m`'s key image from its key_image_file into key_image (nothing when
 /// it is held already). Throws std::runtime_error naming the file when it is missing,
@@ -147,9 +153,9 @@ void ReleaseKeyImage(Milestone* m);
 void SpillKeyImage(const std::string& dir, std::size_t index, Milestone* m);
 
 /// Writes `map` into directory `dir` (created if missing; an existing map.json,
-/// patches.bin and key_images/ in it are replaced). Key images held in their files are
-/// linked or copied from them, not decoded. Throws std::invalid_argument for an invalid
-/// map, std::runtime_error naming the file for I/O failures.
+/// features.bin, patches.bin and key_images/ in it are replaced). Key images held in their files
+/// are linked or copied from them, not decoded. Throws std::invalid_argument for an invalid map,
+/// std::runtime_error naming the file for I/O failures.
 void SaveTeachMap(const TeachMap& map, const std::string& dir);
 
 /// How LoadTeachMap reads the key images.
