@@ -264,6 +264,37 @@ TEST(RendererTest, FarTreesMoveTheirSilhouettesOnlyAtTheirEdges) {
   EXPECT_EQ(moved_inside, 0);
 }
 
+// A texture first used by an object is made before the object's display list is
+// compiled: made while compiling, its upload went into the list of the first tree, and
+// every crown drawn before that tree first came into view had no texture.
+TEST(RendererTest, ATreeLooksTheSameWhetherOrNotTheFirstTreeWasSeenBefore) {
+  std::vector<StaticObject> trees;
+  for (const Eigen::Vector2d& at : {Eigen::Vector2d(-8, 0), Eigen::Vector2d(8, 0)}) {
+    StaticObject tree;
+    tree.shape = StaticObject::Shape::kCylinder;
+    tree.kind = "tree";
+    tree.appearance = "bark";
+    tree.center_m = at;
+    tree.radius_m = 0.3;
+    tree.height_m = 3.0;
+    trees.push_back(tree);
+  }
+  const World world = test::FlatWorld(trees, {-12, -6, 12, 6});
+  SceneAppearance a;
+  a.tree_crowns = true;
+  const robot::StereoRig rig = LevelRig();
+  Eigen::Isometry3d towards_first = Body(), towards_second = Body();  // looking along -x, +x
+  towards_first.linear() = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  GrayImage alone, after_first, first;
+  Renderer r1(world, a, {}, 3, 640, 480, 0.05, 120.0);
+  r1.Render(rig.intrinsics(), towards_second * rig.T_body_left(), 0.0, &alone, nullptr);
+  Renderer r2(world, a, {}, 3, 640, 480, 0.05, 120.0);
+  r2.Render(rig.intrinsics(), towards_first * rig.T_body_left(), 0.0, &first, nullptr);
+  r2.Render(rig.intrinsics(), towards_second * rig.T_body_left(), 0.0, &after_first, nullptr);
+  EXPECT_EQ(alone.pixels, after_first.pixels);
+  EXPECT_NE(alone.pixels, first.pixels);  // the views differ
+}
+
 // The body's pose over an exposure (BodyMotion::PoseAfter, which the camera's warps in
 // time use).
 TEST(RendererTest, BodyMotionTurnsAboutTheWorldFramesAngularVelocity) {
