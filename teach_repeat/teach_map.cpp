@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <optional>
 #include <stdexcept>
@@ -33,10 +34,10 @@ constexpr char kMapFile[] = "map.json";
 constexpr char kPatchFile[] = "patches.bin";
 constexpr char kKeyImageDir[] = "key_images";
 constexpr char kPatchMagic[8] = {'T', 'B', 'P', 'A', 'T', 'C', 'H', '1'};
-constexpr std::size_t kPatchHeaderBytes = 8 + 4 + 4 + 8;
+// The header of patches.bin and features.bin: magic, uint32 field, uint32 0, uint64 count.
+constexpr std::size_t kRecordHeaderBytes = 8 + 4 + 4 + 8;
 constexpr char kFeatureFile[] = "features.bin";
 constexpr char kFeatureMagic[8] = {'T', 'B', 'F', 'E', 'A', 'T', 'S', '1'};
-constexpr std::size_t kFeatureHeaderBytes = 8 + 4 + 4 + 8;
 // One feature in features.bin: first_px, last_px (4 float32), p_first (3 float64).
 constexpr std::size_t kFeatureRecordBytes = 4 * 4 + 3 * 8;
 // The oldest map.json this build reads: version 1 listed the features in it.
@@ -492,7 +493,7 @@ std::string FeatureBlob(const TeachMap& map) {
   PutUint(&blob, kFeatureRecordBytes, 4);
   PutUint(&blob, 0, 4);
   PutUint(&blob, count, 8);
-  blob.reserve(kFeatureHeaderBytes + count * kFeatureRecordBytes);
+  blob.reserve(kRecordHeaderBytes + count * kFeatureRecordBytes);
   for (const Milestone& m : map.milestones) {
     for (const MilestoneFeature& f : m.features) {
       for (float v : {f.first_px.x, f.first_px.y, f.last_px.x, f.last_px.y}) PutFloat(&blob, v);
@@ -522,7 +523,7 @@ void SaveTeachMap(const TeachMap& map, const std::string& dir) {
   PutUint(&patches, side, 4);
   PutUint(&patches, 0, 4);
   PutUint(&patches, count, 8);
-  patches.reserve(kPatchHeaderBytes + count * side * side);
+  patches.reserve(kRecordHeaderBytes + count * side * side);
   for (const Milestone& m : map.milestones) {
     for (const MilestoneFeature& f : m.features) {
       for (int r = 0; r < f.patch.rows; ++r) {
@@ -722,57 +723,28 @@ void CheckKeyImageFile(const fs::path& key_path, const std::string& path,
   }
 }
 
-/// The patch file map.json names (`patch_path`), checked against the map's patch size
-/// and its `total_features`. Returns its bytes.
-std::string ReadPatchFile(const fs::path& patch_path, std::size_t total_features,
-                          int patch_size_px) {
-  std::optional<std::string> blob = ReadFile(patch_path);
-  const std::string pfile = "LoadTeachMap: " + patch_path.string() + ": ";
-  if (!blob) throw std::runtime_error(pfile + "missing or unreadable");
-  if (blob->size() < kPatchHeaderBytes || blob->compare(0, 8, kPatchMagic, 8) != 0) {
-    throw std::runtime_error(pfile + "not a trackbed patch file (bad magic or truncated header)");
-  }
-  const std::uint64_t side = GetUint(*blob, 8, 4);
-  const std::uint64_t count = GetUint(*blob, 16, 8);
-  if (side != static_cast<std::uint64_t>(patch_size_px)) {
-    throw std::runtime_error(pfile + "patch side " + std::to_string(side) +
-                             " px, but map.json says " + std::to_string(patch_size_px));
-  }
-  if (count != total_features) {
-    throw std::runtime_error(pfile + "inconsistent counts: holds " + std::to_string(count) +
-                             " patches, map.json lists " + std::to_string(total_features) +
-                             " features");
-  }
-  const std::uint64_t expected = kPatchHeaderBytes + count * side * side;
-  if (blob->size() != expected) {
-    throw std::runtime_error(pfile + (blob->size() < expected ? "truncated" : "trailing bytes") +
-                             ": " + std::to_string(blob->size()) + " bytes, expected " +
-                             std::to_string(expected));
-  }
-  return std::move(*blob);
-}
-
-/// The feature file map.json names (version 2 on), checked against the features its
-/// milestones count (`total_features`). Returns its bytes.
-std::string ReadFeatureFile(const fs::path& path, std::size_t total_features) {
+/// One of the map's binary files: its 8-byte `magic`, a uint32 header field, uint32 0 and
+/// a uint64 count, then count records of `record_bytes`. Checked: the magic, the field
+/// (`field_error` says what is wrong with it, or nothing), the count against the
+/// `total` map.json counts, the size. Returns its bytes; errors name the file.
+std::string ReadRecordFile(const fs::path& path, const char (&magic)[8], const char* kind,
+                           const std::function<std::string(std::uint64_t)>& field_error,
+                           std::uint64_t record_bytes, std::size_t total, const char* records) {
   std::optional<std::string> blob = ReadFile(path);
   const std::string where = "LoadTeachMap: " + path.string() + ": ";
   if (!blob) throw std::runtime_error(where + "missing or unreadable");
-  if (blob->size() < kFeatureHeaderBytes || blob->compare(0, 8, kFeatureMagic, 8) != 0) {
-    throw std::runtime_error(where + "not a trackbed feature file (bad magic or truncated header)");
+  if (blob->size() < kRecordHeaderBytes || blob->compare(0, 8, magic, 8) != 0) {
+    throw std::runtime_error(where + "not a trackbed " + kind +
+                             " file (bad magic or truncated header)");
   }
-  const std::uint64_t record = GetUint(*blob, 8, 4);
+  const std::string wrong_field = field_error(GetUint(*blob, 8, 4));
+  if (!wrong_field.empty()) throw std::runtime_error(where + wrong_field);
   const std::uint64_t count = GetUint(*blob, 16, 8);
-  if (record != kFeatureRecordBytes) {
-    throw std::runtime_error(where + "records of " + std::to_string(record) +
-                             " bytes, this build reads " + std::to_string(kFeatureRecordBytes));
+  if (count != total) {
+    throw std::runtime_error(where + "inconsistent counts: holds " + std::to_string(count) + " " +
+                             records + ", map.json counts " + std::to_string(total) + " features");
   }
-  if (count != total_features) {
-    throw std::runtime_error(where + "inconsistent counts: holds " + std::to_string(count) +
-                             " features, map.json's milestones count " +
-                             std::to_string(total_features));
-  }
-  const std::uint64_t expected = kFeatureHeaderBytes + count * kFeatureRecordBytes;
+  const std::uint64_t expected = kRecordHeaderBytes + count * record_bytes;
   if (blob->size() != expected) {
     throw std::runtime_error(where + (blob->size() < expected ? "truncated" : "trailing bytes") +
                              ": " + std::to_string(blob->size()) + " bytes, expected " +
@@ -781,10 +753,38 @@ std::string ReadFeatureFile(const fs::path& path, std::size_t total_features) {
   return std::move(*blob);
 }
 
+/// The patch file map.json names, checked against the map's patch size and its
+/// `total_features`.
+std::string ReadPatchFile(const fs::path& path, std::size_t total_features, int patch_size_px) {
+  const auto side = static_cast<std::uint64_t>(patch_size_px);
+  return ReadRecordFile(
+      path, kPatchMagic, "patch",
+      [&](std::uint64_t found) {
+        return found == side ? std::string()
+                             : "patch side " + std::to_string(found) + " px, but map.json says " +
+                                   std::to_string(patch_size_px);
+      },
+      side * side, total_features, "patches");
+}
+
+/// The feature file map.json names (version 2 on), checked against the features its
+/// milestones count (`total_features`).
+std::string ReadFeatureFile(const fs::path& path, std::size_t total_features) {
+  return ReadRecordFile(
+      path, kFeatureMagic, "feature",
+      [](std::uint64_t found) {
+        return found == kFeatureRecordBytes
+                   ? std::string()
+                   : "records of " + std::to_string(found) + " bytes, this build reads " +
+                         std::to_string(kFeatureRecordBytes);
+      },
+      kFeatureRecordBytes, total_features, "features");
+}
+
 /// Hands the features of a checked feature file (ReadFeatureFile) to the milestones, as
 /// many to each as map.json counts.
 void AssignFeatures(const std::string& blob, const MapFile& file, TeachMap* map) {
-  std::size_t offset = kFeatureHeaderBytes;
+  std::size_t offset = kRecordHeaderBytes;
   for (std::size_t k = 0; k < map->milestones.size(); ++k) {
     std::vector<MilestoneFeature>& features = map->milestones[k].features;
     features.resize(static_cast<std::size_t>(file.milestones[k].feature_count));
@@ -801,7 +801,7 @@ void AssignFeatures(const std::string& blob, const MapFile& file, TeachMap* map)
 /// by milestone, feature by feature.
 void AssignPatches(const std::string& blob, TeachMap* map) {
   const std::size_t side = static_cast<std::size_t>(map->patch_size_px);
-  std::size_t offset = kPatchHeaderBytes;
+  std::size_t offset = kRecordHeaderBytes;
   const int s = map->patch_size_px;
   for (Milestone& m : map->milestones) {
     for (MilestoneFeature& f : m.features) {

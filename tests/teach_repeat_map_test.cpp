@@ -307,7 +307,7 @@ TEST(TeachMapTest, InconsistentCountsAndBadValuesAreNamed) {
   Replace(dir / "map.json", "\"feature_count\": 20", "\"feature_count\": 21");
   Replace(dir / "map.json", "\"patch_count\": 47", "\"patch_count\": 48");
   ExpectLoadError(
-      dir, {"features.bin", "inconsistent counts", "holds 47 features", "milestones count 48"});
+      dir, {"features.bin", "inconsistent counts", "holds 47 features", "map.json counts 48"});
 
   SaveTeachMap(RandomMap(6), dir.string());
   Replace(dir / "map.json", "\"feature_count\": 20", "\"feature_count\": -1");
