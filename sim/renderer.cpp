@@ -68,7 +68,7 @@ std::uint64_t TextureNameHash(const std::string& s) {
 // the full one by less than the bound in pixels.
 struct FarVersion {
   GLuint list = 0;
-  double extra_sag_m = 0.0;  // its silhouette's departure from the full version
+  double departure_m = 0.0;  // how far its outline can depart from the full version's
 };
 
 struct Drawable {
@@ -450,8 +450,8 @@ struct Renderer::Gl {
   }
 
   // The version of an object to draw: the coarsest whose silhouette departs from
-  // the full one's by less than `object_far_error_px` at its distance from the
-  // detail centre (both cameras of a pair draw the same), its nearest side's.
+  // the full one's by less than `object_far_error_px`, seen from the detail centre at
+  // the distance of the object's nearest side (so both cameras of a pair draw the same).
   GLuint ObjectList(const Drawable& d, double focal_px,
                     const Eigen::Vector2d& detail_center_xy) const {
     if (d.far_versions.empty()) return d.list;
@@ -460,7 +460,7 @@ struct Renderer::Gl {
     const double distance = (center - detail_center_xy).norm() - reach;
     GLuint list = d.list;
     for (const FarVersion& v : d.far_versions) {
-      if (distance < FarVersionDistance(v.extra_sag_m, focal_px, appearance.object_far_error_px))
+      if (distance < FarVersionDistance(v.departure_m, focal_px, appearance.object_far_error_px))
         break;
       list = v.list;
     }
@@ -526,7 +526,7 @@ struct Renderer::Gl {
         const double crown = appearance.tree_crowns ? TreeCrownRadius(o) : 0.0;
         for (std::size_t l = 1; l < kTreeLevels.size(); ++l) {
           d.far_versions.push_back({CompileObject(o, kTreeLevels[l]),
-                                    TreeLevelExtraSag(crown, o.radius_m, kTreeLevels[l])});
+                                    TreeLevelDeparture(crown, o.radius_m, kTreeLevels[l])});
         }
       }
       drawables.push_back(d);

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <functional>
 #include <iterator>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -620,6 +621,11 @@ void FeaturesFromRows(const MilestoneFileV1& f, const std::string& path, Milesto
   m->features.resize(f.features.size());
   for (std::size_t i = 0; i < f.features.size(); ++i) {
     const FeatureRow& row = f.features[i];
+    // Beyond a float's range the conversion below would be undefined.
+    if (!(row.head<4>().cwiseAbs().maxCoeff() <= std::numeric_limits<float>::max())) {
+      throw archive::Error(archive::JoinIndex(path + ".features", i),
+                           "pixel coordinates beyond a float's range");
+    }
     m->features[i].first_px = {static_cast<float>(row[0]), static_cast<float>(row[1])};
     m->features[i].last_px = {static_cast<float>(row[2]), static_cast<float>(row[3])};
     m->features[i].p_first = row.tail<3>();

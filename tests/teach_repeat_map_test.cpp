@@ -207,6 +207,16 @@ TEST(TeachMapTest, AVersion1MapLoadsAndSavesAsVersion2) {
   ExpectEqual(map, loaded);
   SaveTeachMap(loaded, again.string());
   ExpectSameFiles(v2, again);
+  // Version 1's own checks: counts against the listed features, numbers a float holds.
+  const std::string json = ReadBytes(v1 / "map.json");
+  Replace(v1 / "map.json", "\"feature_count\": 20", "\"feature_count\": 21");
+  Replace(v1 / "map.json", "\"patch_count\": 47", "\"patch_count\": 48");
+  ExpectLoadError(v1, {"map.json", "milestones[0]", "inconsistent counts", "feature_count is 21"});
+  WriteBytes(v1 / "map.json", json);
+  char first[32];
+  std::snprintf(first, sizeof first, "%.9g,", map.milestones[0].features[0].first_px.x);
+  Replace(v1 / "map.json", std::string("\"features\": [[") + first, "\"features\": [[1e300,");
+  ExpectLoadError(v1, {"map.json", "milestones[0].features[0]", "beyond a float's range"});
   for (const fs::path& dir : {v1, v2, again}) fs::remove_all(dir);
 }
 
