@@ -8,8 +8,10 @@
 namespace trackbed::sim {
 namespace {
 
-// Quintic fade (Perlin 2002): C2-continuous interpolation weight on [0, 1].
-double Fade(double t) { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0); }
+// Quintic fade (Perlin 2002): C2-continuous interpolation weight on [0, 1]. Named apart
+// from procedural_texture.cpp's Fade, which a unity build may compile beside it (that
+// one must stay under that file's fp-contract=off).
+double QuinticFade(double t) { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0); }
 
 }  // namespace
 
@@ -27,7 +29,7 @@ double LatticeNoise::operator()(double x_m, double y_m) const {
   const double fx = std::floor(gx), fy = std::floor(gy);
   const auto i = static_cast<std::int64_t>(fx);
   const auto j = static_cast<std::int64_t>(fy);
-  const double u = Fade(gx - fx), v = Fade(gy - fy);
+  const double u = QuinticFade(gx - fx), v = QuinticFade(gy - fy);
   const double a = Lattice(i, j), b = Lattice(i + 1, j);
   const double c = Lattice(i, j + 1), d = Lattice(i + 1, j + 1);
   return (a + (b - a) * u) * (1.0 - v) + (c + (d - c) * u) * v;
