@@ -467,12 +467,19 @@ struct Renderer::Gl {
     return list;
   }
 
+  // Objects of kind "tree" drawn as cylinders: the trunks that carry a crown (when
+  // crowns are drawn) and have far versions.
+  static bool IsTree(const StaticObject& o) {
+    return o.kind == "tree" && o.shape == StaticObject::Shape::kCylinder;
+  }
+  bool DrawsCrown(const StaticObject& o) const { return IsTree(o) && appearance.tree_crowns; }
+
   // One object's display list; a tree's with the facets of `level`. Its textures
   // are made before the list is compiled: made inside it, their upload would be
   // compiled into the list instead of done.
   GLuint CompileObject(const StaticObject& o, const TreeTessellation& level) {
     const GlTexture& tex = Texture(o.appearance);
-    const bool crown = o.kind == "tree" && appearance.tree_crowns;
+    const bool crown = DrawsCrown(o);
     const GlTexture& leaves = crown ? Texture("leaves") : tex;
     const GLuint list = glGenLists(1);
     glNewList(list, GL_COMPILE);
@@ -507,7 +514,7 @@ struct Renderer::Gl {
           Eigen::Vector3d(o.center_m.x() + r, o.center_m.y() + r, o.base_z_m + o.size_m.z()));
     }
     double top = o.height_m, reach = o.radius_m;
-    if (o.kind == "tree" && appearance.tree_crowns) {
+    if (DrawsCrown(o)) {
       top += TreeCrownRadius(o);
       reach = std::max(reach, TreeCrownRadius(o));
     }
@@ -521,9 +528,8 @@ struct Renderer::Gl {
       Drawable d;
       d.list = CompileObject(o, kTreeLevels[0]);
       d.box = DrawnBounds(o);
-      const bool tree = o.kind == "tree" && o.shape != StaticObject::Shape::kBox;
-      if (tree && appearance.object_far_error_px > 0.0) {
-        const double crown = appearance.tree_crowns ? TreeCrownRadius(o) : 0.0;
+      if (IsTree(o) && appearance.object_far_error_px > 0.0) {
+        const double crown = DrawsCrown(o) ? TreeCrownRadius(o) : 0.0;
         for (std::size_t l = 1; l < kTreeLevels.size(); ++l) {
           d.far_versions.push_back({CompileObject(o, kTreeLevels[l]),
                                     TreeLevelDeparture(crown, o.radius_m, kTreeLevels[l])});

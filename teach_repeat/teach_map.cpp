@@ -11,6 +11,7 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <numeric>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -820,13 +821,11 @@ TeachMap LoadTeachMap(const std::string& dir, KeyImageLoading key_images) {
     }
   }
   if (file.version >= 2) {
-    std::size_t listed = 0;
-    for (const MilestoneFile& m : file.milestones)
-      listed += static_cast<std::size_t>(m.feature_count);
     std::vector<std::size_t> counts;
     for (const MilestoneFile& m : file.milestones) {
       counts.push_back(static_cast<std::size_t>(m.feature_count));
     }
+    const std::size_t listed = std::accumulate(counts.begin(), counts.end(), std::size_t{0});
     AssignFeatures(ReadFeatureFile(FileInMap(root, "features_file", file.features_file), listed),
                    counts, &map);
   }
