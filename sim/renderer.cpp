@@ -96,7 +96,7 @@ struct TerrainDrawable {
   // Buffer objects holding the mesh: Mesa copies client-side arrays and scans
   // their indices on every draw call.
   GLuint vertex_buffer = 0, index_buffer = 0;
-  int uploaded_level = -1;
+  int uploaded_topology = -1;
   GLsizei index_count = 0;
   GLsizeiptr vertex_bytes = 0;  // size of the vertex buffer's storage
 };
@@ -288,6 +288,7 @@ struct Renderer::Gl {
       t.mesh.vertices = piece.vertices;
       t.mesh.indices = piece.indices;
       t.mesh.level = TerrainDetail::kMaxLevel;
+      t.mesh.topology = 0;
       terrain_drawables.push_back(std::move(t));
       Drawable d;
       d.box = piece.box;
@@ -334,12 +335,12 @@ struct Renderer::Gl {
       glBufferData(GL_ARRAY_BUFFER, bytes, t.mesh.vertices.data(), GL_DYNAMIC_DRAW);
       t.vertex_bytes = bytes;
     }
-    if (t.mesh.level != t.uploaded_level) {
+    if (t.mesh.topology != t.uploaded_topology) {
       glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, t.index_buffer);
       glBufferData(GL_ELEMENT_ARRAY_BUFFER,
                    static_cast<GLsizeiptr>(t.mesh.indices.size() * sizeof(std::uint32_t)),
                    t.mesh.indices.data(), GL_DYNAMIC_DRAW);
-      t.uploaded_level = t.mesh.level;
+      t.uploaded_topology = t.mesh.topology;
       t.index_count = static_cast<GLsizei>(t.mesh.indices.size());
     }
   }

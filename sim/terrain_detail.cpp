@@ -191,35 +191,99 @@ double TerrainDetail::Height(int i, int j, double level) const {
   return f == 0.0 ? a : a + f * (z_[k + 1][Index(i, j)] - a);
 }
 
-void TerrainDetail::BuildMesh(const Chunk& c, const Eigen::Vector2d& center_xy,
-                              double meters_per_repeat, Mesh* mesh) const {
-  const int level = MeshLevel(c, center_xy);
-  const int s = 1 << level;
-  const int na = (c.i1 - c.i0) / s, nb = (c.j1 - c.j0) / s;
-  const double cell = terrain_.cell_size_m();
-  mesh->vertices.clear();
-  for (int b = 0; b <= nb; ++b) {
-    for (int a = 0; a <= na; ++a) {
-      const int i = c.i0 + a * s, j = c.j0 + b * s;
-      const double x = terrain_.x_min() + i * cell, y = terrain_.y_min() + j * cell;
-      const double g = LevelAt(std::hypot(x - center_xy.x(), y - center_xy.y()));
-      const int k = std::min(static_cast<int>(std::floor(g)), kMaxLevel);
-      const float f = static_cast<float>(g - k);
-      Eigen::Vector3f normal = n_[k][Index(i, j)];
-      if (f > 0.0f) normal = ((1.0f - f) * normal + f * n_[k + 1][Index(i, j)]).normalized();
-      mesh->vertices.push_back({static_cast<float>(x), static_cast<float>(y),
-                                static_cast<float>(Height(i, j, g)), normal.x(), normal.y(),
-                                normal.z(), static_cast<float>(x / meters_per_repeat),
-                                static_cast<float>(y / meters_per_repeat)});
-    }
+namespace {
+
+// Vertex `v` put the fraction `f` of the way from `p0` to `p1` on their edge (height
+// and normal; its x, y and texture coordinates are its own). Both chunks of a seam
+// make their seam vertices here, so they get the same bits.
+void PutOnEdge(const TerrainVertex& p0, const TerrainVertex& p1, float f, TerrainVertex* v) {
+  v->z = p0.z + f * (p1.z - p0.z);
+  const Eigen::Vector3f n =
+      ((1 - f) * Eigen::Vector3f(p0.nx, p0.ny, p0.nz) + f * Eigen::Vector3f(p1.nx, p1.ny, p1.nz))
+          .normalized();
+  v->nx = n.x(), v->ny = n.y(), v->nz = n.z();
+}
+
+// Triangles fanned from `apex` to each two consecutive vertices of `path`.
+void Fan(std::uint32_t apex, const std::vector<std::uint32_t>& path,
+         std::vector<std::uint32_t>* indices) {
+  for (std::size_t k = 0; k + 1 < path.size(); ++k) {
+    indices->insert(indices->end(), {path[k], path[k + 1], apex});
   }
-  // Along a side shared with a coarser neighbour, the vertices between the
-  // neighbour's go on its edge: interpolated between the two around them.
+}
+
+// Triangle `corner` (counter-clockwise) with `between[k]` the vertices on its edge
+// from corner k to corner k + 1, in that order. At most two edges hold vertices, and
+// then two consecutive ones.
+void AddTriangle(const std::array<std::uint32_t, 3>& corner,
+                 const std::array<std::vector<std::uint32_t>, 3>& between,
+                 std::vector<std::uint32_t>* indices) {
+  int first = -1, count = 0;
+  for (int k = 2; k >= 0; --k) {
+    if (between[k].empty()) continue;
+    ++count;
+    if (first < 0 || !between[(k + 1) % 3].empty()) first = k;
+  }
+  const auto path = [&](int k, bool to_end) {
+    std::vector<std::uint32_t> p{corner[k]};
+    p.insert(p.end(), between[k].begin(), between[k].end());
+    if (to_end) p.push_back(corner[(k + 1) % 3]);
+    return p;
+  };
+  if (count == 0) {
+    indices->insert(indices->end(), corner.begin(), corner.end());
+  } else if (count == 1) {
+    Fan(corner[(first + 2) % 3], path(first, true), indices);
+  } else {
+    // Edges A→C and C→B: A→C's pieces fanned from B, then C→B's from the last vertex
+    // before C (not on C→B, so no triangle is flat).
+    const std::vector<std::uint32_t> a_to_c = path(first, false);
+    Fan(corner[(first + 2) % 3], a_to_c, indices);
+    Fan(a_to_c.back(), path((first + 1) % 3, true), indices);
+  }
+}
+
+}  // namespace
+
+TerrainVertex TerrainDetail::BlendedVertex(int i, int j, const Eigen::Vector2d& center_xy,
+                                           double meters_per_repeat) const {
+  const double cell = terrain_.cell_size_m();
+  const double x = terrain_.x_min() + i * cell, y = terrain_.y_min() + j * cell;
+  const double g = LevelAt(std::hypot(x - center_xy.x(), y - center_xy.y()));
+  const int k = std::min(static_cast<int>(std::floor(g)), kMaxLevel);
+  const float f = static_cast<float>(g - k);
+  Eigen::Vector3f normal = n_[k][Index(i, j)];
+  if (f > 0.0f) normal = ((1.0f - f) * normal + f * n_[k + 1][Index(i, j)]).normalized();
+  return {static_cast<float>(x),
+          static_cast<float>(y),
+          static_cast<float>(Height(i, j, g)),
+          normal.x(),
+          normal.y(),
+          normal.z(),
+          static_cast<float>(x / meters_per_repeat),
+          static_cast<float>(y / meters_per_repeat)};
+}
+
+// The mesh level of the chunk across each side (-1 where there is none).
+std::array<int, 4> TerrainDetail::SideLevels(const Chunk& c,
+                                             const Eigen::Vector2d& center_xy) const {
+  std::array<int, 4> level{-1, -1, -1, -1};
   for (int side = 0; side < 4; ++side) {
     if (c.neighbor[side] < 0) continue;
-    const int coarser = MeshLevel(chunks_[static_cast<std::size_t>(c.neighbor[side])], center_xy);
-    if (coarser <= level) continue;
-    const int step = 1 << (coarser - level);
+    level[side] = MeshLevel(chunks_[static_cast<std::size_t>(c.neighbor[side])], center_xy);
+  }
+  return level;
+}
+
+// Along a side shared with a coarser neighbour, the vertices between the
+// neighbour's go on its edge: interpolated between the two around them.
+void TerrainDetail::PutSidesOnCoarserEdges(const Chunk& c, int level,
+                                           const std::array<int, 4>& side_level, Mesh* mesh) const {
+  const int s = 1 << level;
+  const int na = (c.i1 - c.i0) / s, nb = (c.j1 - c.j0) / s;
+  for (int side = 0; side < 4; ++side) {
+    if (side_level[side] <= level) continue;
+    const int step = 1 << (side_level[side] - level);
     const bool along_j = side < 2;  // sides i = i0 and i = i1 run along j
     const int fixed = side == 0 || side == 2 ? 0 : (along_j ? na : nb);
     const int count = along_j ? nb : na;
@@ -230,29 +294,114 @@ void TerrainDetail::BuildMesh(const Chunk& c, const Eigen::Vector2d& center_xy,
     for (int q = 0; q < count; q += step) {
       const TerrainVertex p0 = at(q), p1 = at(q + step);
       for (int r = 1; r < step; ++r) {
-        const float f = static_cast<float>(r) / step;
-        TerrainVertex& v = at(q + r);
-        v.z = p0.z + f * (p1.z - p0.z);
-        const Eigen::Vector3f n = ((1 - f) * Eigen::Vector3f(p0.nx, p0.ny, p0.nz) +
-                                   f * Eigen::Vector3f(p1.nx, p1.ny, p1.nz))
-                                      .normalized();
-        v.nx = n.x(), v.ny = n.y(), v.nz = n.z();
+        PutOnEdge(p0, p1, static_cast<float>(r) / step, &at(q + r));
       }
     }
   }
-  if (mesh->chunk == &c && mesh->level == level) return;  // same triangles
-  mesh->chunk = &c;
-  mesh->level = level;
-  mesh->indices.clear();
+}
+
+// Along a side shared with a finer neighbour, the neighbour's vertices between the
+// mesh's, made as the neighbour makes them, appended to the mesh.
+std::array<TerrainDetail::SideVertices, 4> TerrainDetail::AddFinerSideVertices(
+    const Chunk& c, int level, const std::array<int, 4>& side_level,
+    const Eigen::Vector2d& center_xy, double meters_per_repeat, Mesh* mesh) const {
+  const int s = 1 << level;
+  const int na = (c.i1 - c.i0) / s, nb = (c.j1 - c.j0) / s;
+  std::array<SideVertices, 4> sides;
+  for (int side = 0; side < 4; ++side) {
+    if (side_level[side] < 0 || side_level[side] >= level) continue;
+    const int step = 1 << (level - side_level[side]), fine = s / step;
+    const bool along_j = side < 2;
+    const int fixed = side == 0 || side == 2 ? 0 : (along_j ? na : nb);
+    const int count = along_j ? nb : na;
+    sides[side] = {static_cast<std::uint32_t>(mesh->vertices.size()), step - 1};
+    for (int q = 0; q < count; ++q) {
+      const int a = along_j ? fixed : q, b = along_j ? q : fixed;
+      const int da = along_j ? 0 : 1, db = along_j ? 1 : 0;
+      const TerrainVertex p0 = mesh->vertices[static_cast<std::size_t>(b * (na + 1) + a)];
+      const TerrainVertex p1 =
+          mesh->vertices[static_cast<std::size_t>((b + db) * (na + 1) + a + da)];
+      for (int r = 1; r < step; ++r) {
+        TerrainVertex v = BlendedVertex(c.i0 + a * s + da * r * fine, c.j0 + b * s + db * r * fine,
+                                        center_xy, meters_per_repeat);
+        PutOnEdge(p0, p1, static_cast<float>(r) / step, &v);
+        mesh->vertices.push_back(v);
+      }
+    }
+  }
+  return sides;
+}
+
+// Two triangles per cell, split along (a, b)–(a+1, b+1) as Terrain and Bullet split
+// it; a cell on a side with a finer neighbour fans its edge to the neighbour's vertices.
+void TerrainDetail::Triangulate(const Chunk& c, int level, const std::array<SideVertices, 4>& sides,
+                                Mesh* mesh) const {
+  const int s = 1 << level;
+  const int na = (c.i1 - c.i0) / s, nb = (c.j1 - c.j0) / s;
   const auto v = [&](int a, int b) { return static_cast<std::uint32_t>(b * (na + 1) + a); };
+  // The vertices a finer neighbour puts on `side` between the mesh's q and q + 1.
+  const auto between = [&](int side, int q, bool growing) {
+    std::vector<std::uint32_t> out;
+    const SideVertices& sv = sides[side];
+    for (int r = 0; r < sv.per_cell; ++r) {
+      out.push_back(sv.first + static_cast<std::uint32_t>(q * sv.per_cell + r));
+    }
+    if (!growing) std::reverse(out.begin(), out.end());
+    return out;
+  };
+  std::vector<std::uint32_t>& idx = mesh->indices;
   for (int b = 0; b < nb; ++b) {
     for (int a = 0; a < na; ++a) {
       if (level == 0 && terrain_.CellMaterial(c.i0 + a, c.j0 + b) != c.material) continue;
-      // The diagonal (a, b)–(a+1, b+1), as Terrain and Bullet split the cell.
-      mesh->indices.insert(mesh->indices.end(), {v(a, b), v(a + 1, b), v(a + 1, b + 1), v(a, b),
-                                                 v(a + 1, b + 1), v(a, b + 1)});
+      const bool bottom = b == 0 && sides[2].per_cell > 0,
+                 right = a == na - 1 && sides[1].per_cell > 0;
+      const bool top = b == nb - 1 && sides[3].per_cell > 0, left = a == 0 && sides[0].per_cell > 0;
+      if (bottom || right) {
+        AddTriangle({v(a, b), v(a + 1, b), v(a + 1, b + 1)},
+                    {bottom ? between(2, a, true) : std::vector<std::uint32_t>{},
+                     right ? between(1, b, true) : std::vector<std::uint32_t>{},
+                     {}},
+                    &idx);
+      } else {
+        idx.insert(idx.end(), {v(a, b), v(a + 1, b), v(a + 1, b + 1)});
+      }
+      if (top || left) {
+        AddTriangle({v(a, b), v(a + 1, b + 1), v(a, b + 1)},
+                    {std::vector<std::uint32_t>{},
+                     top ? between(3, a, false) : std::vector<std::uint32_t>{},
+                     left ? between(0, b, false) : std::vector<std::uint32_t>{}},
+                    &idx);
+      } else {
+        idx.insert(idx.end(), {v(a, b), v(a + 1, b + 1), v(a, b + 1)});
+      }
     }
   }
+}
+
+void TerrainDetail::BuildMesh(const Chunk& c, const Eigen::Vector2d& center_xy,
+                              double meters_per_repeat, Mesh* mesh) const {
+  const int level = MeshLevel(c, center_xy);
+  const int s = 1 << level;
+  const int na = (c.i1 - c.i0) / s, nb = (c.j1 - c.j0) / s;
+  mesh->vertices.clear();
+  for (int b = 0; b <= nb; ++b) {
+    for (int a = 0; a <= na; ++a) {
+      mesh->vertices.push_back(
+          BlendedVertex(c.i0 + a * s, c.j0 + b * s, center_xy, meters_per_repeat));
+    }
+  }
+  const std::array<int, 4> side_level = SideLevels(c, center_xy);
+  PutSidesOnCoarserEdges(c, level, side_level, mesh);
+  const std::array<SideVertices, 4> sides =
+      AddFinerSideVertices(c, level, side_level, center_xy, meters_per_repeat, mesh);
+  int topology = level;
+  for (const SideVertices& side : sides) topology = topology * 8 + side.per_cell;
+  if (mesh->chunk == &c && mesh->topology == topology) return;  // same triangles
+  mesh->chunk = &c;
+  mesh->level = level;
+  mesh->topology = topology;
+  mesh->indices.clear();
+  Triangulate(c, level, sides, mesh);
 }
 
 }  // namespace trackbed::sim

@@ -3,7 +3,11 @@
 // fine surface, and a ground that changes by fractions of a millimetre per frame.
 #include "trackbed/sim/terrain_detail.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -127,6 +131,56 @@ TEST(TerrainDetailTest, ChunksMeetWithoutCracksAndCoarseMeshesAreTheBlendedSurfa
   }
   EXPECT_GT(coarse, 100);
   EXPECT_GT(shared, 300);
+}
+
+// The whole drawn surface is watertight: every edge of every chunk's triangles is an
+// edge of exactly one other triangle, with the same vertices bit for bit, but on the
+// terrain's border. A T-junction (a vertex in the middle of another triangle's edge)
+// leaves that edge and the two halves beside it in one triangle each; a rasterizer
+// may leave pixels open along it.
+TEST(TerrainDetailTest, ChunksMeetEdgeToEdgeWithoutTJunctions) {
+  const Terrain t(Park(), 1);
+  const TerrainDetail d(t, kFullDetail);
+  using Key = std::array<float, 8>;
+  const auto key = [](const TerrainVertex& v) {
+    return Key{v.x, v.y, v.z, v.nx, v.ny, v.nz, v.s, v.t};
+  };
+  const auto on_border = [&](const TerrainVertex& v) {
+    const float x0 = static_cast<float>(t.x_min()), y0 = static_cast<float>(t.y_min());
+    const float x1 = static_cast<float>(t.x_min() + (t.cols() - 1) * t.cell_size_m());
+    const float y1 = static_cast<float>(t.y_min() + (t.rows() - 1) * t.cell_size_m());
+    return v.x == x0 || v.x == x1 || v.y == y0 || v.y == y1;
+  };
+  int finer_sides = 0;
+  for (const Eigen::Vector2d& center :
+       {Eigen::Vector2d(4.5, 0.0), Eigen::Vector2d(-3.33, 2.71), Eigen::Vector2d(-12.0, 10.0)}) {
+    std::map<std::pair<Key, Key>, int> uses;
+    std::map<std::pair<Key, Key>, bool> border;
+    for (const TerrainDetail::Chunk& c : d.chunks()) {
+      TerrainDetail::Mesh m;
+      d.BuildMesh(c, center, 1.0, &m);
+      finer_sides += static_cast<int>(m.vertices.size()) !=
+                     ((c.i1 - c.i0) / (1 << m.level) + 1) * ((c.j1 - c.j0) / (1 << m.level) + 1);
+      for (std::size_t k = 0; k < m.indices.size(); k += 3) {
+        for (int e = 0; e < 3; ++e) {
+          const TerrainVertex& p = m.vertices[m.indices[k + e]];
+          const TerrainVertex& q = m.vertices[m.indices[k + (e + 1) % 3]];
+          const std::pair<Key, Key> edge = std::minmax(key(p), key(q));
+          ++uses[edge];
+          border[edge] = on_border(p) && on_border(q) && (p.x == q.x || p.y == q.y);
+        }
+      }
+    }
+    int open = 0, over = 0;
+    for (const auto& [edge, n] : uses) {
+      open += n == 1 && !border[edge];
+      over += n > 2;
+    }
+    EXPECT_EQ(open, 0) << "centre (" << center.transpose() << ")";
+    EXPECT_EQ(over, 0) << "centre (" << center.transpose() << ")";
+    EXPECT_GT(uses.size(), 30000u);
+  }
+  EXPECT_GT(finer_sides, 20);  // coarse chunks beside finer ones were meshed
 }
 
 TEST(TerrainDetailTest, TheGroundChangesBySubMillimetresPerFrameAsTheRigMoves) {

@@ -15,7 +15,9 @@
 //   * within `full_detail_m` the drawn surface is exactly the physical one.
 // A chunk is meshed at the coarsest level all its vertices are fully blended
 // to. Along a side it shares with a coarser neighbour, its vertices are put on
-// the neighbour's edge, so chunks meet without cracks.
+// the neighbour's edge, and the neighbour's triangles along that edge are fanned
+// to the same vertices (bit for bit), so chunks meet without cracks and without
+// T-junctions, which a rasterizer need not fill.
 //
 // Blend: level k → k + 1 over distances [2^k, 1.5·2^k]·full_detail_m.
 #pragma once
@@ -75,7 +77,10 @@ class TerrainDetail {
     std::vector<TerrainVertex> vertices;
     std::vector<std::uint32_t> indices;  // triangles, counter-clockwise from above
     int level = -1;                      // mesh level
-    const Chunk* chunk = nullptr;        // the chunk it was built for
+    // What the triangles depend on: the level and the finer neighbours' levels.
+    // Meshes of a chunk with the same topology have the same indices.
+    int topology = -1;
+    const Chunk* chunk = nullptr;  // the chunk it was built for
   };
 
   /// The grid's vertices in `window` (the whole grid by default), whose corners other
@@ -112,6 +117,23 @@ class TerrainDetail {
   std::size_t Index(int i, int j) const {
     return static_cast<std::size_t>(j - window_.j0) * cols_ + (i - window_.i0);
   }
+  // Vertices a finer neighbour puts along one side: `per_cell` between each two of
+  // the mesh's, from vertex `first` on, in the order of growing i or j.
+  struct SideVertices {
+    std::uint32_t first = 0;
+    int per_cell = 0;
+  };
+  TerrainVertex BlendedVertex(int i, int j, const Eigen::Vector2d& center_xy,
+                              double meters_per_repeat) const;
+  std::array<int, 4> SideLevels(const Chunk& c, const Eigen::Vector2d& center_xy) const;
+  void PutSidesOnCoarserEdges(const Chunk& c, int level, const std::array<int, 4>& side_level,
+                              Mesh* mesh) const;
+  std::array<SideVertices, 4> AddFinerSideVertices(const Chunk& c, int level,
+                                                   const std::array<int, 4>& side_level,
+                                                   const Eigen::Vector2d& center_xy,
+                                                   double meters_per_repeat, Mesh* mesh) const;
+  void Triangulate(const Chunk& c, int level, const std::array<SideVertices, 4>& sides,
+                   Mesh* mesh) const;
   void BuildLevels(const Terrain& terrain);
   void BuildChunks(const Terrain& terrain, int chunk_cells);
   void DistanceRange(const Chunk& c, const Eigen::Vector2d& p, double* d_min, double* d_max) const;
