@@ -293,7 +293,7 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
     map = Teach(scenario, robot, dir / "teach", dir / "teach_map", &taught);
     teach_repeat::SaveTeachMap(map, (dir / "teach_map").string());
   } else {
-    map = teach_repeat::LoadTeachMap(tr.map, teach_repeat::KeyImageLoading::kOnDemand);
+    map = teach_repeat::LoadTeachMap(tr.map, teach_repeat::MapLoading::kOnDemand);
     taught = TaughtPathBeside(tr.map);
   }
 

@@ -66,7 +66,7 @@ RepeatCommand MilestoneRepeater::Update(const cv::Mat& gray, double t_s) {
   tracks_->BuildPyramid(gray, &curr_pyramid_);
   if (!started_) {
     const int start = settings_.start_milestone;
-    HoldKeyImages(start);
+    HoldMilestones(start);
     StartMilestone(start,
                    detail::StartGuesses(map_.milestones[static_cast<std::size_t>(start)], gray));
     started_ = true;
@@ -82,7 +82,7 @@ RepeatCommand MilestoneRepeater::Update(const cv::Mat& gray, double t_s) {
 
 void MilestoneRepeater::StartMilestone(int index, const std::vector<cv::Point2f>& guesses) {
   milestone_ = index;
-  HoldKeyImages(index);
+  HoldMilestones(index);
   const Milestone& m = map_.milestones[static_cast<std::size_t>(index)];
   tracks_->Start(m, curr_pyramid_, guesses);
   switch_->Reset();
@@ -91,14 +91,17 @@ void MilestoneRepeater::StartMilestone(int index, const std::vector<cv::Point2f>
   MilestoneStarted(m);
 }
 
-void MilestoneRepeater::HoldKeyImages(int index) {
+void MilestoneRepeater::HoldMilestones(int index) {
   const int first = index;
   const int last = std::min(index + 1, static_cast<int>(map_.milestones.size()) - 1);
   for (int k = held_first_; k <= held_last_; ++k) {
-    if (k < first || k > last) ReleaseKeyImage(&map_.milestones[static_cast<std::size_t>(k)]);
+    if (k >= first && k <= last) continue;
+    ReleaseKeyImage(&map_.milestones[static_cast<std::size_t>(k)]);
+    ReleaseFeatures(&map_.milestones[static_cast<std::size_t>(k)]);
   }
   for (int k = first; k <= last; ++k) {
     LoadKeyImage(map_.camera, &map_.milestones[static_cast<std::size_t>(k)]);
+    LoadFeatures(&map_.milestones[static_cast<std::size_t>(k)]);
   }
   held_first_ = first;
   held_last_ = last;

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <optional>
 #include <stdexcept>
@@ -21,6 +22,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "byte_file.h"
+#include "feature_files.h"
 #include "trackbed/common/archive.h"
 #include "trackbed/common/archive_eigen.h"
 #include "trackbed/common/option_error.h"
@@ -35,12 +37,6 @@ constexpr char kMapFile[] = "map.json";
 constexpr char kKeyImageDir[] = "key_images";
 constexpr char kPatchFile[] = "patches.bin";
 constexpr char kFeatureFile[] = "features.bin";
-constexpr char kPatchMagic[8] = {'T', 'B', 'P', 'A', 'T', 'C', 'H', '1'};
-// The header of patches.bin and features.bin: magic, uint32 field, uint32 0, uint64 count.
-constexpr std::size_t kRecordHeaderBytes = 8 + 4 + 4 + 8;
-constexpr char kFeatureMagic[8] = {'T', 'B', 'F', 'E', 'A', 'T', 'S', '1'};
-// One feature in features.bin: first_px, last_px (4 float32), p_first (3 float64).
-constexpr std::size_t kFeatureRecordBytes = 4 * 4 + 3 * 8;
 
 // The oldest map.json this build reads: version 1 listed the features in it.
 constexpr int kOldestTeachMapVersion = 1;
@@ -245,7 +241,7 @@ MilestoneFile MilestoneToFile(const Milestone& m, std::size_t index) {
   f.reprojection_error_px = m.reprojection_error_px;
   f.baseline_m = m.baseline_m;
   f.key_image = KeyImageName(index);
-  f.feature_count = static_cast<std::int64_t>(m.features.size());
+  f.feature_count = static_cast<std::int64_t>(m.feature_count());
   return f;
 }
 
@@ -312,7 +308,7 @@ MilestoneCut ParseMilestoneCut(const std::string& text) {
 
 std::size_t TeachMap::feature_count() const {
   std::size_t n = 0;
-  for (const Milestone& m : milestones) n += m.features.size();
+  for (const Milestone& m : milestones) n += m.feature_count();
   return n;
 }
 
@@ -433,19 +429,26 @@ void WriteKeyImages(const TeachMap& map, const fs::path& root) {
 
 namespace {
 
+/// Milestone `m`'s features: those it holds, or those of its map's files read into
+/// `scratch`.
+const std::vector<MilestoneFeature>& HeldOrRead(const Milestone& m,
+                                                std::vector<MilestoneFeature>* scratch) {
+  if (!m.features_file || m.features.size() == m.feature_count()) return m.features;
+  Milestone copy;
+  copy.features_file = m.features_file;
+  LoadFeatures(&copy);
+  *scratch = std::move(copy.features);
+  return *scratch;
+}
+
 /// features.bin's bytes: every feature, milestone by milestone.
 std::string FeatureBlob(const TeachMap& map) {
   const std::size_t count = map.feature_count();
-  std::string blob(kFeatureMagic, kFeatureMagic + 8);
-  PutUint(&blob, kFeatureRecordBytes, 4);
-  PutUint(&blob, 0, 4);
-  PutUint(&blob, count, 8);
+  std::string blob = FeatureFileHeader(count);
   blob.reserve(kRecordHeaderBytes + count * kFeatureRecordBytes);
+  std::vector<MilestoneFeature> scratch;
   for (const Milestone& m : map.milestones) {
-    for (const MilestoneFeature& f : m.features) {
-      for (float v : {f.first_px.x, f.first_px.y, f.last_px.x, f.last_px.y}) PutFloat(&blob, v);
-      for (int i = 0; i < 3; ++i) PutDouble(&blob, f.p_first[i]);
-    }
+    for (const MilestoneFeature& f : HeldOrRead(m, &scratch)) PutFeature(f, &blob);
   }
   return blob;
 }
@@ -453,83 +456,16 @@ std::string FeatureBlob(const TeachMap& map) {
 /// patches.bin's bytes.
 std::string PatchBlob(const TeachMap& map) {
   const std::size_t count = map.feature_count();
-  const std::size_t side = static_cast<std::size_t>(map.patch_size_px);
-  std::string patches(kPatchMagic, kPatchMagic + 8);
-  PutUint(&patches, side, 4);
-  PutUint(&patches, 0, 4);
-  PutUint(&patches, count, 8);
+  const auto side = static_cast<std::size_t>(map.patch_size_px);
+  std::string patches = PatchFileHeader(map.patch_size_px, count);
   patches.reserve(kRecordHeaderBytes + count * side * side);
+  std::vector<MilestoneFeature> scratch;
   for (const Milestone& m : map.milestones) {
-    for (const MilestoneFeature& f : m.features) {
-      for (int r = 0; r < f.patch.rows; ++r) {
-        const char* row = reinterpret_cast<const char*>(f.patch.ptr<unsigned char>(r));
-        patches.append(row, side);
-      }
+    for (const MilestoneFeature& f : HeldOrRead(m, &scratch)) {
+      PutPatch(f, map.patch_size_px, &patches);
     }
   }
   return patches;
-}
-
-namespace {
-
-/// One of the map's binary files: its 8-byte `magic`, a uint32 header field, uint32 0 and
-/// a uint64 count, then count records of `record_bytes`. Checked: the magic, the field
-/// (`field_error` says what is wrong with it, or nothing), the count against the
-/// `total` map.json counts, the size. Returns its bytes; errors name the file.
-std::string ReadRecordFile(const fs::path& path, const char (&magic)[8], const char* kind,
-                           const std::function<std::string(std::uint64_t)>& field_error,
-                           std::uint64_t record_bytes, std::size_t total, const char* records) {
-  std::optional<std::string> blob = ReadFile(path);
-  const std::string where = "LoadTeachMap: " + path.string() + ": ";
-  if (!blob) throw std::runtime_error(where + "missing or unreadable");
-  if (blob->size() < kRecordHeaderBytes || blob->compare(0, 8, magic, 8) != 0) {
-    throw std::runtime_error(where + "not a trackbed " + kind +
-                             " file (bad magic or truncated header)");
-  }
-  const std::string wrong_field = field_error(GetUint(*blob, 8, 4));
-  if (!wrong_field.empty()) throw std::runtime_error(where + wrong_field);
-  const std::uint64_t count = GetUint(*blob, 16, 8);
-  if (count != total) {
-    throw std::runtime_error(where + "inconsistent counts: holds " + std::to_string(count) + " " +
-                             records + ", map.json counts " + std::to_string(total) + " features");
-  }
-  const std::uint64_t expected = kRecordHeaderBytes + count * record_bytes;
-  if (blob->size() != expected) {
-    throw std::runtime_error(where + (blob->size() < expected ? "truncated" : "trailing bytes") +
-                             ": " + std::to_string(blob->size()) + " bytes, expected " +
-                             std::to_string(expected));
-  }
-  return std::move(*blob);
-}
-
-}  // namespace
-
-/// The patch file map.json names, checked against the map's patch size and its
-/// `total_features`.
-std::string ReadPatchFile(const fs::path& path, std::size_t total_features, int patch_size_px) {
-  const auto side = static_cast<std::uint64_t>(patch_size_px);
-  return ReadRecordFile(
-      path, kPatchMagic, "patch",
-      [&](std::uint64_t found) {
-        return found == side ? std::string()
-                             : "patch side " + std::to_string(found) + " px, but map.json says " +
-                                   std::to_string(patch_size_px);
-      },
-      side * side, total_features, "patches");
-}
-
-/// The feature file map.json names (version 2 on), checked against the features its
-/// milestones count (`total_features`).
-std::string ReadFeatureFile(const fs::path& path, std::size_t total_features) {
-  return ReadRecordFile(
-      path, kFeatureMagic, "feature",
-      [](std::uint64_t found) {
-        return found == kFeatureRecordBytes
-                   ? std::string()
-                   : "records of " + std::to_string(found) + " bytes, this build reads " +
-                         std::to_string(kFeatureRecordBytes);
-      },
-      kFeatureRecordBytes, total_features, "features");
 }
 
 /// Hands the features of a checked feature file (ReadFeatureFile) to the milestones, as
@@ -538,33 +474,17 @@ void AssignFeatures(const std::string& blob, const std::vector<std::size_t>& cou
                     TeachMap* map) {
   std::size_t offset = kRecordHeaderBytes;
   for (std::size_t k = 0; k < map->milestones.size(); ++k) {
-    std::vector<MilestoneFeature>& features = map->milestones[k].features;
-    features.resize(counts[k]);
-    for (MilestoneFeature& f : features) {
-      f.first_px = {GetFloat(blob, offset), GetFloat(blob, offset + 4)};
-      f.last_px = {GetFloat(blob, offset + 8), GetFloat(blob, offset + 12)};
-      for (int i = 0; i < 3; ++i) f.p_first[i] = GetDouble(blob, offset + 16 + 8 * i);
-      offset += kFeatureRecordBytes;
-    }
+    map->milestones[k].features.resize(counts[k]);
+    offset = GetFeatures(blob, offset, &map->milestones[k].features);
   }
 }
 
 /// Hands the patches of a checked patch file (ReadPatchFile) to the features, milestone
 /// by milestone, feature by feature.
 void AssignPatches(const std::string& blob, TeachMap* map) {
-  const std::size_t side = static_cast<std::size_t>(map->patch_size_px);
   std::size_t offset = kRecordHeaderBytes;
-  const int s = map->patch_size_px;
   for (Milestone& m : map->milestones) {
-    for (MilestoneFeature& f : m.features) {
-      f.patch.create(s, s, CV_8UC1);
-      for (int r = 0; r < s; ++r) {
-        std::copy(blob.begin() + static_cast<std::ptrdiff_t>(offset),
-                  blob.begin() + static_cast<std::ptrdiff_t>(offset + side),
-                  reinterpret_cast<char*>(f.patch.ptr<unsigned char>(r)));
-        offset += side;
-      }
-    }
+    offset = GetPatches(blob, offset, map->patch_size_px, &m.features);
   }
 }
 
@@ -790,9 +710,25 @@ fs::path FileInMap(const fs::path& root, const std::string& key, const std::stri
   return root / relative;
 }
 
+/// Names each milestone's span of a version 2 map's feature and patch files, both
+/// checked by their headers and sizes.
+void KeepFeaturesInFiles(const fs::path& features, const fs::path& patches, const MapFile& file,
+                         TeachMap* map) {
+  const auto files = std::make_shared<const MapFeatureFiles>(
+      MapFeatureFiles{features.string(), patches.string(), map->patch_size_px});
+  std::uint64_t first = 0;
+  for (std::size_t k = 0; k < map->milestones.size(); ++k) {
+    const auto count = static_cast<std::uint64_t>(file.milestone(k).feature_count);
+    map->milestones[k].features_file = FeatureSpan{files, first, count};
+    first += count;
+  }
+  CheckFeatureFile(features, first);
+  CheckPatchFile(patches, first, map->patch_size_px);
+}
+
 }  // namespace
 
-TeachMap LoadTeachMap(const std::string& dir, KeyImageLoading key_images) {
+TeachMap LoadTeachMap(const std::string& dir, MapLoading loading) {
   const fs::path root(dir);
   if (!fs::is_directory(root)) {
     throw std::runtime_error("LoadTeachMap: " + dir + ": no such directory");
@@ -813,25 +749,28 @@ TeachMap LoadTeachMap(const std::string& dir, KeyImageLoading key_images) {
   for (std::size_t k = 0; k < map.milestones.size(); ++k) {
     const std::string key = archive::JoinIndex("milestones", k);
     const fs::path key_file = FileInMap(root, key + ".key_image", file.milestone(k).key_image);
-    if (key_images == KeyImageLoading::kAll) {
+    if (loading == MapLoading::kAll) {
       map.milestones[k].key_image = ReadKeyImage(key_file, key, map.camera, "LoadTeachMap");
     } else {
       CheckKeyImageFile(key_file, key, map.camera);
       map.milestones[k].key_image_file = key_file.string();
     }
   }
-  if (file.version >= 2) {
-    std::vector<std::size_t> counts;
-    for (const MilestoneFile& m : file.milestones) {
-      counts.push_back(static_cast<std::size_t>(m.feature_count));
+  const fs::path patches = FileInMap(root, "patches_file", file.patches_file);
+  if (file.version >= 2 && loading == MapLoading::kOnDemand) {
+    KeepFeaturesInFiles(FileInMap(root, "features_file", file.features_file), patches, file, &map);
+  } else {
+    if (file.version >= 2) {
+      std::vector<std::size_t> counts;
+      for (const MilestoneFile& m : file.milestones) {
+        counts.push_back(static_cast<std::size_t>(m.feature_count));
+      }
+      const std::size_t listed = std::accumulate(counts.begin(), counts.end(), std::size_t{0});
+      AssignFeatures(ReadFeatureFile(FileInMap(root, "features_file", file.features_file), listed),
+                     counts, &map);
     }
-    const std::size_t listed = std::accumulate(counts.begin(), counts.end(), std::size_t{0});
-    AssignFeatures(ReadFeatureFile(FileInMap(root, "features_file", file.features_file), listed),
-                   counts, &map);
+    AssignPatches(ReadPatchFile(patches, map.feature_count(), map.patch_size_px), &map);
   }
-  AssignPatches(ReadPatchFile(FileInMap(root, "patches_file", file.patches_file),
-                              map.feature_count(), map.patch_size_px),
-                &map);
   try {
     map.Validate();
   } catch (const std::invalid_argument& e) {
@@ -852,6 +791,33 @@ void LoadKeyImage(const geometry::PinholeCamera& camera, Milestone* m) {
 
 void ReleaseKeyImage(Milestone* m) {
   if (!m->key_image_file.empty()) m->key_image.release();
+}
+
+// --- Features held on disk. ----------------------------------------------------------------
+
+void LoadFeatures(Milestone* m) {
+  if (!m->features_file || m->features.size() == m->feature_count()) return;
+  const FeatureSpan& span = *m->features_file;
+  const MapFeatureFiles& files = *span.files;
+  const auto side = static_cast<std::uint64_t>(files.patch_size_px);
+  std::vector<MilestoneFeature> features(static_cast<std::size_t>(span.count));
+  GetFeatures(
+      ReadRecords(files.features_path, span.first, span.count, kFeatureRecordBytes, "LoadFeatures"),
+      0, &features);
+  GetPatches(ReadRecords(files.patches_path, span.first, span.count, side * side, "LoadFeatures"),
+             0, files.patch_size_px, &features);
+  for (std::size_t i = 0; i < features.size(); ++i) {
+    const MilestoneFeature& f = features[i];
+    if (!Finite(f.first_px) || !Finite(f.last_px) || !f.p_first.allFinite()) {
+      throw std::runtime_error("LoadFeatures: " + files.features_path + ": feature " +
+                               std::to_string(span.first + i) + ": non-finite number");
+    }
+  }
+  m->features = std::move(features);
+}
+
+void ReleaseFeatures(Milestone* m) {
+  if (m->features_file) std::vector<MilestoneFeature>().swap(m->features);
 }
 
 void SpillKeyImage(const std::string& dir, std::size_t index, Milestone* m) {

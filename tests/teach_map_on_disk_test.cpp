@@ -1,8 +1,9 @@
-// Key images held on disk (teach_map.h): a map taught with its key images spilled as it
-// goes is the same map, byte for byte on disk; a map loaded on demand checks its key
-// images without decoding them, reads the same pixels later and saves to the same bytes;
-// both repeaters driven from such a map give the same commands as from the map in memory
-// while holding at most two key images.
+// Key images and features held on disk (teach_map.h): a map taught with its key images
+// spilled as it goes is the same map, byte for byte on disk; a map loaded on demand
+// checks its key images and feature files without reading them whole, reads the same
+// pixels and features later and saves to the same bytes; both repeaters driven from such
+// a map give the same commands as from the map in memory while holding at most two
+// milestones' key images and features.
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -77,6 +78,23 @@ int KeyImagesHeld(const TeachMap& map) {
   return held;
 }
 
+int FeaturesHeld(const TeachMap& map) {
+  int held = 0;
+  for (const Milestone& m : map.milestones) held += m.features.empty() ? 0 : 1;
+  return held;
+}
+
+/// The same positions, points and patches, bit for bit.
+void ExpectSameFeatures(const Milestone& a, const Milestone& b) {
+  ASSERT_EQ(a.features.size(), b.features.size());
+  for (std::size_t i = 0; i < a.features.size(); ++i) {
+    const MilestoneFeature &f = a.features[i], &g = b.features[i];
+    EXPECT_TRUE(f.first_px == g.first_px && f.last_px == g.last_px && f.p_first == g.p_first)
+        << "feature " << i;
+    EXPECT_EQ(cv::norm(f.patch, g.patch, cv::NORM_INF), 0.0) << "feature " << i;
+  }
+}
+
 TEST(TeachMapOnDiskTest, SpillingWhileTeachingSavesTheSameMap) {
   const fs::path held = Scratch("held"), spilled = Scratch("spilled");
   const TeachMap in_memory = TeachStraight(TeachMode::k2d, 65);
@@ -97,8 +115,11 @@ TEST(TeachMapOnDiskTest, OnDemandLoadingReadsTheSamePixelsAndSavesTheSameBytes) 
   const fs::path a = Scratch("a"), b = Scratch("b");
   SaveTeachMap(TeachStraight(TeachMode::k3d, 41), a.string());
   const TeachMap all = LoadTeachMap(a.string());
-  TeachMap lazy = LoadTeachMap(a.string(), KeyImageLoading::kOnDemand);
+  TeachMap lazy = LoadTeachMap(a.string(), MapLoading::kOnDemand);
   EXPECT_EQ(KeyImagesHeld(lazy), 0);
+  EXPECT_EQ(FeaturesHeld(lazy), 0);
+  EXPECT_EQ(lazy.feature_count(), all.feature_count());
+  EXPECT_GT(all.feature_count(), 200u);
   SaveTeachMap(lazy, b.string());  // linked or copied, never decoded
   ExpectSameFiles(a, b);
   SaveTeachMap(lazy, a.string());  // in place: the files it names survive
@@ -110,11 +131,18 @@ TEST(TeachMapOnDiskTest, OnDemandLoadingReadsTheSamePixelsAndSavesTheSameBytes) 
     EXPECT_EQ(cv::norm(m.key_image, all.milestones[k].key_image, cv::NORM_INF), 0.0);
     ReleaseKeyImage(&m);
     EXPECT_TRUE(m.key_image.empty());
+    LoadFeatures(&m);
+    ExpectSameFeatures(m, all.milestones[k]);
+    ReleaseFeatures(&m);
+    EXPECT_TRUE(m.features.empty());
+    EXPECT_EQ(m.feature_count(), all.milestones[k].features.size());
   }
-  // A key image held in memory only is never released.
+  // A key image and features held in memory only are never released.
   Milestone only_in_memory = all.milestones[0];
   ReleaseKeyImage(&only_in_memory);
+  ReleaseFeatures(&only_in_memory);
   EXPECT_FALSE(only_in_memory.key_image.empty());
+  EXPECT_FALSE(only_in_memory.features.empty());
   fs::remove_all(a);
   fs::remove_all(b);
 }
@@ -122,7 +150,7 @@ TEST(TeachMapOnDiskTest, OnDemandLoadingReadsTheSamePixelsAndSavesTheSameBytes) 
 /// LoadTeachMap(kOnDemand) must throw a runtime_error whose message holds every part.
 void ExpectOnDemandError(const fs::path& dir, const std::vector<std::string>& parts) {
   try {
-    LoadTeachMap(dir.string(), KeyImageLoading::kOnDemand);
+    LoadTeachMap(dir.string(), MapLoading::kOnDemand);
     ADD_FAILURE() << "loading " << dir << " succeeded";
   } catch (const std::runtime_error& e) {
     const std::string message = e.what();
@@ -154,7 +182,7 @@ TEST(TeachMapOnDiskTest, OnDemandLoadingChecksEveryKeyImageFileUpFront) {
 
   // A file that goes bad after the load is named when the repeat reads it.
   write(png);
-  TeachMap lazy = LoadTeachMap(dir.string(), KeyImageLoading::kOnDemand);
+  TeachMap lazy = LoadTeachMap(dir.string(), MapLoading::kOnDemand);
   write(png.substr(0, 40));
   try {
     LoadKeyImage(lazy.camera, &lazy.milestones[1]);
@@ -162,6 +190,54 @@ TEST(TeachMapOnDiskTest, OnDemandLoadingChecksEveryKeyImageFileUpFront) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("000001.png"), std::string::npos) << e.what();
   }
+  fs::remove_all(dir);
+}
+
+/// LoadFeatures(m) must throw a runtime_error whose message holds every part.
+void ExpectFeatureError(Milestone* m, const std::vector<std::string>& parts) {
+  try {
+    LoadFeatures(m);
+    ADD_FAILURE() << "the features were read";
+  } catch (const std::runtime_error& e) {
+    const std::string message = e.what();
+    for (const std::string& part : parts) {
+      EXPECT_NE(message.find(part), std::string::npos) << "\"" << part << "\" not in: " << message;
+    }
+  }
+  EXPECT_TRUE(m->features.empty());
+}
+
+TEST(TeachMapOnDiskTest, OnDemandLoadingChecksTheFeatureFilesUpFrontAndWhenRead) {
+  const fs::path dir = Scratch("bad_features");
+  SaveTeachMap(TeachStraight(TeachMode::k3d, 31), dir.string());
+  const fs::path features = dir / "features.bin", patches = dir / "patches.bin";
+  const std::string feature_bytes = ReadBytes(features), patch_bytes = ReadBytes(patches);
+  const auto write = [](const fs::path& path, const std::string& bytes) {
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+  };
+  write(features, feature_bytes.substr(0, feature_bytes.size() - 1));
+  ExpectOnDemandError(dir, {"features.bin", "truncated"});
+  write(features, feature_bytes + "x");
+  ExpectOnDemandError(dir, {"features.bin", "trailing bytes"});
+  write(features, feature_bytes);
+  write(patches, patch_bytes.substr(0, 20));
+  ExpectOnDemandError(dir, {"patches.bin", "bad magic or truncated header"});
+  fs::remove(patches);
+  ExpectOnDemandError(dir, {"patches.bin", "missing"});
+  write(patches, patch_bytes);
+
+  // Files that go bad after the load are named when a milestone's features are read.
+  TeachMap lazy = LoadTeachMap(dir.string(), MapLoading::kOnDemand);
+  Milestone& last = lazy.milestones.back();
+  ASSERT_GT(last.feature_count(), 0u);
+  std::string nan = feature_bytes;
+  const double quiet_nan = std::nan("");
+  nan.replace(nan.size() - 8, 8, reinterpret_cast<const char*>(&quiet_nan), 8);
+  write(features, nan);
+  ExpectFeatureError(&last, {"LoadFeatures: ", "features.bin", "non-finite"});
+  write(patches, patch_bytes.substr(0, patch_bytes.size() - 5));
+  write(features, feature_bytes);
+  ExpectFeatureError(&last, {"LoadFeatures: ", "patches.bin", "truncated"});
   fs::remove_all(dir);
 }
 
@@ -195,10 +271,10 @@ TEST(TeachMapOnDiskTest, RepeatersDriveTheSameFromAMapOnDiskHoldingTwoKeyImages)
     Localizer3dOptions o3;
     o3.forward_speed_mps = 0.2;
     const auto all = MakeRepeater(ToString(mode), LoadTeachMap(dir.string()), o2, o3);
-    const auto lazy = MakeRepeater(ToString(mode),
-                                   LoadTeachMap(dir.string(), KeyImageLoading::kOnDemand), o2, o3);
+    const auto lazy =
+        MakeRepeater(ToString(mode), LoadTeachMap(dir.string(), MapLoading::kOnDemand), o2, o3);
     Pose2 pose{0.0, 0.05, 0.02};
-    int frames = 0, most_held = 0;
+    int frames = 0, most_held = 0, most_features_held = 0;
     for (; frames < 150; ++frames) {
       const cv::Mat image = scene.Render(CameraPose(pose));
       const RepeatCommand a = all->Update(image, 0.1 * frames);
@@ -208,14 +284,19 @@ TEST(TeachMapOnDiskTest, RepeatersDriveTheSameFromAMapOnDiskHoldingTwoKeyImages)
       ASSERT_EQ(a.twist.yaw_rate_radps, b.twist.yaw_rate_radps) << "frame " << frames;
       ASSERT_EQ(a.status, b.status);
       most_held = std::max(most_held, KeyImagesHeld(lazy->map()));
+      most_features_held = std::max(most_features_held, FeaturesHeld(lazy->map()));
       if (a.status != RepeatStatus::kDriving) break;
       pose = navigation::IntegrateTwist(pose, a.twist, 0.1);
     }
-    std::printf("%s: %d frames, %zu milestones, at most %d key images held\n", ToString(mode),
-                frames, all->map().milestones.size(), most_held);
+    std::printf(
+        "%s: %d frames, %zu milestones, at most %d key images and %d milestones' "
+        "features held\n",
+        ToString(mode), frames, all->map().milestones.size(), most_held, most_features_held);
     EXPECT_EQ(KeyImagesHeld(all->map()), static_cast<int>(all->map().milestones.size()));
     EXPECT_GE(lazy->map().milestones.size(), 5u);
     EXPECT_LE(most_held, 2);
+    EXPECT_LE(most_features_held, 2);
+    EXPECT_GE(most_features_held, 1);
     fs::remove_all(dir);
   }
 }

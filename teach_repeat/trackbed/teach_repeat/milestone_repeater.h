@@ -113,9 +113,9 @@ class MilestoneRepeater : public Repeater {
   /// Throws std::invalid_argument unless `gray` is a CV_8UC1 image of the map's camera
   /// size and `t_s` is finite and, once started, not before the last frame's time.
   void CheckInput(const cv::Mat& gray, double t_s) const;
-  /// Holds the key images of milestones index … index + 1 in memory and drops those held
-  /// before that are not among them (only key images that have a file).
-  void HoldKeyImages(int index);
+  /// Holds the key images and features of milestones index … index + 1 in memory and
+  /// drops those held before that are not among them (only those that have files).
+  void HoldMilestones(int index);
 
   MilestoneRepeaterSettings settings_;
   perception::TrackingPyramid prev_pyramid_, curr_pyramid_;
@@ -124,7 +124,7 @@ class MilestoneRepeater : public Repeater {
   double executed_v_mps_ = 0.0;         ///< the last command's forward speed, as executed
   double driven_in_milestone_m_ = 0.0;  ///< see DrivenInMilestone
   int too_few_frames_ = 0;
-  int held_first_ = 0, held_last_ = -1;  ///< the milestones whose key images are held
+  int held_first_ = 0, held_last_ = -1;  ///< the milestones whose key images and features are held
   RepeatStatus status_ = RepeatStatus::kDriving;
 };
 

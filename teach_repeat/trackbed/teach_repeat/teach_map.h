@@ -16,8 +16,11 @@
 // 15 KB), so a long route's map need not hold them all: a milestone's key image may stay
 // in its PNG file (Milestone::key_image_file) and be read when the milestone comes near
 // (LoadKeyImage, ReleaseKeyImage; the repeater holds a few milestones ahead). A map
-// loaded with KeyImageLoading::kOnDemand, and one taught with
-// MilestoneBuilder::SpillKeyImages, hold their key images that way.
+// loaded with MapLoading::kOnDemand, and one taught with
+// MilestoneBuilder::SpillKeyImages, hold their key images that way. A version 2 map
+// loaded on demand holds its features that way too (LoadFeatures, ReleaseFeatures):
+// in memory a feature with its patch takes a few hundred bytes, a 500 m route's map
+// hundreds of megabytes.
 //
 // On disk a map is a directory (docs/teach_repeat.md has the full description):
 //   map.json          — format "trackbed.teach_map", version 2: camera, teach images'
@@ -41,6 +44,9 @@
 // a (p_a = T_a_b · p_b). Pixel coordinates: the centre of the top-left pixel is (0, 0).
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -51,6 +57,7 @@
 
 #include "trackbed/common/pinhole_camera.h"
 #include "trackbed/estimation/pose2.h"
+#include "trackbed/teach_repeat/milestone_feature.h"
 
 namespace trackbed::teach_repeat {
 
@@ -77,14 +84,20 @@ const char* ToString(MilestoneCut cut);
 /// Parses the names above; throws std::invalid_argument otherwise.
 MilestoneCut ParseMilestoneCut(const std::string& text);
 
-/// One milestone feature.
-struct MilestoneFeature {
-  cv::Point2f first_px;  ///< position in the milestone's first (key) image [px]
-  cv::Point2f last_px;   ///< position in its last image, KLT-tracked [px]
-  /// 3-D point in the first camera's frame [m] (3D milestones; zero otherwise).
-  Eigen::Vector3d p_first = Eigen::Vector3d::Zero();
-  /// patch_size_px × patch_size_px CV_8UC1 patch of the last image centred on last_px.
-  cv::Mat patch;
+/// A map's feature and patch files (features.bin and patches.bin), from which a map
+/// loaded with MapLoading::kOnDemand reads a milestone's features when it comes near.
+struct MapFeatureFiles {
+  std::string features_path;
+  std::string patches_path;
+  int patch_size_px = 11;
+};
+
+/// Where a milestone's features lie in its map's files: features [first, first + count)
+/// of both.
+struct FeatureSpan {
+  std::shared_ptr<const MapFeatureFiles> files;
+  std::uint64_t first = 0;
+  std::uint64_t count = 0;
 };
 
 /// One milestone: teach images first_image … last_image.
@@ -104,13 +117,22 @@ struct Milestone {
   /// Odometry distance between the first and the last image [m]: the reconstruction's
   /// scale (0 when the teach recorded no odometry).
   double baseline_m = 0.0;
+  /// The features, when held in memory; empty while they are held in features_file only.
   std::vector<MilestoneFeature> features;
+  /// Where the features lie in the map's files, when the map keeps them there (a version 2
+  /// map loaded with MapLoading::kOnDemand; read by LoadFeatures).
+  std::optional<FeatureSpan> features_file;
   /// The first image (CV_8UC1, the camera's size), when held in memory; empty when it
   /// is held in key_image_file only.
   cv::Mat key_image;
   /// The key image's PNG file (an 8-bit grey PNG of the camera's size, as SaveTeachMap
   /// writes), when the map keeps it on disk; empty for a key image held in memory only.
   std::string key_image_file;
+
+  /// Its number of features, held or in its map's files.
+  std::size_t feature_count() const {
+    return features_file ? static_cast<std::size_t>(features_file->count) : features.size();
+  }
 };
 
 /// One teach image's metadata.
@@ -158,12 +180,17 @@ void SpillKeyImage(const std::string& dir, std::size_t index, Milestone* m);
 /// std::runtime_error naming the file for I/O failures.
 void SaveTeachMap(const TeachMap& map, const std::string& dir);
 
-/// How LoadTeachMap reads the key images.
-enum class KeyImageLoading {
-  kAll,       ///< every key image read and held in memory
-  kOnDemand,  ///< only checked (a complete 8-bit grey PNG of the camera's size, by its
-              ///< header); each milestone names its file, read by LoadKeyImage
+/// How LoadTeachMap reads the key images and the features.
+enum class MapLoading {
+  kAll,       ///< every key image and feature read and held in memory
+  kOnDemand,  ///< key images only checked (a complete 8-bit grey PNG of the camera's
+              ///< size, by its header), each milestone naming its file, read by
+              ///< LoadKeyImage; in a version 2 map the features and patches files checked
+              ///< by their headers and sizes, each milestone naming its span of them, read
+              ///< by LoadFeatures
 };
+/// The name MapLoading had when it decided the key images only.
+using KeyImageLoading = MapLoading;
 
 /// Reads a map written by SaveTeachMap. Throws std::runtime_error whose message names
 /// the file and what is wrong: a missing directory or file, JSON that does not parse, a
@@ -171,6 +198,14 @@ enum class KeyImageLoading {
 /// path, e.g. `milestones[3].features[7]`), counts that disagree (features vs patches), a
 /// truncated or oversized patch file, a key image that is missing, unreadable or of the
 /// wrong size.
-TeachMap LoadTeachMap(const std::string& dir, KeyImageLoading key_images = KeyImageLoading::kAll);
+TeachMap LoadTeachMap(const std::string& dir, MapLoading loading = MapLoading::kAll);
+
+/// Reads milestone `m`'s features from its map's files (features_file) into features
+/// (nothing when they are held already or it names no files). Throws std::runtime_error
+/// naming the file and the milestone's features when a file is missing, shorter than the
+/// span, or holds a non-finite number.
+void LoadFeatures(Milestone* m);
+/// Drops milestone `m`'s features from memory when they are held in its map's files too.
+void ReleaseFeatures(Milestone* m);
 
 }  // namespace trackbed::teach_repeat
