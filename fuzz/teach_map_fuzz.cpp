@@ -3,11 +3,12 @@
 // starts with its magic (TBFEATS1), as long as its header's count says — written into a
 // temporary map folder (one per process, rewritten for each input) whose key_images/
 // holds four 32x24 grey PNGs written once at start-up (milestones 0-3 of a map whose
-// camera is 32x24). A map that loads is saved into a second folder and loaded again.
+// camera is 32x24). A map that loads is saved into a second folder and loaded again. The
+// map is also loaded on demand and every milestone's features read from its files.
 //
 // Finding: a crash, a sanitizer report, a hang or an out-of-memory, an exception other
-// than std::runtime_error from LoadTeachMap, or a loaded map that cannot be saved and
-// loaded again.
+// than std::runtime_error from LoadTeachMap or LoadFeatures, a loaded map that cannot be
+// saved and loaded again, or features read on demand that differ from those loaded whole.
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -68,6 +69,30 @@ std::string TakeFeatures(std::string* rest) {
   return features;
 }
 
+// The map in `dir` loaded on demand, every milestone's features read, compared with
+// `whole` (the map loaded at once, when it loaded).
+void LoadOnDemand(const fs::path& dir, const tr::TeachMap* whole) {
+  tr::TeachMap lazy;
+  try {
+    lazy = tr::LoadTeachMap(dir.string(), tr::MapLoading::kOnDemand);
+    for (tr::Milestone& m : lazy.milestones) tr::LoadFeatures(&m);
+  } catch (const std::runtime_error&) {
+    return;
+  }
+  if (whole == nullptr) return;
+  if (lazy.milestones.size() != whole->milestones.size()) Finding("on demand: other milestones");
+  for (std::size_t k = 0; k < lazy.milestones.size(); ++k) {
+    const auto &a = lazy.milestones[k].features, &b = whole->milestones[k].features;
+    if (a.size() != b.size()) Finding("on demand: other feature counts");
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      if (a[i].first_px != b[i].first_px || a[i].last_px != b[i].last_px ||
+          a[i].p_first != b[i].p_first || cv::norm(a[i].patch, b[i].patch, cv::NORM_INF) != 0) {
+        Finding("on demand: other features");
+      }
+    }
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -88,8 +113,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {
     map = tr::LoadTeachMap(dirs.map.string());
   } catch (const std::runtime_error&) {
+    LoadOnDemand(dirs.map, nullptr);
     return 0;
   }
+  LoadOnDemand(dirs.map, &map);
   try {
     tr::SaveTeachMap(map, dirs.saved.string());
     const tr::TeachMap again = tr::LoadTeachMap(dirs.saved.string());
