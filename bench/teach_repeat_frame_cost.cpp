@@ -46,7 +46,7 @@ std::size_t Teach(const teach_repeat::testing::CorridorScene& scene, double leng
   for (int k = 0; k < images; ++k) {
     const estimation::Pose2 pose{0.02 * k, 0.0, 0.0};
     if (builder.AddImage(scene.Render(CameraPose(pose)), 0.1 * k, pose).milestone_closed) {
-      builder.SpillKeyImages(dir);
+      builder.SpillMilestones(dir);
     }
   }
   const teach_repeat::TeachMap map = builder.Finish();

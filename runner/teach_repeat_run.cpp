@@ -77,7 +77,7 @@ teach_repeat::TeachMap Teach(const scenario::Scenario& scenario, const RobotBuil
     cv::Mat image;
     undistorter.Undistort(perception::AsCvMat(*f.left), &image);
     if (builder.AddImage(image, f.t_s, odometry.pose()).milestone_closed) {
-      builder.SpillKeyImages(map_dir.string());
+      builder.SpillMilestones(map_dir.string());
     }
   };
   extra.on_sample = [&](const RunSample& s) {
@@ -292,6 +292,10 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
   if (tr.map.empty()) {
     map = Teach(scenario, robot, dir / "teach", dir / "teach_map", &taught);
     teach_repeat::SaveTeachMap(map, (dir / "teach_map").string());
+    // Repeated from the saved map as a map given by teach_repeat.map would be: its key
+    // images and features read milestone by milestone.
+    map = teach_repeat::LoadTeachMap((dir / "teach_map").string(),
+                                     teach_repeat::MapLoading::kOnDemand);
   } else {
     map = teach_repeat::LoadTeachMap(tr.map, teach_repeat::MapLoading::kOnDemand);
     taught = TaughtPathBeside(tr.map);

@@ -182,4 +182,24 @@ std::string ReadRecords(const fs::path& path, std::uint64_t first, std::uint64_t
   return bytes;
 }
 
+void WriteRecordsAt(const fs::path& path, const std::string& header, std::uint64_t first,
+                    std::uint64_t record_bytes, const std::string& records, const char* who) {
+  const std::string where = std::string(who) + ": " + path.string() + ": ";
+  const std::uint64_t offset = kRecordHeaderBytes + first * record_bytes;
+  std::error_code ec;
+  if (first > 0 && !(fs::file_size(path, ec) >= offset && !ec)) {
+    throw std::runtime_error(where + "missing or holds fewer than " + std::to_string(first) +
+                             " records");
+  }
+  std::fstream out(path, first == 0 ? std::ios::binary | std::ios::out | std::ios::trunc
+                                    : std::ios::binary | std::ios::in | std::ios::out);
+  if (!out) throw std::runtime_error(where + "cannot open for writing");
+  out.seekp(static_cast<std::streamoff>(offset));
+  out.write(records.data(), static_cast<std::streamsize>(records.size()));
+  out.seekp(0);
+  out.write(header.data(), static_cast<std::streamsize>(header.size()));
+  out.close();
+  if (!out) throw std::runtime_error(where + "write failed");
+}
+
 }  // namespace trackbed::teach_repeat

@@ -51,4 +51,13 @@ std::size_t GetPatches(const std::string& bytes, std::size_t offset, int side,
 std::string ReadRecords(const std::filesystem::path& path, std::uint64_t first, std::uint64_t count,
                         std::uint64_t record_bytes, const char* who);
 
+/// Writes `records` (whole records of `record_bytes`) into the feature or patch file at
+/// `path` after its first `first` records, and `header` (the header counting them all)
+/// at its start; the file is created anew when `first` is 0. Throws std::runtime_error
+/// beginning with `who` and naming the file when it cannot be written or holds fewer
+/// than `first` records.
+void WriteRecordsAt(const std::filesystem::path& path, const std::string& header,
+                    std::uint64_t first, std::uint64_t record_bytes, const std::string& records,
+                    const char* who);
+
 }  // namespace trackbed::teach_repeat

@@ -260,9 +260,13 @@ TeachStep MilestoneBuilder::AddImage(const cv::Mat& gray, double t_s,
   return step;
 }
 
-void MilestoneBuilder::SpillKeyImages(const std::string& dir) {
+void MilestoneBuilder::SpillMilestones(const std::string& dir) {
   for (; spilled_ < map_.milestones.size(); ++spilled_) {
-    SpillKeyImage(dir, spilled_, &map_.milestones[spilled_]);
+    Milestone& m = map_.milestones[spilled_];
+    // A spill that failed half-way is taken up where it stopped.
+    if (m.key_image_file.empty()) SpillKeyImage(dir, spilled_, &m);
+    SpillFeatures(dir, spilled_features_, options_.patch_size_px, &m);
+    spilled_features_ += m.feature_count();
   }
 }
 
@@ -275,6 +279,7 @@ TeachMap MilestoneBuilder::Finish() {
   map_.patch_size_px = options_.patch_size_px;
   open_ = false;
   spilled_ = 0;
+  spilled_features_ = 0;
   previous_ = Snapshot{};
   prev_pyramid_ = perception::TrackingPyramid{};
   return done;

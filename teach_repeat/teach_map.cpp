@@ -820,6 +820,27 @@ void ReleaseFeatures(Milestone* m) {
   if (m->features_file) std::vector<MilestoneFeature>().swap(m->features);
 }
 
+void SpillFeatures(const std::string& dir, std::uint64_t first, int patch_size_px, Milestone* m) {
+  if (m->features_file) return;  // on file already
+  const fs::path root(dir);
+  const std::uint64_t count = m->features.size(), total = first + count;
+  const auto side = static_cast<std::uint64_t>(patch_size_px);
+  std::string features, patches;
+  for (const MilestoneFeature& f : m->features) {
+    PutFeature(f, &features);
+    PutPatch(f, patch_size_px, &patches);
+  }
+  WriteRecordsAt(root / kFeatureFile, FeatureFileHeader(total), first, kFeatureRecordBytes,
+                 features, "SpillFeatures");
+  WriteRecordsAt(root / kPatchFile, PatchFileHeader(patch_size_px, total), first, side * side,
+                 patches, "SpillFeatures");
+  m->features_file =
+      FeatureSpan{std::make_shared<const MapFeatureFiles>(MapFeatureFiles{
+                      (root / kFeatureFile).string(), (root / kPatchFile).string(), patch_size_px}),
+                  first, count};
+  std::vector<MilestoneFeature>().swap(m->features);
+}
+
 void SpillKeyImage(const std::string& dir, std::size_t index, Milestone* m) {
   if (m->key_image.empty()) {
     throw std::invalid_argument("SpillKeyImage: milestone " + std::to_string(index) +

@@ -67,7 +67,7 @@ TeachMap TeachStraight(TeachMode mode, int images, const std::string& spill_dir 
   for (int k = 0; k < images; ++k) {
     const Pose2 pose{0.02 * k, 0.0, 0.0};
     const TeachStep step = builder.AddImage(scene.Render(CameraPose(pose)), 0.1 * k, pose);
-    if (!spill_dir.empty() && step.milestone_closed) builder.SpillKeyImages(spill_dir);
+    if (!spill_dir.empty() && step.milestone_closed) builder.SpillMilestones(spill_dir);
   }
   return builder.Finish();
 }
@@ -100,9 +100,13 @@ TEST(TeachMapOnDiskTest, SpillingWhileTeachingSavesTheSameMap) {
   const TeachMap in_memory = TeachStraight(TeachMode::k2d, 65);
   const TeachMap on_disk = TeachStraight(TeachMode::k2d, 65, spilled.string());
   ASSERT_EQ(in_memory.milestones.size(), 7u);
-  // Only the milestone still open at the end of the teach holds its key image.
+  // Only the milestone still open at the end of the teach holds its key image and
+  // features.
   EXPECT_EQ(KeyImagesHeld(on_disk), 1);
+  EXPECT_EQ(FeaturesHeld(on_disk), 1);
   EXPECT_FALSE(on_disk.milestones.front().key_image_file.empty());
+  EXPECT_TRUE(on_disk.milestones.front().features_file.has_value());
+  EXPECT_EQ(on_disk.feature_count(), in_memory.feature_count());
   SaveTeachMap(in_memory, held.string());
   SaveTeachMap(on_disk, spilled.string());  // where its key images lie
   ExpectSameFiles(held, spilled);
@@ -241,7 +245,7 @@ TEST(TeachMapOnDiskTest, OnDemandLoadingChecksTheFeatureFilesUpFrontAndWhenRead)
   fs::remove_all(dir);
 }
 
-TEST(TeachMapOnDiskTest, ASpillThatCannotWriteSaysSoAndKeepsTheImage) {
+TEST(TeachMapOnDiskTest, ASpillThatCannotWriteSaysSoAndKeepsTheImageAndFeatures) {
   const fs::path dir = Scratch("spill_blocked");
   // Where the key image would go, a folder: the file cannot be opened for writing.
   fs::create_directories(dir / "key_images" / "000000.png");
@@ -257,6 +261,30 @@ TEST(TeachMapOnDiskTest, ASpillThatCannotWriteSaysSoAndKeepsTheImage) {
   }
   EXPECT_FALSE(m.key_image.empty());  // still held: nothing was lost
   EXPECT_TRUE(m.key_image_file.empty());
+
+  // Where the features would go, a folder: the same.
+  fs::create_directories(dir / "features.bin");
+  m.features.resize(3);
+  for (MilestoneFeature& f : m.features) f.patch = cv::Mat(11, 11, CV_8UC1, cv::Scalar(9));
+  try {
+    SpillFeatures(dir.string(), 0, 11, &m);
+    ADD_FAILURE() << "spilling features into a folder succeeded";
+  } catch (const std::runtime_error& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind("SpillFeatures: ", 0), 0u) << message;
+    EXPECT_NE(message.find("features.bin"), std::string::npos) << message;
+  }
+  EXPECT_EQ(m.features.size(), 3u);
+  EXPECT_FALSE(m.features_file.has_value());
+  // ... and a spill after features the file does not hold.
+  fs::remove_all(dir / "features.bin");
+  try {
+    SpillFeatures(dir.string(), 5, 11, &m);
+    ADD_FAILURE() << "spilling after missing features succeeded";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("fewer than 5 records"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(m.features.size(), 3u);
   fs::remove_all(dir);
 }
 

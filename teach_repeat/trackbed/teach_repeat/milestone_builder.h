@@ -38,6 +38,7 @@
 // for noisier images.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -133,11 +134,15 @@ class MilestoneBuilder {
   /// The builder is empty afterwards and may teach a new route.
   TeachMap Finish();
 
-  /// Writes the key images of the milestones completed so far into map directory `dir`
-  /// and drops them from memory (SpillKeyImage, teach_map.h), so that teaching a long
-  /// route holds only the open milestone's key image; Finish's map names their files.
-  /// Throws std::runtime_error naming the file for I/O failures.
-  void SpillKeyImages(const std::string& dir);
+  /// Writes the key images and features of the milestones completed so far into map
+  /// directory `dir` and drops them from memory (SpillKeyImage, SpillFeatures,
+  /// teach_map.h), so that teaching a long route holds only the open milestone's; Finish's
+  /// map names their files. Throws std::runtime_error naming the file for I/O failures.
+  void SpillMilestones(const std::string& dir);
+  /// The name SpillMilestones had when it wrote the key images only.
+  [[deprecated("use SpillMilestones")]] void SpillKeyImages(const std::string& dir) {
+    SpillMilestones(dir);
+  }
 
   /// Milestones completed so far.
   int milestones() const { return static_cast<int>(map_.milestones.size()); }
@@ -181,7 +186,8 @@ class MilestoneBuilder {
   perception::FeatureTracker tracker_;
   TeachMap map_;
   bool open_ = false;
-  std::size_t spilled_ = 0;  // milestones whose key images SpillKeyImages wrote
+  std::size_t spilled_ = 0;             // milestones SpillMilestones wrote
+  std::uint64_t spilled_features_ = 0;  // their features
   int first_image_ = 0;
   cv::Mat key_image_;
   Snapshot previous_;  // the open milestone at the previous image

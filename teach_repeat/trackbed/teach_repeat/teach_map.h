@@ -17,8 +17,8 @@
 // in its PNG file (Milestone::key_image_file) and be read when the milestone comes near
 // (LoadKeyImage, ReleaseKeyImage; the repeater holds a few milestones ahead). A map
 // loaded with MapLoading::kOnDemand, and one taught with
-// MilestoneBuilder::SpillKeyImages, hold their key images that way. A version 2 map
-// loaded on demand holds its features that way too (LoadFeatures, ReleaseFeatures):
+// MilestoneBuilder::SpillMilestones, hold their key images that way. Both hold their
+// features that way too (a version 2 map; LoadFeatures, ReleaseFeatures, SpillFeatures):
 // in memory a feature with its patch takes a few hundred bytes, a 500 m route's map
 // hundreds of megabytes.
 //
@@ -173,6 +173,15 @@ void ReleaseKeyImage(Milestone* m);
 /// memory. SaveTeachMap into the same `dir` keeps the file. Throws std::runtime_error
 /// naming the file for I/O failures, std::invalid_argument when no key image is held.
 void SpillKeyImage(const std::string& dir, std::size_t index, Milestone* m);
+
+/// Writes milestone `m`'s features into the feature and patch files of map directory
+/// `dir` as their features first … first + count − 1 (the files created anew when `first`
+/// is 0; their headers count the features written so far), names that span in
+/// features_file and drops the features from memory. Spilling milestone after milestone
+/// with `first` the features before them writes the files SaveTeachMap writes; a
+/// SaveTeachMap into the same `dir` rewrites them the same. Throws std::runtime_error
+/// naming the file for I/O failures (the features then stay held).
+void SpillFeatures(const std::string& dir, std::uint64_t first, int patch_size_px, Milestone* m);
 
 /// Writes `map` into directory `dir` (created if missing; an existing map.json,
 /// features.bin, patches.bin and key_images/ in it are replaced). Key images held in their files
