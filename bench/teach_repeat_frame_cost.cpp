@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
     teach_repeat::Localizer3dOptions o3;
     o3.forward_speed_mps = 0.2;
     const auto repeater = teach_repeat::MakeRepeater(
-        method, teach_repeat::LoadTeachMap(dir, teach_repeat::KeyImageLoading::kOnDemand), o2, o3);
+        method, teach_repeat::LoadTeachMap(dir, teach_repeat::MapLoading::kOnDemand), o2, o3);
     std::vector<double> ms, x;
     int most_held = 0;
     estimation::Pose2 pose;
