@@ -120,7 +120,8 @@ struct Milestone {
   /// The features, when held in memory; empty while they are held in features_file only.
   std::vector<MilestoneFeature> features;
   /// Where the features lie in the map's files, when the map keeps them there (a version 2
-  /// map loaded with MapLoading::kOnDemand; read by LoadFeatures).
+  /// map loaded with MapLoading::kOnDemand, or a milestone spilled while teaching, see
+  /// SpillFeatures; read by LoadFeatures).
   std::optional<FeatureSpan> features_file;
   /// The first image (CV_8UC1, the camera's size), when held in memory; empty when it
   /// is held in key_image_file only.
