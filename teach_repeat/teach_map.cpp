@@ -490,6 +490,31 @@ void AssignPatches(const std::string& blob, TeachMap* map) {
 
 }  // namespace
 
+namespace {
+
+/// Refuses to save `map` into `root` when a milestone's features lie in the feature
+/// files there at another place than they would be written to (milestones removed or
+/// added since the map was loaded or spilled): its span would then name other features.
+void CheckFeaturesStayInPlace(const TeachMap& map, const fs::path& root) {
+  std::uint64_t first = 0;
+  for (std::size_t k = 0; k < map.milestones.size(); ++k) {
+    const Milestone& m = map.milestones[k];
+    if (m.features_file && m.features_file->first != first) {
+      const MapFeatureFiles& files = *m.features_file->files;
+      std::error_code a, b;
+      if (fs::equivalent(files.features_path, root / kFeatureFile, a) ||
+          fs::equivalent(files.patches_path, root / kPatchFile, b)) {
+        throw std::invalid_argument(
+            "SaveTeachMap: " + root.string() + ": milestones[" + std::to_string(k) +
+            "]'s features would move within the files they are read from; save it elsewhere");
+      }
+    }
+    first += m.feature_count();
+  }
+}
+
+}  // namespace
+
 void SaveTeachMap(const TeachMap& map, const std::string& dir) {
   map.Validate();
   const fs::path root(dir);
@@ -498,11 +523,14 @@ void SaveTeachMap(const TeachMap& map, const std::string& dir) {
   if (ec || !fs::is_directory(root)) {
     throw std::runtime_error("SaveTeachMap: " + dir + ": cannot create directory");
   }
+  CheckFeaturesStayInPlace(map, root);
+  // Both made before either file is replaced: features on disk are read from the old ones.
+  const std::string patches = PatchBlob(map), features = FeatureBlob(map);
 
   WriteKeyImages(map, root);
 
-  WriteFile(root / kPatchFile, PatchBlob(map));
-  WriteFile(root / kFeatureFile, FeatureBlob(map));
+  ReplaceFile(root / kPatchFile, patches);
+  ReplaceFile(root / kFeatureFile, features);
 
   // map.json, in its file form, one space per level of indentation.
   WriteFile(root / kMapFile, archive::ToJson(archive::Write(MapToFile(map)), 1) + "\n");

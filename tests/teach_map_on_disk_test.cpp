@@ -128,6 +128,17 @@ TEST(TeachMapOnDiskTest, OnDemandLoadingReadsTheSamePixelsAndSavesTheSameBytes) 
   ExpectSameFiles(a, b);
   SaveTeachMap(lazy, a.string());  // in place: the files it names survive
   ExpectSameFiles(b, a);
+  // Without its first milestone, the others' features would move within the files they
+  // are read from: refused in place, nothing written; saved elsewhere.
+  TeachMap shorter = lazy;
+  shorter.milestones.erase(shorter.milestones.begin());
+  EXPECT_THROW(SaveTeachMap(shorter, a.string()), std::invalid_argument);
+  ExpectSameFiles(b, a);
+  const fs::path c = Scratch("c");
+  SaveTeachMap(shorter, c.string());
+  EXPECT_EQ(LoadTeachMap(c.string()).feature_count(),
+            all.feature_count() - all.milestones[0].features.size());
+  fs::remove_all(c);
   ASSERT_EQ(lazy.milestones.size(), all.milestones.size());
   for (std::size_t k = 0; k < all.milestones.size(); ++k) {
     Milestone& m = lazy.milestones[k];

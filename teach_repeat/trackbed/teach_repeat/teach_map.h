@@ -186,8 +186,12 @@ void SpillFeatures(const std::string& dir, std::uint64_t first, int patch_size_p
 
 /// Writes `map` into directory `dir` (created if missing; an existing map.json,
 /// features.bin, patches.bin and key_images/ in it are replaced). Key images held in their files
-/// are linked or copied from them, not decoded. Throws std::invalid_argument for an invalid map,
-/// std::runtime_error naming the file for I/O failures.
+/// are linked or copied from them, not decoded; features held in the map's files are read
+/// from them, and the feature and patch files replaced whole (written beside, then renamed).
+/// Throws std::invalid_argument for an invalid map or one whose features lie in `dir`'s
+/// feature files at other places than they would be written to (milestones removed or
+/// added since it was loaded: save it elsewhere), std::runtime_error naming the file for
+/// I/O failures.
 void SaveTeachMap(const TeachMap& map, const std::string& dir);
 
 /// How LoadTeachMap reads the key images and the features.
