@@ -204,6 +204,23 @@ void PutOnEdge(const TerrainVertex& p0, const TerrainVertex& p1, float f, Terrai
   v->nx = n.x(), v->ny = n.y(), v->nz = n.z();
 }
 
+// Side `side` of a mesh of na × nb cells (i = i0, i = i1, j = j0, j = j1): how many
+// cells it has and the index of its q-th vertex.
+struct MeshSide {
+  MeshSide(int side, int na, int nb)
+      : along_j(side < 2),
+        fixed(side == 0 || side == 2 ? 0 : (side < 2 ? na : nb)),
+        cells(side < 2 ? nb : na),
+        row(na + 1) {}
+  std::size_t Vertex(int q) const {
+    return static_cast<std::size_t>(along_j ? q * row + fixed : fixed * row + q);
+  }
+  bool along_j;  // sides i = i0 and i = i1 run along j
+  int fixed;     // the side's column (along j) or row
+  int cells;
+  int row;  // vertices per row
+};
+
 // Triangles fanned from `apex` to each two consecutive vertices of `path`.
 void Fan(std::uint32_t apex, const std::vector<std::uint32_t>& path,
          std::vector<std::uint32_t>* indices) {
@@ -284,14 +301,9 @@ void TerrainDetail::PutSidesOnCoarserEdges(const Chunk& c, int level,
   for (int side = 0; side < 4; ++side) {
     if (side_level[side] <= level) continue;
     const int step = 1 << (side_level[side] - level);
-    const bool along_j = side < 2;  // sides i = i0 and i = i1 run along j
-    const int fixed = side == 0 || side == 2 ? 0 : (along_j ? na : nb);
-    const int count = along_j ? nb : na;
-    const auto at = [&](int q) -> TerrainVertex& {
-      const int a = along_j ? fixed : q, b = along_j ? q : fixed;
-      return mesh->vertices[static_cast<std::size_t>(b * (na + 1) + a)];
-    };
-    for (int q = 0; q < count; q += step) {
+    const MeshSide edge(side, na, nb);
+    const auto at = [&](int q) -> TerrainVertex& { return mesh->vertices[edge.Vertex(q)]; };
+    for (int q = 0; q < edge.cells; q += step) {
       const TerrainVertex p0 = at(q), p1 = at(q + step);
       for (int r = 1; r < step; ++r) {
         PutOnEdge(p0, p1, static_cast<float>(r) / step, &at(q + r));
@@ -311,16 +323,13 @@ std::array<TerrainDetail::SideVertices, 4> TerrainDetail::AddFinerSideVertices(
   for (int side = 0; side < 4; ++side) {
     if (side_level[side] < 0 || side_level[side] >= level) continue;
     const int step = 1 << (level - side_level[side]), fine = s / step;
-    const bool along_j = side < 2;
-    const int fixed = side == 0 || side == 2 ? 0 : (along_j ? na : nb);
-    const int count = along_j ? nb : na;
+    const MeshSide edge(side, na, nb);
     sides[side] = {static_cast<std::uint32_t>(mesh->vertices.size()), step - 1};
-    for (int q = 0; q < count; ++q) {
-      const int a = along_j ? fixed : q, b = along_j ? q : fixed;
-      const int da = along_j ? 0 : 1, db = along_j ? 1 : 0;
-      const TerrainVertex p0 = mesh->vertices[static_cast<std::size_t>(b * (na + 1) + a)];
-      const TerrainVertex p1 =
-          mesh->vertices[static_cast<std::size_t>((b + db) * (na + 1) + a + da)];
+    for (int q = 0; q < edge.cells; ++q) {
+      const TerrainVertex p0 = mesh->vertices[edge.Vertex(q)];
+      const TerrainVertex p1 = mesh->vertices[edge.Vertex(q + 1)];
+      const int a = edge.along_j ? edge.fixed : q, b = edge.along_j ? q : edge.fixed;
+      const int da = edge.along_j ? 0 : 1, db = 1 - da;
       for (int r = 1; r < step; ++r) {
         TerrainVertex v = BlendedVertex(c.i0 + a * s + da * r * fine, c.j0 + b * s + db * r * fine,
                                         center_xy, meters_per_repeat);

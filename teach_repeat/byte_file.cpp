@@ -5,7 +5,6 @@
 #include <fstream>
 #include <iterator>
 #include <stdexcept>
-#include <system_error>
 
 namespace trackbed::teach_repeat {
 
@@ -19,17 +18,6 @@ void WriteFile(const fs::path& path, const std::string& bytes, const char* who) 
   out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   out.close();
   if (!out) throw std::runtime_error(std::string(who) + ": " + path.string() + ": write failed");
-}
-
-void ReplaceFile(const fs::path& path, const std::string& bytes, const char* who) {
-  const fs::path fresh = path.string() + ".new";
-  WriteFile(fresh, bytes, who);
-  std::error_code ec;
-  fs::rename(fresh, path, ec);
-  if (ec) {
-    throw std::runtime_error(std::string(who) + ": " + path.string() + ": cannot replace (" +
-                             ec.message() + ")");
-  }
 }
 
 std::optional<std::string> ReadFile(const fs::path& path) {

@@ -15,10 +15,6 @@ namespace trackbed::teach_repeat {
 /// function writing.
 void WriteFile(const std::filesystem::path& path, const std::string& bytes,
                const char* who = "SaveTeachMap");
-/// Writes `bytes` to `path` by way of `path`.new renamed over it, so that a reader of the
-/// old file sees it whole until the new one is complete; errors as WriteFile's.
-void ReplaceFile(const std::filesystem::path& path, const std::string& bytes,
-                 const char* who = "SaveTeachMap");
 /// The bytes of `path`; nothing when it cannot be opened.
 std::optional<std::string> ReadFile(const std::filesystem::path& path);
 

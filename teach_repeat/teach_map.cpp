@@ -25,6 +25,7 @@
 #include "feature_files.h"
 #include "trackbed/common/archive.h"
 #include "trackbed/common/archive_eigen.h"
+#include "trackbed/common/durable_file.h"
 #include "trackbed/common/option_error.h"
 #include "trackbed/perception/opencv_views.h"
 
@@ -441,31 +442,23 @@ const std::vector<MilestoneFeature>& HeldOrRead(const Milestone& m,
   return *scratch;
 }
 
-/// features.bin's bytes: every feature, milestone by milestone.
-std::string FeatureBlob(const TeachMap& map) {
-  const std::size_t count = map.feature_count();
-  std::string blob = FeatureFileHeader(count);
-  blob.reserve(kRecordHeaderBytes + count * kFeatureRecordBytes);
-  std::vector<MilestoneFeature> scratch;
-  for (const Milestone& m : map.milestones) {
-    for (const MilestoneFeature& f : HeldOrRead(m, &scratch)) PutFeature(f, &blob);
-  }
-  return blob;
-}
-
-/// patches.bin's bytes.
-std::string PatchBlob(const TeachMap& map) {
+/// features.bin's and patches.bin's bytes: every feature, milestone by milestone; a
+/// milestone held in its files only is read once.
+std::pair<std::string, std::string> FeatureAndPatchBlobs(const TeachMap& map) {
   const std::size_t count = map.feature_count();
   const auto side = static_cast<std::size_t>(map.patch_size_px);
-  std::string patches = PatchFileHeader(map.patch_size_px, count);
-  patches.reserve(kRecordHeaderBytes + count * side * side);
+  std::pair<std::string, std::string> blobs{FeatureFileHeader(count),
+                                            PatchFileHeader(map.patch_size_px, count)};
+  blobs.first.reserve(kRecordHeaderBytes + count * kFeatureRecordBytes);
+  blobs.second.reserve(kRecordHeaderBytes + count * side * side);
   std::vector<MilestoneFeature> scratch;
   for (const Milestone& m : map.milestones) {
     for (const MilestoneFeature& f : HeldOrRead(m, &scratch)) {
-      PutPatch(f, map.patch_size_px, &patches);
+      PutFeature(f, &blobs.first);
+      PutPatch(f, map.patch_size_px, &blobs.second);
     }
   }
-  return patches;
+  return blobs;
 }
 
 /// Hands the features of a checked feature file (ReadFeatureFile) to the milestones, as
@@ -525,12 +518,12 @@ void SaveTeachMap(const TeachMap& map, const std::string& dir) {
   }
   CheckFeaturesStayInPlace(map, root);
   // Both made before either file is replaced: features on disk are read from the old ones.
-  const std::string patches = PatchBlob(map), features = FeatureBlob(map);
+  const auto [features, patches] = FeatureAndPatchBlobs(map);
 
   WriteKeyImages(map, root);
 
-  ReplaceFile(root / kPatchFile, patches);
-  ReplaceFile(root / kFeatureFile, features);
+  WriteFileAtomically(root / kPatchFile, patches);
+  WriteFileAtomically(root / kFeatureFile, features);
 
   // map.json, in its file form, one space per level of indentation.
   WriteFile(root / kMapFile, archive::ToJson(archive::Write(MapToFile(map)), 1) + "\n");
