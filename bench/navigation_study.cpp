@@ -1,4 +1,4 @@
-// Navigation study (issue 5, kinematic mode): Gauss–Newton with sub-goal switching
+// Navigation study (docs/navigation.md, kinematic mode): Gauss–Newton with sub-goal switching
 // (Jung & Kim 2014) against the potential field (Ge & Cui 2000) and the dynamic window
 // (Fox et al. 1997) in the paper's differential-drive simulation. Prints three tables:
 // the paper's two scenes, 100 seeded random multi-obstacle fields and the
@@ -158,8 +158,8 @@ void TrapTable(const std::vector<Variant>& variants) {
   std::printf("\n");
 }
 
-// Tuning on the paper's two scenes only (issue 5: "tuned once on the paper's scenes,
-// then fixed"). Rule: a candidate qualifies when it reaches both goals (0.1 m, 2 deg, no
+// Tuning on the paper's two scenes only (docs/navigation.md: tuned once on the paper's scenes,
+// then fixed). Rule: a candidate qualifies when it reaches both goals (0.1 m, 2 deg, no
 // collision) keeping the footprint's clearance >= `min_clearance_m` throughout; among
 // qualifying candidates whose total path is within 1 % of the shortest (the paper's
 // comparison metric; the scenes separate paths by less than that), the shortest total

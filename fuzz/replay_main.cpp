@@ -1,4 +1,4 @@
-// Replays fuzz inputs without libFuzzer (issue 28): every file named on the command line,
+// Replays fuzz inputs without libFuzzer (scripts/fuzz.sh): every file named on the command line,
 // and every regular file under every folder named there (sorted, so runs print alike), is
 // read whole and handed to the target's LLVMFuzzerTestOneInput once. This is how the
 // regression corpus tests/fuzz_corpus/<name>/ runs under the normal build (ctest

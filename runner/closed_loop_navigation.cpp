@@ -119,7 +119,7 @@ estimation::TrackSpeeds ClosedLoopNavigation::Command(double t_s, const estimati
 }
 
 navigation::NavigationMetrics ClosedLoopNavigation::Metrics(bool time_limit) const {
-  navigation::SuccessCriteria criteria;  // issue 5: 0.1 m and 2° by ground truth
+  navigation::SuccessCriteria criteria;  // docs/navigation.md: 0.1 m and 2° by ground truth
   criteria.time_limit_s = time_limit_s_;
   const std::string status =
       time_limit ? std::string("time_limit") : navigation::NavigationStatusName(status_);

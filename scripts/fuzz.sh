@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Fuzzes every parser a user feeds (issue 28; fuzz/CMakeLists.txt lists the targets):
+# Fuzzes every parser a user feeds (fuzz/CMakeLists.txt lists the targets):
 #   scripts/fuzz.sh [SECONDS] [TARGET...]     (default: 60 s each, every target)
 # Configures build-fuzz/ with clang (libFuzzer, ASan, UBSan), builds the fuzz targets only,
 # and runs each for SECONDS from a working corpus under build-fuzz/corpus/ seeded from

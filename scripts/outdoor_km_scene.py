@@ -54,7 +54,8 @@ TR_TEACH_SPEED, TR_REPEAT_SPEED = 0.2, 0.1  # [m/s], as scenes/tr_outdoor.yaml
 def header(length, speed, tr_long):
     if not tr_long:
         return [
-            "# The outdoor park grown to a square kilometre (issue 29): the park's rough grass,",
+            "# The outdoor park grown to a square kilometre (docs/rendering.md): "
+            "the park's rough grass,",
             "# its materials and robot, over 1 km x 1 km, and a loop of %.0f m that crosses"
             % length,
             "# grass, a band of dry sand, a paved path and sandy loam, with uneven soil. The",
@@ -65,7 +66,7 @@ def header(length, speed, tr_long):
             "duration_s: %d" % (math.ceil(length / speed / 10) * 10 + 20),
         ]
     return [
-        "# Visual teach & repeat over %.0f m outdoors (issue 29): half of" % length,
+        "# Visual teach & repeat over %.0f m outdoors (docs/teach_repeat.md): half of" % length,
         "# scenes/outdoor_km.yaml's loop, over grass, paving and sandy loam, taught at %s m/s"
         % fmt(speed),
         "# and repeated from the images at %s m/s. The teach map's key images stay on disk"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The sanitizer jobs of CI (issue 28), each in its own build folder, built only for the
+# The sanitizer jobs of CI (docs/architecture.md), each in its own build folder, built only for the
 # targets its tests need:
 #   scripts/sanitize.sh address   build-asan/: every test labelled unit under
 #                                 AddressSanitizer + UndefinedBehaviorSanitizer

@@ -235,7 +235,7 @@ TEST(CliTest, CameraBlackoutMidRunFusionLeansOnWheelsAndTheRunCompletes) {
   EXPECT_LT(m["estimators"]["fused"]["ate_rmse_m"].get<double>(), 0.2);
 }
 
-// An encoder dropout (issue 28): the left track's count freezes from 6 s to 10 s and the
+// An encoder dropout: the left track's count freezes from 6 s to 10 s and the
 // motion meanwhile is lost, so the wheels see the robot turn right. VO sees the truth: the
 // slip estimate swells, the fusion's wheel weight falls to the rule base's lowest
 // terms, and the fused pose follows VO, far nearer the truth than the wheels'.

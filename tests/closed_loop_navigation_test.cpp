@@ -1,4 +1,4 @@
-// Closed-loop navigation on the simulated tracked robot (issue 5): the range sensor
+// Closed-loop navigation on the simulated tracked robot (docs/navigation.md): the range sensor
 // against Bullet, the chassis–obstacle clearance against hand-computed cases, and a
 // short course driven on the fused estimate with success judged by ground truth.
 #include <cmath>

@@ -1,5 +1,5 @@
 // Point-to-point navigation runs through the scenario file and the run folder
-// (issue 5, kinematic mode): the paper's scenes reach the goal pose with a
+// (docs/navigation.md, kinematic mode): the paper's scenes reach the goal pose with a
 // sub-goal, bad input ends with a clear status or a clear error, and the run
 // folder holds what docs/run_folder.md promises.
 #include <filesystem>

@@ -1,4 +1,4 @@
-// The navigators in the paper's kinematic simulation (Jung & Kim 2014, §3; issue 5):
+// The navigators in the paper's kinematic simulation (Jung & Kim 2014, §3; docs/navigation.md):
 // the paper's two scenes, 100 seeded random fields, bad input that must end with a clear
 // status, the scene generators and the run metrics. Thresholds on ground truth.
 #include <cmath>

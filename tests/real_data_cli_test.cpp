@@ -110,7 +110,8 @@ TEST(EvalRealDataTest, AlignmentFlagChangesTheAlignmentOnly) {
 
 TEST(EvalRealDataTest, MaxDtAndTimeOffsetChangeTheAssociation) {
   TRACKBED_NEEDS_REAL_DATA(Trajectories());
-  // evo's own output on this pair with its 0.01 s (evo issue #8): 2174 pairs, rmse 0.008119.
+  // evo's own output on this pair with its 0.01 s: 2174 pairs, rmse 0.008119
+  // (github.com/MichaelGrupp/evo/issues/8).
   const json evo = Eval("fr2_desk_groundtruth.txt", "fr2_desk_ORB.txt", "--max-dt 0.01");
   EXPECT_EQ(evo["association"]["pairs"], 2174);
   EXPECT_NEAR(evo["ate_aligned_m"]["rmse"].get<double>(), 0.008119, 1e-6);

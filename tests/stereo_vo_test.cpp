@@ -440,7 +440,7 @@ TEST(StereoVisualOdometryTest, InvalidOptionsNameTheDottedField) {
   EXPECT_EQ(field_of(o), "exhausted_cell_retry_frames");
 }
 
-// Corrupted streams (issue 28): NaN stamps, stamps that go back or repeat, non-finite
+// Corrupted streams: NaN stamps, stamps that go back or repeat, non-finite
 // gyro or accelerometer readings and unusable images are set aside with their reason
 // and counted; every estimate stays finite and ends exactly where the clean streams
 // alone take it.

@@ -1,4 +1,4 @@
-// People crossing the view during a repeat (issue 6; scenes/tr_occlusion.yaml, Choi &
+// People crossing the view during a repeat (scenes/tr_occlusion.yaml, Choi &
 // Ha 2011 experiment 1), on the first 3.5 m of the room with three crossings while the
 // robot stands: each crossing is a place where features are lost; the 3D repeat
 // recovers most of them from their stored patches once the person has passed and

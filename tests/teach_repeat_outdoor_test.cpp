@@ -1,4 +1,4 @@
-// Teach & repeat on rough ground (issue 6; scenes/tr_outdoor.yaml): Chen & Birchfield
+// Teach & repeat on rough ground (scenes/tr_outdoor.yaml): Chen & Birchfield
 // claim the funnel lane works outdoors on rough terrain. On undulating, bumpy grass and
 // a stretch of dry sand, where the bang-bang steering makes the tracks slip, the 2D
 // repeat of the route's last 5.6 m still completes and its lateral error against the

@@ -1,4 +1,4 @@
-// Teach & repeat through `trackbed run` (issue 6): one run teaches a short route in a
+// Teach & repeat through `trackbed run` (docs/teach_repeat.md): one run teaches a short route in a
 // textured room and repeats it from the images; the saved map can be repeated again by
 // a later run; a bad map is a clear error. Scored against the taught ground truth.
 #include <filesystem>

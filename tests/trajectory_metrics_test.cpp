@@ -78,9 +78,9 @@ TEST(TrajectoryMetricsRealDataTest, TumFr2DeskIsAssociatedByTimestamp) {
   ASSERT_EQ(est.poses.size(), 2893u);
 
   // With evo's default max time difference (0.01 s) the association and the SE(3)-aligned
-  // APE reproduce evo's own output on this pair (evo issue #8, `evo_ape … -a`: 2174
-  // pairs — sse/rmse² — rmse 0.008119, mean 0.007492, median 0.007415, std 0.003129,
-  // min 0.000350, max 0.024300).
+  // APE reproduce evo's own output on this pair (`evo_ape … -a`, as its author quotes it in
+  // github.com/MichaelGrupp/evo/issues/8: 2174 pairs — sse/rmse² — rmse 0.008119, mean
+  // 0.007492, median 0.007415, std 0.003129, min 0.000350, max 0.024300).
   const Association evo = Associate(gt, est, 0.01);
   EXPECT_EQ(evo.gt.size(), 2174u);
   const AbsoluteError ate = AbsoluteTrajectoryError(evo.gt, evo.est, AlignmentMode::kSe3);

@@ -7,6 +7,8 @@ Run: python3 -m unittest discover -s scripts/tests   (or: python3 scripts/tests/
 import contextlib
 import io
 import os
+import shutil
+import subprocess
 import sys
 import tempfile
 import textwrap
@@ -16,6 +18,7 @@ sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 import check_file_length  # noqa: E402
 import check_function_length  # noqa: E402
 import check_include_cycles  # noqa: E402
+import check_no_issue_numbers  # noqa: E402
 import lint_common  # noqa: E402
 
 
@@ -271,6 +274,50 @@ class FileLengthTest(TreeTestCase):
         self.assertEqual(code, 1, out)
         self.assertIn("sim/noreason.cpp:1: long-file marker gives no reason", out)
         self.assertIn("sim/late.cpp:901: 1006 lines", out)
+
+
+# Built, not written out, so that this file does not cite an issue number itself.
+WORD = "issue"
+
+
+class NoIssueNumbersTest(TreeTestCase):
+    def test_citations_fail_naming_file_and_line(self):
+        self.write("nav/field.h", f"#pragma once\n\n// the random field of {WORD} 5\n")
+        self.write("docs/page.md", f"Fuzzed ({WORD.title()} #28).\n\nSee {WORD}s 24 and 27.\n")
+        self.write("scenes/a.yaml", f"# {WORD.upper()}#7: a sweep\nname: a\n")
+        code, out = self.run_check(check_no_issue_numbers)
+        self.assertEqual(code, 1)
+        self.assertIn(f'nav/field.h:3: "{WORD} 5"', out)
+        self.assertIn(f'docs/page.md:1: "{WORD.title()} #28"', out)
+        self.assertIn(f'docs/page.md:3: "{WORD}s 24"', out)
+        self.assertIn("scenes/a.yaml:1:", out)
+        self.assertIn("FAILED, 4 citation(s)", out)
+
+    def test_words_and_links_to_public_trackers_pass(self):
+        self.write("a/x.cpp", f"// t{WORD} 5; the {WORD} is moot; {WORD} numbers 1-3\n"
+                              f"// github.com/MichaelGrupp/evo/{WORD}s/8 quotes it\n")
+        code, out = self.run_check(check_no_issue_numbers)
+        self.assertEqual(code, 0, out)
+
+    def test_binary_files_and_build_and_hidden_folders_are_skipped(self):
+        self.write("build-asan/log.txt", f"{WORD} 5\n")
+        self.write(".cache/note.txt", f"{WORD} 5\n")
+        with open(os.path.join(self.root, "image.png"), "wb") as f:
+            f.write(b"\x89PNG\0" + f"{WORD} 5".encode())
+        code, out = self.run_check(check_no_issue_numbers)
+        self.assertEqual(code, 0, out)
+        self.assertIn("check_no_issue_numbers: OK", out)
+
+    @unittest.skipUnless(shutil.which("git"), "git not installed")
+    def test_in_a_checkout_only_tracked_files_are_checked(self):
+        self.write("tracked.md", f"{WORD} 5\n")
+        self.write("untracked.md", f"{WORD} 6\n")
+        subprocess.run(["git", "init", "-q", self.root], check=True)
+        subprocess.run(["git", "-C", self.root, "add", "tracked.md"], check=True)
+        code, out = self.run_check(check_no_issue_numbers)
+        self.assertEqual(code, 1)
+        self.assertIn("tracked.md:1:", out)
+        self.assertNotIn("untracked.md", out)
 
 
 if __name__ == "__main__":

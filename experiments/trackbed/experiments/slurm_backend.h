@@ -1,4 +1,4 @@
-// `trackbed sweep … --backend slurm` (issue 8, docs/sweeps.md "On a Slurm cluster"):
+// `trackbed sweep … --backend slurm` (docs/sweeps.md, "On a Slurm cluster"):
 // the sweep folder is prepared as for the local backend, and the cells to run are
 // handed to Slurm as an array job (`sbatch --array`) whose task i runs
 // `trackbed sweep-cell DIR i --list LIST` — cell LIST[i] — on whatever node Slurm

@@ -1,4 +1,4 @@
-// Scenario sweeps (issue 7, docs/sweeps.md): a sweep file names scenario files,
+// Scenario sweeps (docs/sweeps.md): a sweep file names scenario files,
 // seeds, fixed `--set` overrides and overrides to vary; it expands to cells, each
 // one `trackbed run` of one scenario with one seed and one combination of the
 // varied values, in a fixed order and under a stable, filesystem-safe name.

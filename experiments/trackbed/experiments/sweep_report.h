@@ -1,4 +1,4 @@
-// The results of a sweep (issue 7, docs/sweeps.md): one summary row per cell with
+// The results of a sweep (docs/sweeps.md): one summary row per cell with
 // every metric of its metrics.json, statistics per group (the cells that differ
 // only in seed), and a Markdown report with PNG plots — all rebuilt from the
 // sweep folder's files alone (`trackbed report DIR`).

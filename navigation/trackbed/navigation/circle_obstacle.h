@@ -3,7 +3,7 @@
 // A circle is the obstacle's own physical extent (radius 0 is the point
 // obstacle of Jung & Kim 2014). Safety margins (the paper's d_max) are added
 // by the methods that use them, never baked into the circle. Walls enter as
-// chains of circles no farther apart than d_max (issue 5, "Definitions").
+// chains of circles no farther apart than d_max (Jung & Kim 2014's safety radius).
 #pragma once
 
 #include <vector>

@@ -1,4 +1,4 @@
-// The paper's differential-drive simulation (Jung & Kim 2014, §3; issue 5's
+// The paper's differential-drive simulation (Jung & Kim 2014, §3; docs/navigation.md's
 // `kinematic` mode): the robot follows the commanded wheel speeds exactly (no slip, no
 // dynamics), starts at the scene's start pose, and the navigator sees the true pose and
 // the exact obstacle circles. Collision = the footprint disk overlapping an obstacle's

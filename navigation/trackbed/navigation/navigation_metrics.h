@@ -1,4 +1,4 @@
-// Per-step navigation logs and the run metrics computed from them (issue 5; they go to
+// Per-step navigation logs and the run metrics computed from them (docs/navigation.md; they go to
 // metrics.json under `navigation` and navigation.csv). Pure functions over the log, so
 // the kinematic simulation and the closed-loop runner compute them the same way.
 #pragma once
@@ -27,7 +27,7 @@ struct NavigationLogEntry {
   double clearance_m = 0.0;
 };
 
-/// What counts as success (issue 5): within both tolerances of the goal pose, no
+/// What counts as success (docs/navigation.md): within both tolerances of the goal pose, no
 /// collision, not later than the time limit.
 struct SuccessCriteria {
   double position_tolerance_m = 0.1;

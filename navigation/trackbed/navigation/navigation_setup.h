@@ -1,5 +1,5 @@
 // What every navigation method shares: the robot's drive, the control period and
-// the goal tolerance that defines "reached" (issue 5: within 0.1 m and 2°).
+// the goal tolerance that defines "reached" (docs/navigation.md: within 0.1 m and 2°).
 #pragma once
 
 #include <cmath>

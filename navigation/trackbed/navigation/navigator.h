@@ -1,4 +1,4 @@
-// The common interface of the point-to-point navigation methods (issue 5):
+// The common interface of the point-to-point navigation methods (docs/navigation.md):
 // Gauss–Newton with sub-goals, the potential field and the dynamic window. Each is
 // called once per control period with the robot's pose and the obstacles known now
 // (exact circles in kinematic mode, clustered range-sensor hits in closed loop), and

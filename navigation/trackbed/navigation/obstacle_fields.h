@@ -1,5 +1,5 @@
 // Navigation scenes as pure functions: the paper's two scenes (Jung & Kim 2014, §3),
-// seeded random multi-obstacle fields and potential-field traps (issue 5). Every scene
+// seeded random multi-obstacle fields and potential-field traps (docs/navigation.md). Every scene
 // starts at [0 0 0°]. Walls are chains of circles of radius 0.1 m, 0.5 m apart
 // (≤ d_max = 1 m), so the avoider never sees a gap its safety circles would miss and
 // the footprint (0.7 m across) cannot slip between two links.
@@ -46,7 +46,7 @@ struct RandomFieldOptions {
   double keep_out_m = 1.5;
 };
 
-/// Issue 5's random field for `seed`: start [0 0 0°]; goal at goal_distance_m with a
+/// The seeded random field for `seed`: start [0 0 0°]; goal at goal_distance_m with a
 /// uniform bearing in ±max_bearing_rad and a uniform heading in [−π, π); a uniform count
 /// of obstacles, each with a uniform radius and a centre uniform in the placement box,
 /// redrawn (radius and centre) until it keeps out of start and goal. Obstacles may

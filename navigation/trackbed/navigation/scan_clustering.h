@@ -1,5 +1,5 @@
 // From a 2-D range scan to obstacle circles in the world frame, for the avoiders of
-// this library (issue 5's `closed_loop` mode). Pure: the ray casting that produces the
+// this library (`closed_loop` mode). Pure: the ray casting that produces the
 // scan lives with the simulator.
 //
 // 1. Hits: beams with a finite range below max range, in the world frame through the

@@ -1,4 +1,4 @@
-// Point-to-point navigation on the simulated tracked robot (issue 5, `closed_loop`
+// Point-to-point navigation on the simulated tracked robot (docs/navigation.md, `closed_loop`
 // mode): at each control period the navigator sees the robot's estimated pose and the
 // obstacle circles clustered from the latest range scan, and its body twist becomes
 // track speeds through the effective gauge χ·B. Ground truth is logged beside it for

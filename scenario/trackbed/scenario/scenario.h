@@ -302,7 +302,7 @@ struct NavigationObstacleSpec {
 };
 
 /// A wall of a navigation scene, seen by the avoider as a chain of circles of radius
-/// `radius_m` no farther apart than the safety radius d_max (issue 5, "Definitions").
+/// `radius_m` no farther apart than the safety radius d_max (Jung & Kim 2014).
 struct NavigationWallSpec {
   Eigen::Vector2d from{0.0, 0.0};
   Eigen::Vector2d to{0.0, 0.0};
@@ -337,11 +337,11 @@ struct NavigationSpec {
   StartPose goal;
   std::vector<NavigationObstacleSpec> obstacles;
   std::vector<NavigationWallSpec> walls;
-  /// A generated scene: none, random (issue 5's seeded field, `field_seed`), paper_left,
+  /// A generated scene: none, random (the seeded field, `field_seed`), paper_left,
   /// paper_right, u_trap, narrow_gap, goal_beside_wall, narrow_corridor. A generated
   /// scene sets the start, the goal and its obstacles; `obstacles` and `walls` add to it.
   std::string field = "none";
-  /// Seed of the random field (issue 5 uses 0–99).
+  /// Seed of the random field (docs/navigation.md uses 0–99).
   std::uint64_t field_seed = 0;
   /// Safety radius d_max [m], > 0 (the paper's 1 m).
   double safety_radius_m = 1.0;
@@ -366,7 +366,7 @@ struct NavigationSpec {
   /// sweeps 8° between camera frames, more than visual odometry tracks reliably.
   double max_yaw_rate_radps = 0.5;
   /// The navigator stops when its pose is this close to the goal [m], [deg]; success is
-  /// judged by ground truth at 0.1 m and 2° (issue 5), so a closed-loop run aims tighter.
+  /// judged by ground truth at 0.1 m and 2° (docs/navigation.md): a closed-loop run aims tighter.
   double stop_position_tolerance_m = 0.1;
   double stop_heading_tolerance_deg = 2.0;
 

@@ -1,4 +1,4 @@
-// Scores of a visual teach & repeat run (issue 6; Choi & Ha 2011 §IV): pure functions.
+// Scores of a visual teach & repeat run (Choi & Ha 2011 §IV): pure functions.
 //
 // * Path following, against the taught path (ground-truth positions of the teach run, a
 //   polyline): the lateral error of every repeated ground-truth position (its distance
