@@ -24,6 +24,7 @@
 #include "trackbed/common/archive.h"
 #include "trackbed/common/option_error.h"
 #include "trackbed/common/units.h"
+#include "trackbed/scenario/key_aliases.h"
 
 namespace trackbed::scenario {
 
@@ -156,13 +157,6 @@ Node WriteObject(StaticObject o) {
 // ---------------------------------------------------------------------------
 // Where a value came from: the file, or the override that set it.
 
-// True when `key` is `prefix` or lies inside it (`prefix.x`, `prefix[2]`).
-bool Within(const std::string& key, const std::string& prefix) {
-  if (key.size() <= prefix.size()) return key == prefix;
-  return key.compare(0, prefix.size(), prefix) == 0 &&
-         (key[prefix.size()] == '.' || key[prefix.size()] == '[');
-}
-
 class Sources {
  public:
   explicit Sources(std::string file) : file_(std::move(file)) {}
@@ -174,7 +168,7 @@ class Sources {
   /// The last override that set `key`, a value inside it or a map on its way; else the file.
   const std::string& Of(const std::string& key) const {
     for (auto it = overrides_.rbegin(); it != overrides_.rend(); ++it) {
-      if (Within(key, it->first) || Within(it->first, key)) return it->second;
+      if (KeyWithin(key, it->first) || KeyWithin(it->first, key)) return it->second;
     }
     return file_;
   }
@@ -188,10 +182,21 @@ class Sources {
   std::vector<std::pair<std::string, std::string>> overrides_;  // (dotted key, "--set k=v")
 };
 
-// Sets the override's value in the tree, creating missing maps on the way.
+// The aliases whose old key lies inside `dotted` (a value set there may use them).
+std::vector<KeyAlias> AliasesWithin(const std::string& dotted) {
+  std::vector<KeyAlias> within;
+  for (const KeyAlias& alias : ScenarioKeyAliases()) {
+    if (KeyWithin(alias.old_key, dotted) && alias.old_key != dotted) within.push_back(alias);
+  }
+  return within;
+}
+
+// Sets the override's value in the tree, creating missing maps on the way. A moved key
+// (key_aliases.h) sets its new path, and so do moved keys inside a map it sets.
 void ApplyOverride(Node& root, const Override& o, Sources* sources) {
   const std::string source = "--set " + OverrideText(o);
-  const std::optional<archive::Path> path = archive::ParsePath(o.key);
+  const std::optional<archive::Path> path =
+      archive::ParsePath(CurrentKey(o.key, ScenarioKeyAliases()));
   if (!path) {
     throw ScenarioError(source, "", "expected a dotted key such as robot.vehicle.mass_kg");
   }
@@ -199,6 +204,7 @@ void ApplyOverride(Node& root, const Override& o, Sources* sources) {
   try {
     Node& target = archive::Reach(root, *path, &where);
     target = archive::ParseYaml(o.value, where);
+    MoveAliasedKeys(&root, AliasesWithin(where));
   } catch (const archive::SyntaxError& e) {
     throw ScenarioError(source, where, "cannot parse the value as YAML: " + e.detail());
   } catch (const archive::Error& e) {
@@ -253,6 +259,11 @@ Scenario ParseScenario(const std::string& yaml_text, const std::string& source_n
   if (root.IsNull()) root = Node::Map();
   if (!root.IsMap()) {
     sources.Fail("", "expected a map of scenario keys, got " + archive::Describe(root, kWording));
+  }
+  try {
+    MoveAliasedKeys(&root, ScenarioKeyAliases());
+  } catch (const archive::Error& e) {
+    sources.Fail(e.path(), e.reason());
   }
   for (const Override& o : overrides) ApplyOverride(root, o, &sources);
 
