@@ -2,6 +2,8 @@
 // every key reaches the options the runner builds, the fields the robot's given
 // calibration decides come from it, and the presets hold the tracked robot's and
 // KITTI's car's values.
+#include <filesystem>
+#include <fstream>
 #include <set>
 #include <string>
 #include <vector>
@@ -13,6 +15,7 @@
 #include "trackbed/estimation/localization.h"
 #include "trackbed/estimation/stereo_visual_odometry.h"
 #include "trackbed/runner/localization_options.h"
+#include "trackbed/scenario/key_aliases.h"
 #include "trackbed/scenario/scenario_yaml.h"
 
 namespace trackbed {
@@ -161,6 +164,59 @@ TEST(EstimationOptionsTest, PresetsHoldTheRobotsAndTheCarsBounds) {
       scenario::LoadScenario(std::string(TRACKBED_SOURCE_DIR) + "/scenes/kitti_twin.yaml");
   EXPECT_EQ(archive::ToYaml(archive::Write(twin.estimation.localization.vo)),
             archive::ToYaml(archive::Write(car)));
+}
+
+// The old keys of the section, each in a file and through --set with a value other than
+// its default, read as their new keys, land in the built options, and are not written.
+TEST(EstimationOptionsTest, EveryAliasCarriesItsValueToTheNewKey) {
+  const archive::Node defaults = archive::Write(scenario::Scenario{});
+  int aliases = 0;
+  for (const scenario::KeyAlias& alias : scenario::ScenarioKeyAliases()) {
+    if (!scenario::KeyWithin(alias.old_key, "estimation")) continue;
+    SCOPED_TRACE(alias.old_key);
+    ++aliases;
+    const archive::Node* default_value = key_walk::NodeAt(defaults, alias.new_key);
+    ASSERT_NE(default_value, nullptr);
+    std::string value;
+    for (const std::string& v : key_walk::OtherValues(*default_value, "walk_rules.fll")) {
+      if (WithOverride(alias.new_key, v)) {
+        value = v;
+        break;
+      }
+    }
+    ASSERT_FALSE(value.empty()) << "no other value tried is valid";
+    const scenario::Scenario by_new = *WithOverride(alias.new_key, value);
+    EXPECT_TRUE(key_walk::SameScalar(BuiltValue(by_new, alias.new_key), value));
+    const std::string expected = scenario::ScenarioToYaml(by_new);
+    EXPECT_EQ(scenario::ScenarioToYaml(*WithOverride(alias.old_key, value)), expected);
+    archive::Node file = archive::ParseYaml(kMinimal);
+    std::string where;
+    archive::Reach(file, *archive::ParsePath(alias.old_key), &where) = archive::ParseYaml(value);
+    EXPECT_EQ(scenario::ScenarioToYaml(scenario::ParseScenario(archive::ToYaml(file), "old.yaml")),
+              expected);
+    EXPECT_EQ(key_walk::NodeAt(archive::Write(by_new), alias.old_key), nullptr);
+    // Both names at once.
+    archive::Reach(file, *archive::ParsePath(alias.new_key), &where) = archive::ParseYaml(value);
+    try {
+      scenario::ParseScenario(archive::ToYaml(file), "both.yaml");
+      ADD_FAILURE() << "old and new key together read";
+    } catch (const scenario::ScenarioError& e) {
+      EXPECT_EQ(e.key(), alias.old_key);
+    }
+  }
+  EXPECT_EQ(aliases, 11);
+}
+
+// The old key of the fusion rule file is resolved beside the scenario file, as the new one.
+TEST(EstimationOptionsTest, OldFusionRulesKeyIsFoundBesideTheScenario) {
+  const std::filesystem::path dir =
+      std::filesystem::path(::testing::TempDir()) / "estimation_options_rules";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "rules.fll") << "# rules\n";
+  std::ofstream(dir / "scene.yaml") << kMinimal << "estimation: {fusion_rules: rules.fll}\n";
+  const scenario::Scenario s = scenario::LoadScenario((dir / "scene.yaml").string());
+  EXPECT_EQ(s.estimation.localization.fusion.rules_file,
+            (std::filesystem::absolute(dir) / "rules.fll").lexically_normal().string());
 }
 
 }  // namespace
