@@ -72,7 +72,9 @@ void RunVo(const VoArguments& args) {
   const fs::path out_dir(args.out_dir);
   fs::create_directories(out_dir);
 
-  estimation::StereoVisualOdometryOptions options;
+  // KITTI's car: the per-frame and dynamics bounds of a car at up to 100 km/h.
+  estimation::StereoVisualOdometryOptions options =
+      estimation::StereoVisualOdometryOptions::KittiCar();
   options.estimate_disparity_offset = args.estimate_disparity_offset;
   estimation::StereoVisualOdometry vo(sequence.calibration(), options);
   estimation::Trajectory trajectory;

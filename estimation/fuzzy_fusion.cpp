@@ -9,8 +9,13 @@
 #include <stdexcept>
 
 #include "ham2012_fusion_fll.h"
+#include "trackbed/common/option_error.h"
 
 namespace trackbed::estimation {
+
+void FusionOptions::Validate() const {
+  option_check::NonNegative("weight_rise_time_s", weight_rise_time_s);
+}
 
 FuzzyFusionWeight::FuzzyFusionWeight(const std::string& fll_text, const std::string& source) {
   try {

@@ -28,8 +28,11 @@ void LocalizationOptions::Validate() const {
   option_check::Nested("vo", vo);
   option_check::Nested("ekf", ekf);
   option_check::Nested("imu", imu);
-  if (min_inliers_for_slip < 0) throw OptionError("min_inliers_for_slip", "must be >= 0");
-  option_check::NonNegative("fusion_weight_rise_time_s", fusion_weight_rise_time_s);
+  option_check::Nested("fusion", fusion);
+  if (min_inliers_for_slip < 0) {
+    throw OptionError("min_inliers_for_slip",
+                      "must be >= 0 (got " + std::to_string(min_inliers_for_slip) + ")");
+  }
   option_check::NonNegative("vo_coast_time_s", vo_coast_time_s);
 }
 
@@ -43,10 +46,10 @@ LocalizationStack::LocalizationStack(const LocalizationOptions& options,
       wheel_(WithSlip(options.wheel, true), PlanarPose(T_world_body0)),
       wheel_noslip_(WithSlip(options.wheel, false), PlanarPose(T_world_body0)),
       vo_(camera ? std::make_unique<StereoVisualOdometry>(*camera, options.vo) : nullptr),
-      fuzzy_(MakeFuzzy(options.fusion_rules_file)),
+      fuzzy_(MakeFuzzy(options.fusion.rules_file)),
       fused_(PlanarPose(T_world_body0)),
       ekf_(options.ekf, PlanarPose(T_world_body0)),
-      weight_(options.fusion_weight_rise_time_s),
+      weight_(options.fusion.weight_rise_time_s),
       imu_(options.imu),
       T_world_body_vo_(T_world_body0),
       wheel_at_frame_(PlanarPose(T_world_body0)) {

@@ -24,6 +24,7 @@
 #include "trackbed/robot/tracked_vehicle.h"
 #include "trackbed/runner/closed_loop_navigation.h"
 #include "trackbed/runner/estimator_scoring.h"
+#include "trackbed/runner/localization_options.h"
 #include "trackbed/runner/ordered_worker.h"
 #include "trackbed/runner/path_driver.h"
 #include "trackbed/runner/run_folder.h"
@@ -126,36 +127,6 @@ RunObservers TimedObservers(const RunObservers& o, double* io_s) {
     if (!f) return {};
     return [f, io_s](const auto& x) { Timed(io_s, [&] { f(x); }); };
   });
-}
-
-// The localization stack's options from the scenario and the given calibration: the
-// robot as the software knows it.
-estimation::LocalizationOptions LocalizationOptionsOf(const scenario::Scenario& scenario,
-                                                      const calibration::RobotCalibration& given) {
-  const scenario::RobotSpec& rs = scenario.robot;
-  const scenario::EstimationSpec& es = scenario.estimation;
-  estimation::LocalizationOptions lo;
-  lo.wheel.sprocket_radius_m = given.vehicle.sprocket_radius_left_m;
-  lo.wheel.right_sprocket_radius_m = given.vehicle.sprocket_radius_right_m;
-  lo.wheel.track_gauge_m = given.vehicle.track_gauge_m;
-  lo.wheel.icr_expansion = given.vehicle.icr_expansion.value_or(es.icr_expansion);
-  lo.imu = given.imu;
-  lo.wheel.icr_offset_m = es.icr_offset_m;
-  lo.wheel.ticks_per_rev = rs.encoders.ticks_per_rev;
-  lo.wheel.slip_decay_time_s = es.slip_decay_time_s;
-  lo.wheel.slip_filter_time_s = es.slip_filter_time_s;
-  lo.min_inliers_for_slip = es.min_inliers_for_slip;
-  lo.fusion_rules_file = es.fusion_rules;
-  lo.fusion_weight_rise_time_s = es.fusion_weight_rise_time_s;
-  lo.vo_coast_time_s = es.vo_coast_time_s;
-  lo.vo.max_translation_per_frame_m = es.vo_max_translation_per_frame_m;
-  lo.vo.max_rotation_per_frame_deg = es.vo_max_rotation_per_frame_deg;
-  lo.vo.max_acceleration_mps2 = es.vo_max_acceleration_mps2;
-  lo.vo.max_angular_acceleration_dps2 = es.vo_max_angular_acceleration_dps2;
-  lo.vo.max_rotation_prior_error_deg = es.vo_max_gyro_rotation_error_deg;
-  lo.vo.estimate_disparity_offset = es.vo_estimate_disparity_offset;
-  lo.ekf = es.ekf;
-  return lo;
 }
 
 // The body's pose `dt_s` later at constant velocity (dt small: a camera's time offset).

@@ -11,6 +11,18 @@ namespace trackbed::scenario {
 const std::vector<KeyAlias>& ScenarioKeyAliases() {
   static const std::vector<KeyAlias> aliases = {
       // The estimation section.
+      {"estimation.icr_offset_m", "estimation.wheel.icr_offset_m"},
+      {"estimation.slip_decay_time_s", "estimation.wheel.slip_decay_time_s"},
+      {"estimation.slip_filter_time_s", "estimation.wheel.slip_filter_time_s"},
+      {"estimation.fusion_rules", "estimation.fusion.rules_file"},
+      {"estimation.fusion_weight_rise_time_s", "estimation.fusion.weight_rise_time_s"},
+      {"estimation.vo_max_translation_per_frame_m", "estimation.vo.max_translation_per_frame_m"},
+      {"estimation.vo_max_rotation_per_frame_deg", "estimation.vo.max_rotation_per_frame_deg"},
+      {"estimation.vo_max_acceleration_mps2", "estimation.vo.max_acceleration_mps2"},
+      {"estimation.vo_max_angular_acceleration_dps2",
+       "estimation.vo.max_angular_acceleration_dps2"},
+      {"estimation.vo_max_gyro_rotation_error_deg", "estimation.vo.max_rotation_prior_error_deg"},
+      {"estimation.vo_estimate_disparity_offset", "estimation.vo.estimate_disparity_offset"},
 
       // The navigation and teach & repeat sections.
   };

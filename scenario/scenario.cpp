@@ -209,22 +209,7 @@ void DriveSpec::Validate() const {
 
 void EstimationSpec::Validate() const {
   option_check::InRange("icr_expansion", icr_expansion, 0.2, 5.0);
-  option_check::Finite("icr_offset_m", icr_offset_m);
-  option_check::Positive("slip_decay_time_s", slip_decay_time_s);
-  option_check::NonNegative("slip_filter_time_s", slip_filter_time_s);
-  if (min_inliers_for_slip < 0) {
-    throw OptionError("min_inliers_for_slip",
-                      "must be >= 0 (got " + std::to_string(min_inliers_for_slip) + ")");
-  }
-  option_check::NonNegative("fusion_weight_rise_time_s", fusion_weight_rise_time_s);
-  option_check::NonNegative("vo_coast_time_s", vo_coast_time_s);
-  option_check::Positive("vo_max_translation_per_frame_m", vo_max_translation_per_frame_m);
-  option_check::InRange("vo_max_rotation_per_frame_deg", vo_max_rotation_per_frame_deg, 1e-3,
-                        180.0);
-  option_check::Positive("vo_max_acceleration_mps2", vo_max_acceleration_mps2);
-  option_check::Positive("vo_max_angular_acceleration_dps2", vo_max_angular_acceleration_dps2);
-  option_check::Positive("vo_max_gyro_rotation_error_deg", vo_max_gyro_rotation_error_deg);
-  option_check::Nested("ekf", ekf);
+  localization.Validate();
 }
 
 const std::vector<std::string>& NavigationFieldNames() {

@@ -308,7 +308,8 @@ Scenario LoadScenario(const std::string& path, const std::vector<Override>& over
     }
     *value = p.string();
   };
-  resolve("estimation.fusion_rules", &scenario.estimation.fusion_rules, false);
+  resolve("estimation.fusion.rules_file", &scenario.estimation.localization.fusion.rules_file,
+          false);
   resolve("teach_repeat.map", &scenario.teach_repeat.map, true);
   resolve("robot.calibration_dir", &scenario.robot.calibration_dir, true);
   return scenario;

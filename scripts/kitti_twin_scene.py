@@ -127,10 +127,11 @@ drive:
 estimation:
   # The carrier's virtual tracks turn without skidding: no ICR expansion.
   icr_expansion: 1
-  # A car's bounds, not the tracked robot's (StereoVisualOdometryOptions' defaults).
-  vo_max_translation_per_frame_m: 3
-  vo_max_rotation_per_frame_deg: 30
-  vo_max_acceleration_mps2: 30
+  # A car's bounds (StereoVisualOdometryOptions::KittiCar()), not the tracked robot's.
+  vo:
+    max_translation_per_frame_m: 3
+    max_rotation_per_frame_deg: 30
+    max_acceleration_mps2: 30
 outputs:
   save_images: kitti""")
 

@@ -334,18 +334,19 @@ TEST(CliTest, FusionRulesFileIsFoundBesideTheScenarioOrNamedInTheError) {
   std::ofstream(dir / "rules.fll")
       << Slurp(fs::path(TRACKBED_SOURCE_DIR) / "estimation/rules/ham2012_fusion.fll");
   const std::string scenario = Slurp(fs::path(TRACKBED_SOURCE_DIR) / "scenes/corridor.yaml");
-  std::ofstream(dir / "scene.yaml") << scenario << "estimation: {fusion_rules: rules.fll}\n";
+  std::ofstream(dir / "scene.yaml")
+      << scenario << "estimation: {fusion: {rules_file: rules.fll}}\n";
   Result r = Trackbed("run " + (dir / "scene.yaml").string() + " --set duration_s=1 --out " +
                           (dir / "run").string(),
                       "rules_ok");
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
   EXPECT_NE(Slurp(dir / "run" / "scenario.yaml").find((dir / "rules.fll").string()),
             std::string::npos);
-  r = Trackbed("run scenes/corridor.yaml --set estimation.fusion_rules=missing.fll --out " +
+  r = Trackbed("run scenes/corridor.yaml --set estimation.fusion.rules_file=missing.fll --out " +
                    (dir / "run2").string(),
                "rules_missing");
   EXPECT_NE(r.exit_code, 0);
-  EXPECT_NE(r.stderr_text.find("estimation.fusion_rules: no such file"), std::string::npos)
+  EXPECT_NE(r.stderr_text.find("estimation.fusion.rules_file: no such file"), std::string::npos)
       << r.stderr_text;
 }
 

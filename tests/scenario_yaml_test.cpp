@@ -321,8 +321,10 @@ TEST(ScenarioYamlTest, OutOfRangeValueReportsFullDottedKey) {
             "test.yaml: scene.terrain.soil_variation.amplitude: must be in [0, 0.9] (got 2)");
   EXPECT_EQ(ErrorOf(m + "estimation: {min_inliers_for_slip: -5}\n"),
             "test.yaml: estimation.min_inliers_for_slip: must be >= 0 (got -5)");
-  EXPECT_EQ(ErrorOf(m + "estimation: {slip_filter_time_s: -0.1}\n"),
-            "test.yaml: estimation.slip_filter_time_s: must be >= 0 (got -0.1)");
+  EXPECT_EQ(ErrorOf(m + "estimation: {wheel: {slip_filter_time_s: -0.1}}\n"),
+            "test.yaml: estimation.wheel.slip_filter_time_s: must be >= 0 (got -0.1)");
+  EXPECT_EQ(ErrorOf(m + "estimation: {vo: {tracker: {window_px: 4}}}\n"),
+            "test.yaml: estimation.vo.tracker.window_px: must be odd and >= 5 (got 4)");
   EXPECT_EQ(ErrorOf(m + "estimation: {ekf: {wheel_yaw_rate_std: 0}}\n"),
             "test.yaml: estimation.ekf.wheel_yaw_rate_std: must be > 0 (got 0)");
   EXPECT_EQ(ErrorOf(m + "estimation: {ekf: {wheel_yaw_std: 0.5}}\n")

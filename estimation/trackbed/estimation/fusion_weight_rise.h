@@ -11,7 +11,7 @@ namespace trackbed::estimation {
 
 class FusionWeightRise {
  public:
-  /// `rise_time_s` >= 0 (LocalizationOptions::fusion_weight_rise_time_s); 0: the rule
+  /// `rise_time_s` >= 0 (FusionOptions::weight_rise_time_s); 0: the rule
   /// base's weight each frame as it is. The weight starts at 1 (the wheels).
   explicit FusionWeightRise(double rise_time_s) : rise_time_s_(rise_time_s) {}
 

@@ -23,6 +23,32 @@ class OutputVariable;
 
 namespace trackbed::estimation {
 
+/// Options of the fusion of wheel and visual odometry (LocalizationStack).
+struct FusionOptions {
+  /// FLL rule file for the fusion weight (FuzzyFusionWeight); empty: the built-in Ham et
+  /// al. Table 1.
+  std::string rules_file;
+  /// Time constant with which the wheel weight w may rise [s], >= 0 (0: the rule's
+  /// value each frame; FusionWeightRise). It falls at once. The slip estimate lags the
+  /// ground by its filter and hold times, so the wheels' errors outlast the slip episode
+  /// that caused them (and cancel with the errors of its onset); a weight that returned
+  /// to the wheels as fast as the estimated slip fades would keep one half of each such
+  /// pair.
+  double weight_rise_time_s = 3.0;
+
+  /// Throws OptionError naming the first invalid field.
+  void Validate() const;
+
+  /// The keys of these fields (e.g. the scenario's `estimation.fusion.*`,
+  /// docs/scenario_format.md), read and written by the config archive
+  /// (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("rules_file", &rules_file);
+    a->Visit("weight_rise_time_s", &weight_rise_time_s);
+  }
+};
+
 /// The fuzzy decision w(slip velocity, number of features). Not copyable.
 class FuzzyFusionWeight {
  public:

@@ -28,22 +28,19 @@
 namespace trackbed::estimation {
 
 struct LocalizationOptions {
-  /// Wheel odometry (its `estimate_slip` is set per estimator).
+  /// Wheel odometry (its `estimate_slip` is set per estimator; its geometry comes from
+  /// the robot: WheelOdometryOptions).
   WheelOdometryOptions wheel;
-  /// Stereo visual odometry.
+  /// Stereo visual odometry (StereoVisualOdometryOptions::TrackedRobot() for the tracked
+  /// robot, KittiCar() for KITTI's car).
   StereoVisualOdometryOptions vo;
-  /// FLL rule file for the fusion weight; empty: the built-in Ham et al. Table 1.
-  std::string fusion_rules_file;
+  /// The fusion's rule base and weight dynamics.
+  FusionOptions fusion;
   /// Inliers a VO frame needs before its velocity updates the slip estimate (slip is
   /// measured against VO whenever VO is valid, with enough inliers: docs/localization.md,
-  /// our reading of Ham et al. 2012 eqs. 1–5), >= the VO's own minimum.
+  /// our reading of Ham et al. 2012 eqs. 1–5), >= 0; below the VO's own minimum it is
+  /// that minimum.
   int min_inliers_for_slip = 30;
-  /// Time constant with which the wheel weight w may rise [s], >= 0 (0: the rule's
-  /// value each frame). It falls at once. The slip estimate lags the ground by its
-  /// filter and hold times, so the wheels' errors outlast the slip episode that caused
-  /// them (and cancel with the errors of its onset); a weight that returned to the
-  /// wheels as fast as the estimated slip fades would keep one half of each such pair.
-  double fusion_weight_rise_time_s = 3.0;
   /// On a failed VO frame, visual odometry's own pose goes on with the last valid
   /// frame's velocity (a constant-velocity motion model, as VO pipelines bridge a lost
   /// frame) for up to this long after that frame [s], >= 0; beyond it, it holds. 0:
@@ -53,10 +50,32 @@ struct LocalizationOptions {
   /// The EKF baseline (wheel odometry + gyro + visual odometry).
   EkfOdometryOptions ekf;
   /// The IMU's given calibration (imu_calibration.json): AddImuSample turns its
-  /// readings into body rates with it.
+  /// readings into body rates with it. Known at run time, no key (see Serialize).
   calibration::ImuCalibration imu;
 
   void Validate() const;
+
+  /// The tracked robot's stack: the defaults with StereoVisualOdometryOptions::
+  /// TrackedRobot().
+  static LocalizationOptions TrackedRobot() {
+    LocalizationOptions o;
+    o.vo = StereoVisualOdometryOptions::TrackedRobot();
+    return o;
+  }
+
+  /// The keys of the fields that are knobs (e.g. the scenario's `estimation.*`,
+  /// docs/scenario_format.md), read and written by the config archive
+  /// (trackbed/common/archive.h). Not visited: `imu`, the given calibration, and the
+  /// wheels' geometry (WheelOdometryOptions::Serialize).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("wheel", &wheel);
+    a->Visit("vo", &vo);
+    a->Visit("fusion", &fusion);
+    a->Visit("min_inliers_for_slip", &min_inliers_for_slip);
+    a->Visit("vo_coast_time_s", &vo_coast_time_s);
+    a->Visit("ekf", &ekf);
+  }
 };
 
 /// Whether the stack used a sensor input, or why it set it aside. Streams from real

@@ -103,6 +103,16 @@ struct MotionRansacOptions {
 
   /// Throws OptionError naming the first invalid field.
   void Validate() const;
+
+  /// The keys of these fields (e.g. the scenario's `estimation.vo.ransac.*`,
+  /// docs/scenario_format.md), read and written by the config archive
+  /// (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("max_iterations", &max_iterations);
+    a->Visit("confidence", &confidence);
+    a->Visit("threshold_px", &threshold_px);
+  }
 };
 
 /// What EstimateMotionRansac found.
@@ -136,6 +146,16 @@ struct MotionRefinementOptions {
 
   /// Throws OptionError naming the first invalid field.
   void Validate() const;
+
+  /// The keys of these fields (e.g. the scenario's `estimation.vo.refinement.*`,
+  /// docs/scenario_format.md), read and written by the config archive
+  /// (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("max_iterations", &max_iterations);
+    a->Visit("huber_px", &huber_px);
+    a->Visit("min_step", &min_step);
+  }
 };
 
 /// What RefineMotionReprojection did.
@@ -174,6 +194,16 @@ struct StereoMotionOptions {
   /// Throws OptionError naming the first invalid field (dotted for nested structs,
   /// e.g. "ransac.threshold_px").
   void Validate() const;
+
+  /// The keys of these fields, read and written by the config archive
+  /// (trackbed/common/archive.h). (StereoVisualOdometryOptions holds the same three
+  /// fields itself, under the same keys.)
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("ransac", &ransac);
+    a->Visit("refinement", &refinement);
+    a->Visit("min_inliers", &min_inliers);
+  }
 };
 
 /// Outcome of EstimateStereoMotion.

@@ -26,6 +26,9 @@
 namespace trackbed::estimation {
 
 struct WheelOdometryOptions {
+  // The robot's geometry (sprocket radii, gauge, χ: its given calibration; the encoders'
+  // resolution) is known at run time, not set in a file of options: those fields are no
+  // keys (see Serialize), and a scenario's runner sets them from the robot.
   /// Effective sprocket radius r [m] of the left track, and of the right one unless
   /// `right_sprocket_radius_m` is given (a calibration's per-track radii), > 0.
   double sprocket_radius_m = 0.10;
@@ -56,6 +59,18 @@ struct WheelOdometryOptions {
   double slip_filter_time_s = 0.2;
 
   void Validate() const;
+
+  /// The keys of the fields that are knobs (e.g. the scenario's `estimation.wheel.*`,
+  /// docs/scenario_format.md), read and written by the config archive
+  /// (trackbed/common/archive.h). Not visited: the calibration's fields (above) and
+  /// estimate_slip, which the localization stack sets per estimator.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("icr_offset_m", &icr_offset_m);
+    a->Visit("slip_decay_time_s", &slip_decay_time_s);
+    a->Visit("slip_hold_s", &slip_hold_s);
+    a->Visit("slip_filter_time_s", &slip_filter_time_s);
+  }
 };
 
 /// The slip velocities of the two tracks [m/s], paper's sign (ground − track).

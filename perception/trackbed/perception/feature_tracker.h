@@ -46,6 +46,20 @@ struct FeatureTrackerOptions {
 
   /// Throws OptionError naming the first invalid field.
   void Validate() const;
+
+  /// The keys of these fields (e.g. the scenario's `estimation.vo.tracker.*`,
+  /// docs/scenario_format.md), read and written by the config archive
+  /// (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("window_px", &window_px);
+    a->Visit("pyramid_levels", &pyramid_levels);
+    a->Visit("max_iterations", &max_iterations);
+    a->Visit("epsilon_px", &epsilon_px);
+    a->Visit("min_eigenvalue", &min_eigenvalue);
+    a->Visit("max_forward_backward_px", &max_forward_backward_px);
+    a->Visit("border_px", &border_px);
+  }
 };
 
 /// Outcome of tracking one point.

@@ -53,6 +53,20 @@ struct HarrisOptions {
 
   /// Throws OptionError naming the first invalid field.
   void Validate() const;
+
+  /// The keys of these fields (e.g. the scenario's `estimation.vo.harris.*`,
+  /// docs/scenario_format.md), read and written by the config archive
+  /// (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("block_size", &block_size);
+    a->Visit("aperture_size", &aperture_size);
+    a->Visit("k", &k);
+    a->Visit("min_response", &min_response);
+    a->Visit("nms_radius_px", &nms_radius_px);
+    a->Visit("border_px", &border_px);
+    a->Visit("max_corners", &max_corners);
+  }
 };
 
 /// A detected corner: sub-pixel position (OpenCV pixel coordinates, the centre of the

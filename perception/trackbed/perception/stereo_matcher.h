@@ -51,6 +51,21 @@ struct StereoMatcherOptions {
 
   /// Throws OptionError naming the first invalid field.
   void Validate() const;
+
+  /// The keys of these fields (e.g. the scenario's `estimation.vo.matcher.*`,
+  /// docs/scenario_format.md), read and written by the config archive
+  /// (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("window_px", &window_px);
+    a->Visit("min_disparity_px", &min_disparity_px);
+    a->Visit("max_disparity_px", &max_disparity_px);
+    a->Visit("min_zncc", &min_zncc);
+    a->Visit("uniqueness_ratio", &uniqueness_ratio);
+    a->Visit("max_left_right_px", &max_left_right_px);
+    a->Visit("min_texture", &min_texture);
+    a->Visit("refinement_iterations", &refinement_iterations);
+  }
 };
 
 /// Outcome of matching one point.

@@ -15,7 +15,7 @@
 
 #include "trackbed/common/archive.h"
 #include "trackbed/common/archive_eigen.h"
-#include "trackbed/estimation/ekf_odometry.h"
+#include "trackbed/estimation/localization.h"
 #include "trackbed/robot/as_built.h"
 #include "trackbed/robot/encoder.h"
 #include "trackbed/robot/imu.h"
@@ -214,52 +214,18 @@ struct DriveSpec {
 struct EstimationSpec {
   /// Run the estimators (wheel odometry always; VO and fusion when the stereo camera is on).
   bool enabled = true;
-  /// ICR expansion factor χ for the effective gauge B_eff = χ·B. Default: the value the
-  /// calibration run scenes/calibration/icr_turns.yaml fits on the hard floor (1.239).
+  /// ICR expansion factor χ for the effective gauge B_eff = χ·B, in [0.2, 5], where the
+  /// robot's given calibration has none (calibration_dir's vehicle_calibration.json
+  /// gives its own). Default: the value the calibration run
+  /// scenes/calibration/icr_turns.yaml fits on the hard floor (1.239).
   double icr_expansion = 1.239;
-  /// Longitudinal ICR offset d [m] (Ham et al. eqs. 3–4).
-  double icr_offset_m = 0.0;
-  /// Decay time constant of a held slip estimate [s], > 0.
-  double slip_decay_time_s = 3.0;
-  /// Time constant of the low-pass filter on slip measurements [s], >= 0
-  /// (WheelOdometryOptions::slip_filter_time_s).
-  double slip_filter_time_s = 0.2;
-  /// Inliers a VO frame needs before its velocity updates the slip estimate, >= 0
-  /// (LocalizationOptions::min_inliers_for_slip).
-  int min_inliers_for_slip = 30;
-  /// FLL file with the fusion rule base; empty: the built-in Table 1.
-  std::string fusion_rules;
-  /// Time constant with which the fusion's wheel weight may rise [s], >= 0 (it falls at
-  /// once; 0: the rule base's weight of each frame as it is).
-  double fusion_weight_rise_time_s = 3.0;
-  /// Visual odometry's pose coasts at the last valid velocity over failed frames for up
-  /// to this long [s], >= 0 (LocalizationOptions::vo_coast_time_s).
-  double vo_coast_time_s = 1.0;
-  /// Visual odometry's per-frame motion bounds for this robot [m], [deg]: a frame that
-  /// claims more is a failure, not a motion (the robot tops out at 1.5 m/s, 10 Hz).
-  double vo_max_translation_per_frame_m = 0.5;
-  double vo_max_rotation_per_frame_deg = 20.0;
-  /// Visual odometry's dynamics bounds for this robot [m/s²], [deg/s²]: a frame's motion
-  /// may depart from the last frame's (constant velocity) by at most a·dt², α·dt²
-  /// (StereoVisualOdometryOptions::max_acceleration_mps2). Measured (docs/localization.md):
-  /// the camera's true translation changes by under 4 cm from one frame to the next
-  /// outdoors (4 m/s²); with a few dozen inliers VO's consensus can be 0.12 m off (seed 7),
-  /// which 8 m/s² (0.08 m at 10 Hz) rejects, where 30 let it through. The angular
-  /// bound applies only to frames without gyro samples: the robot's rotation changes by
-  /// up to 5.6 deg per 0.1 s when it starts or stops a turn on the spot
-  /// (ClosedLoopNavigationTest's run).
-  double vo_max_acceleration_mps2 = 8.0;
-  double vo_max_angular_acceleration_dps2 = 1000.0;
-  /// A VO frame's rotation may differ from the gyro's over the frame interval by at most
-  /// this [deg] (StereoVisualOdometryOptions::max_rotation_prior_error_deg); with a right
-  /// consensus VO's rotation error stayed under 0.6 deg per frame in the outdoor runs of
-  /// seeds 3 and 6.
-  double vo_max_gyro_rotation_error_deg = 2.0;
-  /// Visual odometry estimates the rig's disparity offset and triangulates with it
-  /// (StereoVisualOdometryOptions::estimate_disparity_offset).
-  bool vo_estimate_disparity_offset = false;
-  /// The EKF baseline's noise model (estimation/ekf_odometry.h), as `estimation.ekf.*`.
-  estimation::EkfOdometryOptions ekf;
+  /// The localization stack's options (estimation/localization.h), their keys in this
+  /// same map: `estimation.wheel.*`, `estimation.vo.*`, `estimation.fusion.*`,
+  /// `estimation.min_inliers_for_slip`, `estimation.vo_coast_time_s`, `estimation.ekf.*`.
+  /// Defaults: the tracked robot's (LocalizationOptions::TrackedRobot()). The fields the
+  /// robot's given calibration decides (its wheels' geometry, the IMU's calibration) are
+  /// set by the runner (runner/trackbed/runner/localization_options.h).
+  estimation::LocalizationOptions localization = estimation::LocalizationOptions::TrackedRobot();
 
   void Validate() const;
 
@@ -269,20 +235,7 @@ struct EstimationSpec {
   void Serialize(Archive* a) {
     a->Visit("enabled", &enabled);
     a->Visit("icr_expansion", &icr_expansion);
-    a->Visit("icr_offset_m", &icr_offset_m);
-    a->Visit("slip_decay_time_s", &slip_decay_time_s);
-    a->Visit("slip_filter_time_s", &slip_filter_time_s);
-    a->Visit("min_inliers_for_slip", &min_inliers_for_slip);
-    a->Visit("fusion_rules", &fusion_rules);
-    a->Visit("fusion_weight_rise_time_s", &fusion_weight_rise_time_s);
-    a->Visit("vo_coast_time_s", &vo_coast_time_s);
-    a->Visit("vo_max_translation_per_frame_m", &vo_max_translation_per_frame_m);
-    a->Visit("vo_max_rotation_per_frame_deg", &vo_max_rotation_per_frame_deg);
-    a->Visit("vo_max_acceleration_mps2", &vo_max_acceleration_mps2);
-    a->Visit("vo_max_angular_acceleration_dps2", &vo_max_angular_acceleration_dps2);
-    a->Visit("vo_max_gyro_rotation_error_deg", &vo_max_gyro_rotation_error_deg);
-    a->Visit("vo_estimate_disparity_offset", &vo_estimate_disparity_offset);
-    a->Visit("ekf", &ekf);
+    localization.Serialize(a);
   }
 };
 
