@@ -7,11 +7,13 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "trackbed/common/archive.h"
+#include "trackbed/scenario/key_aliases.h"
 #include "trackbed/scenario/scenario_yaml.h"
 
 namespace trackbed::scenario {
@@ -115,6 +117,27 @@ TEST(ScenarioFormatDocTest, NoDocumentedKeyIsGoneFromItsMap) {
     if (inside != written.end() && inside->rfind(key + ".", 0) == 0) continue;
     ADD_FAILURE() << key << " is documented but no scenario has it";
   }
+}
+
+// The rows `| `old` | `new` |` of the page's "Keys that moved" table.
+std::set<std::pair<std::string, std::string>> DocumentedAliases(const fs::path& md) {
+  std::ifstream in(md);
+  const std::regex row(R"(^\| `([^`]+)` \| `([^`]+)` \|)");
+  std::set<std::pair<std::string, std::string>> aliases;
+  std::string line;
+  bool in_section = false;
+  while (std::getline(in, line)) {
+    if (line.rfind("#", 0) == 0) in_section = line == "### Keys that moved";
+    std::smatch m;
+    if (in_section && std::regex_search(line, m, row)) aliases.emplace(m[1], m[2]);
+  }
+  return aliases;
+}
+
+TEST(ScenarioFormatDocTest, KeysThatMovedAreTheAliases) {
+  std::set<std::pair<std::string, std::string>> aliases;
+  for (const KeyAlias& a : ScenarioKeyAliases()) aliases.emplace(a.old_key, a.new_key);
+  EXPECT_EQ(DocumentedAliases(fs::path(TRACKBED_SOURCE_DIR) / "docs/scenario_format.md"), aliases);
 }
 
 }  // namespace
