@@ -17,10 +17,10 @@
 #include "trackbed/common/split_mix.h"
 #include "trackbed/estimation/stereo_visual_odometry.h"
 #include "trackbed/perception/opencv_views.h"
+#include "trackbed/render/renderer.h"
 #include "trackbed/robot/stereo_rig.h"
 #include "trackbed/runner/closed_loop.h"
 #include "trackbed/scenario/scenario_yaml.h"
-#include "trackbed/sim/renderer.h"
 
 int main(int argc, char** argv) {
   using namespace trackbed;
@@ -63,9 +63,10 @@ int main(int argc, char** argv) {
                              sim::Terrain(s.scene.terrain, split_mix::Stream(s.seed, 0)),
                              scenario::SceneObjects(s));
       const robot::StereoRig rig(s.robot.stereo);
-      sim::Renderer renderer(world, s.scene.appearance, s.scene.occluders,
-                             split_mix::Stream(s.seed, 2), s.robot.stereo.width_px,
-                             s.robot.stereo.height_px, s.robot.stereo.near_m, s.robot.stereo.far_m);
+      render::Renderer renderer(world, s.scene.appearance, s.scene.occluders,
+                                split_mix::Stream(s.seed, 2), s.robot.stereo.width_px,
+                                s.robot.stereo.height_px, s.robot.stereo.near_m,
+                                s.robot.stereo.far_m);
       GrayImage l, r;
       const int n = std::min<int>(pairs, static_cast<int>(left.size()));
       // Rendering speed on n pairs spread along the whole route.

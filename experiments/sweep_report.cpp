@@ -16,7 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "trackbed/experiments/sweep_support.h"
-#include "trackbed/runner/run_plots.h"
+#include "trackbed/plot/plots.h"
 
 namespace trackbed::experiments {
 
@@ -655,11 +655,11 @@ SweepCounts WriteSweepReport(const fs::path& dir, const SweepPlan& plan,
   std::vector<std::string> plots;
   const std::vector<std::string> estimators = EstimatorsOf(summary);
   for (const GroupStats& g : groups) {
-    std::vector<runner::BoxSeries> boxes;
+    std::vector<plot::BoxSeries> boxes;
     double lo = 1e300, hi = 0.0;
     bool any = false;
     for (const std::string& e : estimators) {
-      runner::BoxSeries b{e, GroupValues(summary, g.group, AteColumn(summary, e))};
+      plot::BoxSeries b{e, GroupValues(summary, g.group, AteColumn(summary, e))};
       for (double v : b.values) {
         if (!(v > 0) || !std::isfinite(v)) continue;
         lo = std::min(lo, v);
@@ -670,14 +670,14 @@ SweepCounts WriteSweepReport(const fs::path& dir, const SweepPlan& plan,
     }
     if (!any) continue;
     const std::string name = "plots/ate_" + g.group + ".png";
-    runner::WriteBoxPlot(
-        dir / name, "ATE per estimator: " + g.group + " (" + std::to_string(g.ok) + " ok cells)",
-        "ATE [m]", boxes, hi / lo > 30.0);
+    plot::WriteBoxPlot(dir / name,
+                       "ATE per estimator: " + g.group + " (" + std::to_string(g.ok) + " ok cells)",
+                       "ATE [m]", boxes, hi / lo > 30.0);
     plots.push_back(name);
   }
   const std::string success = ColumnOfPath(summary, {"navigation", "success"});
   if (!success.empty()) {
-    std::vector<runner::BarValue> bars;
+    std::vector<plot::BarValue> bars;
     for (const GroupStats& g : groups) {
       const SampleStats* s = g.Find(success);
       if (!s) continue;
@@ -685,8 +685,8 @@ SweepCounts WriteSweepReport(const fs::path& dir, const SweepPlan& plan,
       bars.push_back({g.group, s->mean, std::to_string(wins) + "/" + std::to_string(s->n)});
     }
     if (!bars.empty()) {
-      runner::WriteBarPlot(dir / "plots/navigation_success.png",
-                           "Navigation success rate per group", "success rate", bars, 1.0);
+      plot::WriteBarPlot(dir / "plots/navigation_success.png", "Navigation success rate per group",
+                         "success rate", bars, 1.0);
       plots.push_back("plots/navigation_success.png");
     }
   }

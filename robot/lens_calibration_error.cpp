@@ -5,7 +5,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
 
-#include "trackbed/sim/sensor_warp.h"
+#include "trackbed/render/sensor_warp.h"
 
 namespace trackbed::robot {
 namespace {
@@ -40,7 +40,7 @@ Eigen::Matrix4d LensCalibrationCovariance(const geometry::PinholeCamera& camera,
   const int p = CalibratedLensCoefficients(lens.model);
   Eigen::Matrix4d C = Eigen::Matrix4d::Zero();
   if (p == 0 || rms_px == 0.0) return C;
-  sim::RenderCameraFor(camera, 0);  // throws unless every pixel's ray can be found
+  render::RenderCameraFor(camera, 0);  // throws unless every pixel's ray can be found
   // Both models are linear in their coefficients (x_d = x·(1 + k1 r² + …) + tangential
   // terms; θ_d = θ·(1 + k1 θ² + …)), so a unit step gives the Jacobian's column exactly.
   Eigen::MatrixXd JtJ = Eigen::MatrixXd::Zero(p, p);

@@ -11,18 +11,18 @@
 #include "trackbed/common/option_error.h"
 #include "trackbed/common/split_mix.h"
 #include "trackbed/common/units.h"
-#include "trackbed/sim/sensor_warp.h"
+#include "trackbed/render/sensor_warp.h"
 
 namespace trackbed::robot {
 
 void StereoRigOptions::ValidateLensCoversTheImage() const {
   // A lens whose distorted radius stops growing before the image's border leaves pixels
   // no ray reaches: the renderer, the calibration and the rectification all need every
-  // pixel's ray (sim::RenderCameraFor checks the border, where the extreme rays lie).
+  // pixel's ray (render::RenderCameraFor checks the border, where the extreme rays lie).
   geometry::PinholeCamera camera = DesignIntrinsics();
   camera.distortion = *distortion;
   try {
-    sim::RenderCameraFor(camera, 0);
+    render::RenderCameraFor(camera, 0);
   } catch (const std::invalid_argument& e) {
     std::string why = e.what();
     const std::string prefix = "RenderCameraFor: ";

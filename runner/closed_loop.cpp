@@ -17,6 +17,8 @@
 #include "trackbed/common/units.h"
 #include "trackbed/estimation/skid_steer.h"
 #include "trackbed/perception/opencv_views.h"
+#include "trackbed/render/camera_exposure.h"
+#include "trackbed/render/renderer.h"
 #include "trackbed/robot/auto_exposure.h"
 #include "trackbed/robot/encoder.h"
 #include "trackbed/robot/image_sensor.h"
@@ -29,8 +31,6 @@
 #include "trackbed/runner/path_driver.h"
 #include "trackbed/runner/run_folder.h"
 #include "trackbed/runner/wheel_calibration_run.h"
-#include "trackbed/sim/camera_exposure.h"
-#include "trackbed/sim/renderer.h"
 #include "trackbed/sim/sim_clock.h"
 #include "trackbed/sim/world.h"
 
@@ -130,9 +130,9 @@ RunObservers TimedObservers(const RunObservers& o, double* io_s) {
 }
 
 // The body's pose `dt_s` later at constant velocity (dt small: a camera's time offset).
-sim::BodyMotion Advanced(const sim::BodyMotion& m, double dt_s) {
+render::BodyMotion Advanced(const render::BodyMotion& m, double dt_s) {
   if (dt_s == 0.0) return m;
-  sim::BodyMotion out = m;
+  render::BodyMotion out = m;
   out.T_world_body = m.PoseAfter(dt_s);
   return out;
 }
@@ -282,11 +282,11 @@ class ClosedLoop::Impl {
   // Encoder dropouts: the shaft's count at the last sample, and the counts lost so far.
   std::int64_t last_shaft_ticks_[2] = {0, 0}, lost_ticks_[2] = {0, 0};
   std::optional<robot::StereoRig> rig_;
-  std::unique_ptr<sim::Renderer> renderer_;
+  std::unique_ptr<render::Renderer> renderer_;
   GrayImage left_image_, right_image_;
-  std::unique_ptr<sim::CameraExposure> exposures_[2];  // left, right
-  std::vector<robot::ImageSensor> image_sensors_;      // left, right; or none
-  std::optional<robot::AutoExposure> auto_exposure_;   // when on
+  std::unique_ptr<render::CameraExposure> exposures_[2];  // left, right
+  std::vector<robot::ImageSensor> image_sensors_;         // left, right; or none
+  std::optional<robot::AutoExposure> auto_exposure_;      // when on
   std::unique_ptr<estimation::LocalizationStack> stack_;
   EstimatorScoring estimates_;
   double estimation_wall_s_ = 0.0;
@@ -374,20 +374,20 @@ void ClosedLoop::Impl::BuildCameras() {
                              stereo.exposure_time_s == 0
                          ? 0
                          : 4;
-  const geometry::PinholeCamera left =
-      sim::Supersampled(sim::RenderCameraFor(rig_->intrinsics(), margin), stereo.supersampling);
-  const geometry::PinholeCamera right = sim::Supersampled(
-      sim::RenderCameraFor(rig_->right_intrinsics(), margin), stereo.supersampling);
+  const geometry::PinholeCamera left = render::Supersampled(
+      render::RenderCameraFor(rig_->intrinsics(), margin), stereo.supersampling);
+  const geometry::PinholeCamera right = render::Supersampled(
+      render::RenderCameraFor(rig_->right_intrinsics(), margin), stereo.supersampling);
   const int w = std::max(left.width_px, right.width_px);
   const int h = std::max(left.height_px, right.height_px);
-  renderer_ = std::make_unique<sim::Renderer>(
+  renderer_ = std::make_unique<render::Renderer>(
       *world_, scenario_.scene.appearance, scenario_.scene.occluders,
       split_mix::Stream(scenario_.seed, 2), w, h, stereo.near_m, stereo.far_m);
   const double line_delay = *stereo.rolling_shutter.line_delay_s;
-  exposures_[0] = std::make_unique<sim::CameraExposure>(
-      rig_->intrinsics(), sim::GrownTo(left, w, h), stereo.exposure_samples, line_delay);
-  exposures_[1] = std::make_unique<sim::CameraExposure>(
-      rig_->right_intrinsics(), sim::GrownTo(right, w, h), stereo.exposure_samples, line_delay);
+  exposures_[0] = std::make_unique<render::CameraExposure>(
+      rig_->intrinsics(), render::GrownTo(left, w, h), stereo.exposure_samples, line_delay);
+  exposures_[1] = std::make_unique<render::CameraExposure>(
+      rig_->right_intrinsics(), render::GrownTo(right, w, h), stereo.exposure_samples, line_delay);
   if (stereo.auto_exposure.enabled) {
     auto_exposure_.emplace(stereo.auto_exposure, stereo.exposure_time_s);
   }
@@ -560,7 +560,7 @@ bool ClosedLoop::Impl::TakeStereoFrame(const robot::ChassisState& truth, StepRes
   frame.t_s = clock_->now_s();
   // The pair stamped now was exposed `offset` later on the IMU's clock (as built).
   const double offset = robot_.truth.imu.camera_time_offset_s;
-  const sim::BodyMotion motion =
+  const render::BodyMotion motion =
       Advanced({truth.T_world_body, truth.v_world, truth.omega_world}, offset);
   frame.T_world_left = motion.T_world_body * rig_->T_body_left();
   frame.T_world_right = motion.T_world_body * rig_->T_body_right();

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "trackbed/runner/run_plots.h"
+#include "trackbed/plot/plots.h"
 
 namespace trackbed::runner {
 
@@ -24,18 +24,19 @@ void WriteNavigationMap(const std::filesystem::path& png, const std::string& tit
                         const std::vector<navigation::Circle>& obstacles, double safety_radius_m,
                         const estimation::Pose2& start, const estimation::Pose2& goal,
                         const std::vector<navigation::SubgoalRecord>& subgoals) {
-  std::vector<PlotCircle> circles;
+  std::vector<plot::PlotCircle> circles;
   for (const navigation::Circle& c : obstacles) {
     circles.push_back({c.centre, c.radius_m + safety_radius_m, false});
   }
   for (const navigation::Circle& c : obstacles) circles.push_back({c.centre, c.radius_m});
-  std::vector<PlotMarker> markers = {{{start.x, start.y}, "start"}, {{goal.x, goal.y}, "goal"}};
+  std::vector<plot::PlotMarker> markers = {{{start.x, start.y}, "start"},
+                                           {{goal.x, goal.y}, "goal"}};
   for (std::size_t k = 0; k < subgoals.size(); ++k) {
     markers.push_back({subgoals[k].position, "sub-goal " + std::to_string(k + 1)});
   }
-  PlotSeries path{"path (ground truth)", {}};
+  plot::PlotSeries path{"path (ground truth)", {}};
   for (const navigation::NavigationLogEntry& e : log) path.points.emplace_back(e.x_m, e.y_m);
-  WriteMapPlot(png, title, {path}, circles, markers);
+  plot::WriteMapPlot(png, title, {path}, circles, markers);
 }
 
 // The scene's colliding objects as circles, for the map: cylinders as they are, boxes

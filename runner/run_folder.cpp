@@ -17,12 +17,12 @@
 #include "trackbed/perception/kitti_sequence.h"
 #include "trackbed/perception/opencv_views.h"
 #include "trackbed/perception/stereo_rectifier.h"
+#include "trackbed/plot/plots.h"
 #include "trackbed/runner/camera_frame_log.h"
 #include "trackbed/runner/log_file.h"
 #include "trackbed/runner/navigation_log.h"
 #include "trackbed/runner/navigation_scenario.h"
 #include "trackbed/runner/run_bag.h"
-#include "trackbed/runner/run_plots.h"
 #include "trackbed/scenario/scenario_yaml.h"
 
 namespace trackbed::runner {
@@ -70,24 +70,24 @@ struct PlotData {
         pts.push_back(p.T_world_body.translation().head<2>());
       return pts;
     };
-    std::vector<PlotSeries> paths{{"ground truth", xy(truth)}};
+    std::vector<plot::PlotSeries> paths{{"ground truth", xy(truth)}};
     for (const auto& [name, t] : estimates) paths.push_back({name, xy(t)});
-    WriteTrajectoryPlot(dir / "trajectories.png", scene + ": trajectories over the true path",
-                        paths);
+    plot::WriteTrajectoryPlot(dir / "trajectories.png", scene + ": trajectories over the true path",
+                              paths);
     std::vector<double> edges;
     for (int k = 0; k <= 20; ++k) edges.push_back(0.05 * k);
-    std::vector<HistogramSeries> bars;
+    std::vector<plot::HistogramSeries> bars;
     for (const auto& [name, t] : estimates) {
       const estimation::DistanceHistogram h = estimation::DistanceErrorHistogram(t, truth, edges);
-      HistogramSeries b{name + " (>1 m: " + std::to_string(h.above) + ")", {}};
+      plot::HistogramSeries b{name + " (>1 m: " + std::to_string(h.above) + ")", {}};
       for (std::size_t c : h.counts) b.counts.push_back(static_cast<double>(c) / h.total());
       bars.push_back(b);
     }
-    WriteHistogramPlot(dir / "error_histogram.png",
-                       scene + ": distance of each estimate to the true path",
-                       "distance to the true path [m]", edges, bars, /*first_color=*/1);
+    plot::WriteHistogramPlot(dir / "error_histogram.png",
+                             scene + ": distance of each estimate to the true path",
+                             "distance to the true path [m]", edges, bars, /*first_color=*/1);
     if (w.empty()) return;
-    WriteTimePlot(
+    plot::WriteTimePlot(
         dir / "fusion.png", scene + ": fusion weight and track slip",
         {{"w (wheel odometry)", {{"w", w}}},
          {"left slip [m/s]", {{"true", slip_left_true}, {"estimated", slip_left_est}}},

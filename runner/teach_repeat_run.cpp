@@ -20,10 +20,10 @@
 #include "trackbed/estimation/wheel_odometry.h"
 #include "trackbed/perception/lens_undistorter.h"
 #include "trackbed/perception/opencv_views.h"
+#include "trackbed/plot/plots.h"
 #include "trackbed/runner/closed_loop.h"
 #include "trackbed/runner/repeat_commander.h"
 #include "trackbed/runner/run_folder.h"
-#include "trackbed/runner/run_plots.h"
 #include "trackbed/teach_repeat/funnel_lane_controller.h"
 #include "trackbed/teach_repeat/milestone_builder.h"
 #include "trackbed/teach_repeat/milestone_localizer_3d.h"
@@ -220,7 +220,7 @@ scenario::Scenario RepeatScenario(const scenario::Scenario& scenario) {
 void WriteRecoveryPlot(const scenario::Scenario& scenario, const TeachRepeatMetrics& t,
                        const fs::path& dir) {
   const scenario::TeachRepeatSpec& tr = scenario.teach_repeat;
-  std::vector<BarValue> bars;
+  std::vector<plot::BarValue> bars;
   for (std::size_t k = 0; k < t.places.size(); ++k) {
     const TeachRepeatMetrics::Place& p = t.places[k];
     char label[64], note[64];
@@ -233,15 +233,16 @@ void WriteRecoveryPlot(const scenario::Scenario& scenario, const TeachRepeatMetr
   std::snprintf(title, sizeof(title), "%s: features recovered per crossing (%s; mean %.1f %%)",
                 scenario.scene.name.c_str(), tr.method.c_str(),
                 std::isfinite(t.recovery_rate) ? 100.0 * t.recovery_rate : 0.0);
-  WriteBarPlot(dir / "teach_repeat_recovery.png", title, "recovered of lost [%]", bars, 100.0);
+  plot::WriteBarPlot(dir / "teach_repeat_recovery.png", title, "recovered of lost [%]", bars,
+                     100.0);
 }
 
 // teach_repeat_timing.png: the repeater's time per frame along the route, with its
 // median over every 100 frames (flat when the cost does not grow with the route).
 // `frames` holds (t [s], time [ms]) and `milestone` (t [s], active milestone) per frame.
-void WriteRepeatTimePlot(const scenario::Scenario& scenario, const PlotSeries& frames,
-                         const PlotSeries& milestone, const fs::path& dir) {
-  PlotSeries medians{"median of 100 frames", {}};
+void WriteRepeatTimePlot(const scenario::Scenario& scenario, const plot::PlotSeries& frames,
+                         const plot::PlotSeries& milestone, const fs::path& dir) {
+  plot::PlotSeries medians{"median of 100 frames", {}};
   std::vector<double> block;
   for (std::size_t k = 0; k < frames.points.size(); ++k) {
     block.push_back(frames.points[k].y());
@@ -250,7 +251,7 @@ void WriteRepeatTimePlot(const scenario::Scenario& scenario, const PlotSeries& f
       block.clear();
     }
   }
-  WriteTimePlot(
+  plot::WriteTimePlot(
       dir / "teach_repeat_timing.png",
       scenario.scene.name + ": repeater time per frame (" + scenario.teach_repeat.method + ")",
       {{"repeater [ms]", {frames, medians}}, {"milestone", {milestone}}});
@@ -320,7 +321,7 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
   std::ofstream timing_csv(dir / "teach_repeat_timing.csv", std::ios::out | std::ios::trunc);
   timing_csv << "t,milestone,timing_repeater_ms\n";
   // The time plot's series, per repeat frame.
-  PlotSeries frame_ms{"per frame", {}}, milestone{"active milestone", {}};
+  plot::PlotSeries frame_ms{"per frame", {}}, milestone{"active milestone", {}};
   RunObservers extra;
   std::vector<CumulativeRecovery> counts;  // per repeat frame
   int switches_by_distance = 0;
@@ -385,7 +386,7 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
     t.taught_length_m = p.taught_length_m;
     t.map_mb_per_100m = p.taught_length_m > 0.0 ? t.map_size_mb * 100.0 / p.taught_length_m
                                                 : std::numeric_limits<double>::quiet_NaN();
-    WriteTrajectoryPlot(
+    plot::WriteTrajectoryPlot(
         dir / "teach_repeat.png",
         scenario.scene.name + ": teach & repeat (" + tr.method + ", " + t.status + ")",
         {{"taught (ground truth)", taught}, {"repeated (ground truth)", repeated}});

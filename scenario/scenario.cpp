@@ -10,7 +10,7 @@
 #include "trackbed/common/option_error.h"
 #include "trackbed/common/split_mix.h"
 #include "trackbed/navigation/navigator_factory.h"
-#include "trackbed/sim/terrain_detail.h"
+#include "trackbed/render/terrain_detail.h"
 #include "trackbed/sim/terrain_material.h"
 
 namespace trackbed::scenario {
@@ -335,7 +335,7 @@ void Scenario::Validate(DriveSource drive_source) const {
     }
   }
   if (robot.stereo.enabled && !(scene.appearance.terrain_full_detail_m > 0.0) &&
-      scene.terrain.cells() > sim::TerrainDetail::kMaxCells) {
+      scene.terrain.cells() > render::TerrainDetail::kMaxCells) {
     throw OptionError("scene.terrain.cell_size_m",
                       "gives " + option_check::Describe(scene.terrain.cells() / 1e6) +
                           " million cells; with scene.appearance.terrain_full_detail_m 0 the "

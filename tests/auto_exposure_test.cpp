@@ -13,8 +13,8 @@
 #include "render_test_scene.h"
 #include "trackbed/common/option_error.h"
 #include "trackbed/common/units.h"
-#include "trackbed/sim/camera_exposure.h"
-#include "trackbed/sim/renderer.h"
+#include "trackbed/render/camera_exposure.h"
+#include "trackbed/render/renderer.h"
 
 namespace trackbed::robot {
 namespace {
@@ -100,14 +100,15 @@ double RampLength(const GrayImage& image, int row, double bright) {
 TEST(AutoExposureTest, TheBlurFollowsTheExposureTimeItChose) {
   // A 1 m plate 4 m ahead, 100 m above the floor (out of view), against a black sky.
   const sim::World world =
-      sim::test::FlatWorld({sim::test::Plate({4.0, 0.0, 100.0}, 1.0, 1.0, "plain_paint")});
-  const sim::SceneAppearance flat = sim::test::AmbientOnly();
+      render::test::FlatWorld({render::test::Plate({4.0, 0.0, 100.0}, 1.0, 1.0, "plain_paint")});
+  const render::SceneAppearance flat = render::test::AmbientOnly();
   const geometry::PinholeCamera K =
       geometry::PinholeCamera::FromFieldOfView(640, 480, units::Radians(80.0));
-  const geometry::PinholeCamera render = sim::RenderCameraFor(K, 8);
-  sim::Renderer renderer(world, flat, {}, 3, render.width_px, render.height_px, 0.05, 120.0);
-  sim::CameraExposure camera(K, render, 32, 0.0);
-  sim::BodyMotion motion;
+  const geometry::PinholeCamera render_camera = render::RenderCameraFor(K, 8);
+  render::Renderer renderer(world, flat, {}, 3, render_camera.width_px, render_camera.height_px,
+                            0.05, 120.0);
+  render::CameraExposure camera(K, render_camera, 32, 0.0);
+  render::BodyMotion motion;
   motion.T_world_body.translation() = Eigen::Vector3d(0, 0, 100.0);
   motion.omega_world = {0.0, 0.0, 1.0};
   Eigen::Isometry3d T_body_camera = Eigen::Isometry3d::Identity();

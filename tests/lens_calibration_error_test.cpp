@@ -14,8 +14,8 @@
 #include <gtest/gtest.h>
 
 #include "trackbed/common/units.h"
+#include "trackbed/render/sensor_warp.h"
 #include "trackbed/robot/as_built.h"
-#include "trackbed/sim/sensor_warp.h"
 
 namespace trackbed::robot {
 namespace {
@@ -53,7 +53,7 @@ double RmsDisplacementError(const geometry::PinholeCamera& built,
 bool InvertibleOverTheImage(geometry::PinholeCamera K, const geometry::LensDistortion& lens) {
   K.distortion = lens;
   try {
-    sim::RenderCameraFor(K, 0);
+    render::RenderCameraFor(K, 0);
   } catch (const std::invalid_argument&) {
     return false;
   }

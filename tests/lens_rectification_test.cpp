@@ -14,17 +14,17 @@
 #include "trackbed/perception/lens_undistorter.h"
 #include "trackbed/perception/opencv_views.h"
 #include "trackbed/perception/stereo_rectifier.h"
+#include "trackbed/render/camera_exposure.h"
+#include "trackbed/render/renderer.h"
 #include "trackbed/robot/as_built.h"
 #include "trackbed/robot/stereo_rig.h"
-#include "trackbed/sim/camera_exposure.h"
-#include "trackbed/sim/renderer.h"
 
 namespace trackbed {
 namespace {
 
 // A square plate of uniform paint facing the cameras, its front face centred at `c`.
 sim::StaticObject Plate(const Eigen::Vector3d& c, double side) {
-  return sim::test::Plate(c, side, side, "plain_paint");
+  return render::test::Plate(c, side, side, "plain_paint");
 }
 
 // Grey-level centroid of a window of `image` around (u, v).
@@ -50,8 +50,8 @@ struct PairError {
 PairError Measure(const calibration::StereoCalibration& as_built,
                   const calibration::StereoCalibration& given,
                   const robot::StereoRigOptions& options) {
-  const sim::BodyMotion body = [] {
-    sim::BodyMotion m;  // 100 m up: the floor is out of view
+  const render::BodyMotion body = [] {
+    render::BodyMotion m;  // 100 m up: the floor is out of view
     m.T_world_body.translation() = Eigen::Vector3d(0, 0, 100.0);
     return m;
   }();
@@ -66,16 +66,16 @@ PairError Measure(const calibration::StereoCalibration& as_built,
   for (const Eigen::Vector2d& p : xy) {
     plates.push_back(Plate(T_world_left * Eigen::Vector3d(p.x(), p.y(), depth), side));
   }
-  const sim::World world = sim::test::FlatWorld(plates);
-  const sim::SceneAppearance flat = sim::test::AmbientOnly();
-  const geometry::PinholeCamera left_render = sim::RenderCameraFor(rig.intrinsics(), 0);
-  const geometry::PinholeCamera right_render = sim::RenderCameraFor(rig.right_intrinsics(), 0);
+  const sim::World world = render::test::FlatWorld(plates);
+  const render::SceneAppearance flat = render::test::AmbientOnly();
+  const geometry::PinholeCamera left_render = render::RenderCameraFor(rig.intrinsics(), 0);
+  const geometry::PinholeCamera right_render = render::RenderCameraFor(rig.right_intrinsics(), 0);
   const int w = std::max(left_render.width_px, right_render.width_px);
   const int h = std::max(left_render.height_px, right_render.height_px);
-  sim::Renderer renderer(world, flat, {}, 3, w, h, 0.05, 120.0);
-  sim::CameraExposure left_camera(rig.intrinsics(), sim::GrownTo(left_render, w, h), 1, 0.0);
-  sim::CameraExposure right_camera(rig.right_intrinsics(), sim::GrownTo(right_render, w, h), 1,
-                                   0.0);
+  render::Renderer renderer(world, flat, {}, 3, w, h, 0.05, 120.0);
+  render::CameraExposure left_camera(rig.intrinsics(), render::GrownTo(left_render, w, h), 1, 0.0);
+  render::CameraExposure right_camera(rig.right_intrinsics(), render::GrownTo(right_render, w, h),
+                                      1, 0.0);
   GrayImage left, right;
   left_camera.Render(renderer, body, rig.T_body_left(), 0.0, 0.0, &left);
   right_camera.Render(renderer, body, rig.T_body_right(), 0.0, 0.0, &right);
@@ -145,12 +145,12 @@ TEST(LensRectificationTest, OneCameraUndistortedLandsMarkersWhereThePinholeDoes)
   const std::vector<Eigen::Vector2d> xy = {{0.0, 0.0}, {1.0, 0.1}, {-1.3, 0.6}, {1.25, -0.95}};
   std::vector<sim::StaticObject> plates;
   for (const Eigen::Vector2d& p : xy) plates.push_back(Plate({depth, -p.x(), 100.0 - p.y()}, side));
-  const sim::World world = sim::test::FlatWorld(plates);
-  const geometry::PinholeCamera render = sim::RenderCameraFor(K, 0);
-  sim::Renderer renderer(world, sim::test::AmbientOnly(), {}, 3, render.width_px, render.height_px,
-                         0.05, 120.0);
-  sim::CameraExposure camera(K, render, 1, 0.0);
-  sim::BodyMotion body;
+  const sim::World world = render::test::FlatWorld(plates);
+  const geometry::PinholeCamera render_camera = render::RenderCameraFor(K, 0);
+  render::Renderer renderer(world, render::test::AmbientOnly(), {}, 3, render_camera.width_px,
+                            render_camera.height_px, 0.05, 120.0);
+  render::CameraExposure camera(K, render_camera, 1, 0.0);
+  render::BodyMotion body;
   body.T_world_body.translation() = Eigen::Vector3d(0, 0, 100.0);
   Eigen::Isometry3d T_body_camera = Eigen::Isometry3d::Identity();
   T_body_camera.linear().col(0) = -Eigen::Vector3d::UnitY();

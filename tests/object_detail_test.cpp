@@ -1,7 +1,7 @@
 // Far versions of trees: how far their outlines can depart from the full version's,
 // checked against the outlines of the spheres and cylinders as the renderer draws
 // them, and the distances that gives.
-#include "trackbed/sim/object_detail.h"
+#include "trackbed/render/object_detail.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 #include <Eigen/Core>
 
-namespace trackbed::sim {
+namespace trackbed::render {
 namespace {
 
 // The vertices of a unit sphere as the renderer's DrawSphere places them: rings every
@@ -84,4 +84,4 @@ TEST(ObjectDetailTest, TheParksTreesCoarsenOnlyFarAway) {
 }
 
 }  // namespace
-}  // namespace trackbed::sim
+}  // namespace trackbed::render

@@ -1,7 +1,7 @@
 // Procedural textures: bit-exact determinism, seamless tiling, the contrast split the
 // visual-odometry experiment relies on (indoor surfaces nearly featureless, outdoor ones
 // rich in corners), and input checks.
-#include "trackbed/sim/procedural_texture.h"
+#include "trackbed/render/procedural_texture.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,7 +15,7 @@
 
 #include <gtest/gtest.h>
 
-namespace trackbed::sim {
+namespace trackbed::render {
 namespace {
 
 // Indoor appearances that must starve a corner detector.
@@ -353,4 +353,4 @@ TEST(ProceduralTextureTest, PlainTextureRejectsAlbedoOutsideZeroToOne) {
 }
 
 }  // namespace
-}  // namespace trackbed::sim
+}  // namespace trackbed::render

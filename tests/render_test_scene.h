@@ -8,18 +8,18 @@
 
 #include <Eigen/Core>
 
-#include "trackbed/sim/renderer.h"
+#include "trackbed/render/renderer.h"
 #include "trackbed/sim/world.h"
 
-namespace trackbed::sim::test {
+namespace trackbed::render::test {
 
 /// A flat floor over `extent_m` (x_min, y_min, x_max, y_max) with `objects` on it.
-inline World FlatWorld(std::vector<StaticObject> objects,
-                       const Eigen::Vector4d& extent_m = {-2, -6, 12, 6}) {
-  TerrainOptions t;
+inline sim::World FlatWorld(std::vector<sim::StaticObject> objects,
+                            const Eigen::Vector4d& extent_m = {-2, -6, 12, 6}) {
+  sim::TerrainOptions t;
   t.extent_m = extent_m;
   t.cell_size_m = 0.5;
-  return World(WorldOptions{}, Terrain(t, 1), std::move(objects));
+  return sim::World(sim::WorldOptions{}, sim::Terrain(t, 1), std::move(objects));
 }
 
 /// Ambient light only (flat shading), a black sky, no tree crowns.
@@ -34,9 +34,9 @@ inline SceneAppearance AmbientOnly() {
 
 /// A thin plate facing −x (towards a camera looking along +x), its front face centred at
 /// `c`, `width` across (y) and `height` tall (1 mm thick, so no other face shows).
-inline StaticObject Plate(const Eigen::Vector3d& c, double width, double height,
-                          const std::string& appearance) {
-  StaticObject o;
+inline sim::StaticObject Plate(const Eigen::Vector3d& c, double width, double height,
+                               const std::string& appearance) {
+  sim::StaticObject o;
   o.kind = "box";
   o.appearance = appearance;
   o.center_m = c.head<2>() + Eigen::Vector2d(0.0005, 0);  // front face at x = c.x
@@ -46,4 +46,4 @@ inline StaticObject Plate(const Eigen::Vector3d& c, double width, double height,
   return o;
 }
 
-}  // namespace trackbed::sim::test
+}  // namespace trackbed::render::test

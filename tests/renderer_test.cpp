@@ -1,9 +1,9 @@
 // The OSMesa renderer: geometry agrees with the pinhole model to sub-pixel,
 // depth is metric, stereo disparity is f·b/Z, images are reproducible.
-#include "trackbed/sim/renderer.h"
-#include "trackbed/sim/camera_exposure.h"
-#include "trackbed/sim/object_detail.h"
-#include "trackbed/sim/scene_lighting.h"
+#include "trackbed/render/renderer.h"
+#include "trackbed/render/camera_exposure.h"
+#include "trackbed/render/object_detail.h"
+#include "trackbed/render/scene_lighting.h"
 
 #include <algorithm>
 #include <cmath>
@@ -19,15 +19,17 @@
 #include "render_test_scene.h"
 #include "trackbed/robot/stereo_rig.h"
 
-namespace trackbed::sim {
+namespace trackbed::render {
 namespace {
 
-World MakeWorld(std::vector<StaticObject> objects) { return test::FlatWorld(std::move(objects)); }
+sim::World MakeWorld(std::vector<sim::StaticObject> objects) {
+  return test::FlatWorld(std::move(objects));
+}
 
 SceneAppearance Flat() { return test::AmbientOnly(); }
 
 // A square plate of side `side` facing the cameras, its front face centred at `c`.
-StaticObject Marker(const Eigen::Vector3d& c, double side, const std::string& appearance) {
+sim::StaticObject Marker(const Eigen::Vector3d& c, double side, const std::string& appearance) {
   return test::Plate(c, side, side, appearance);
 }
 
@@ -47,7 +49,7 @@ Eigen::Isometry3d Body() {
 
 TEST(RendererTest, MarkerAppearsWherePinholeModelPredictsInBothCameras) {
   const Eigen::Vector3d marker(5.0, 0.4, 1.35);
-  World world = MakeWorld({Marker(marker, 0.2, "ceiling")});
+  sim::World world = MakeWorld({Marker(marker, 0.2, "ceiling")});
   const robot::StereoRig rig = LevelRig();
   Renderer renderer(world, Flat(), {}, 3, 640, 480, 0.05, 120.0);
   for (const Eigen::Isometry3d& T_body_cam : {rig.T_body_left(), rig.T_body_right()}) {
@@ -78,8 +80,8 @@ TEST(RendererTest, DepthImageIsMetricDepthAlongTheOpticalAxis) {
   const robot::StereoRig rig = LevelRig();
   const Eigen::Isometry3d T_world_cam = Body() * rig.T_body_left();
   const double wall_x = T_world_cam.translation().x() + 5.0;
-  StaticObject wall = Marker({wall_x, 0.0, 1.5}, 4.0, "brick");
-  World world = MakeWorld({wall});
+  sim::StaticObject wall = Marker({wall_x, 0.0, 1.5}, 4.0, "brick");
+  sim::World world = MakeWorld({wall});
   Renderer renderer(world, Flat(), {}, 3, 640, 480, 0.05, 120.0);
   DepthImage depth;
   renderer.Render(rig.intrinsics(), T_world_cam, 0.0, nullptr, &depth);
@@ -101,7 +103,8 @@ TEST(RendererTest, StereoDisparityOfATexturedPlaneIsFocalTimesBaselineOverDepth)
   const robot::StereoRig rig = LevelRig();
   const Eigen::Isometry3d T_world_left = Body() * rig.T_body_left();
   const double z = 4.0;
-  World world = MakeWorld({Marker({T_world_left.translation().x() + z, 0.0, 1.0}, 4.0, "brick")});
+  sim::World world =
+      MakeWorld({Marker({T_world_left.translation().x() + z, 0.0, 1.0}, 4.0, "brick")});
   SceneAppearance lit;
   lit.sky_gray = 0.0;
   Renderer renderer(world, lit, {}, 3, 640, 480, 0.05, 120.0);
@@ -121,7 +124,7 @@ TEST(RendererTest, StereoDisparityOfATexturedPlaneIsFocalTimesBaselineOverDepth)
 
 TEST(RendererTest, SameSceneAndSeedGiveIdenticalBytesWithoutADisplay) {
   unsetenv("DISPLAY");
-  World world = MakeWorld({Marker({5.0, 0.0, 1.0}, 1.0, "brick")});
+  sim::World world = MakeWorld({Marker({5.0, 0.0, 1.0}, 1.0, "brick")});
   const robot::StereoRig rig = LevelRig();
   GrayImage a, b, c;
   {
@@ -140,7 +143,7 @@ TEST(RendererTest, SameSceneAndSeedGiveIdenticalBytesWithoutADisplay) {
 // ground's pixels as they are, changes far ones, and gives both cameras of a
 // pair the same ground.
 TEST(RendererTest, FarTerrainDetailLeavesTheNearGroundUnchanged) {
-  TerrainOptions t;
+  sim::TerrainOptions t;
   t.extent_m = {-2, -8, 16, 8};
   t.cell_size_m = 0.1;
   t.roughness.undulation_amplitude_m = 0.25;
@@ -148,7 +151,7 @@ TEST(RendererTest, FarTerrainDetailLeavesTheNearGroundUnchanged) {
   t.roughness.bump_amplitude_m = 0.03;
   t.roughness.bump_wavelength_m = 0.7;
   t.default_material = "grass";
-  const World world(WorldOptions{}, Terrain(t, 2), {});
+  const sim::World world(sim::WorldOptions{}, sim::Terrain(t, 2), {});
   robot::StereoRigOptions o;
   o.mount_m = {0.0, 0.0, 0.5};
   const robot::StereoRig rig(o);
@@ -202,10 +205,10 @@ TEST(RendererTest, FarTreesMoveTheirSilhouettesOnlyAtTheirEdges) {
     double x, y, height;
   };
   const Placed placed[] = {{14, -3, 6}, {60, 4, 3}, {95, -6, 5}, {112, 8, 3}};
-  std::vector<StaticObject> trees;
+  std::vector<sim::StaticObject> trees;
   for (const Placed& p : placed) {
-    StaticObject tree;
-    tree.shape = StaticObject::Shape::kCylinder;
+    sim::StaticObject tree;
+    tree.shape = sim::StaticObject::Shape::kCylinder;
     tree.kind = "tree";
     tree.appearance = "bark";
     tree.center_m = {p.x, p.y};
@@ -213,7 +216,7 @@ TEST(RendererTest, FarTreesMoveTheirSilhouettesOnlyAtTheirEdges) {
     tree.height_m = p.height;
     trees.push_back(tree);
   }
-  const World world = test::FlatWorld(trees, {-2, -20, 130, 20});
+  const sim::World world = test::FlatWorld(trees, {-2, -20, 130, 20});
   const robot::StereoRig rig = LevelRig();
   const geometry::PinholeCamera K = rig.intrinsics();
   SceneAppearance full = Flat(), far = Flat();
@@ -221,7 +224,7 @@ TEST(RendererTest, FarTreesMoveTheirSilhouettesOnlyAtTheirEdges) {
   far.object_far_error_px = 0.5;
   // The level each tree is drawn at, by the rule the renderer applies.
   std::vector<int> levels;
-  for (const StaticObject& o : world.objects()) {
+  for (const sim::StaticObject& o : world.objects()) {
     const double crown = TreeCrownRadius(o), reach = std::max(crown, o.radius_m);
     int level = 0;
     for (std::size_t l = 1; l < kTreeLevels.size(); ++l) {
@@ -269,10 +272,10 @@ TEST(RendererTest, FarTreesMoveTheirSilhouettesOnlyAtTheirEdges) {
 // compiled: made while compiling, its upload went into the list of the first tree, and
 // every crown drawn before that tree first came into view had no texture.
 TEST(RendererTest, ATreeLooksTheSameWhetherOrNotTheFirstTreeWasSeenBefore) {
-  std::vector<StaticObject> trees;
+  std::vector<sim::StaticObject> trees;
   for (const Eigen::Vector2d& at : {Eigen::Vector2d(-8, 0), Eigen::Vector2d(8, 0)}) {
-    StaticObject tree;
-    tree.shape = StaticObject::Shape::kCylinder;
+    sim::StaticObject tree;
+    tree.shape = sim::StaticObject::Shape::kCylinder;
     tree.kind = "tree";
     tree.appearance = "bark";
     tree.center_m = at;
@@ -280,7 +283,7 @@ TEST(RendererTest, ATreeLooksTheSameWhetherOrNotTheFirstTreeWasSeenBefore) {
     tree.height_m = 3.0;
     trees.push_back(tree);
   }
-  const World world = test::FlatWorld(trees, {-12, -6, 12, 6});
+  const sim::World world = test::FlatWorld(trees, {-12, -6, 12, 6});
   SceneAppearance a;
   a.tree_crowns = true;
   const robot::StereoRig rig = LevelRig();
@@ -336,28 +339,28 @@ Eigen::Isometry3d LookAt(const Eigen::Vector3d& eye, const Eigen::Vector3d& targ
 // show what is behind it: every shape must be seen, from every side, at the
 // distance of its near surface.
 TEST(RendererTest, EveryShapeIsSeenFromEverySideWithBackFacesCulled) {
-  StaticObject box;
+  sim::StaticObject box;
   box.center_m = {0, 0};
   box.base_z_m = 0;
   box.size_m = {1.2, 0.6, 1.0};
   box.yaw_rad = 0.5;
-  StaticObject post;
-  post.shape = StaticObject::Shape::kCylinder;
+  sim::StaticObject post;
+  post.shape = sim::StaticObject::Shape::kCylinder;
   post.kind = "post";
   post.center_m = {6, 0};
   post.base_z_m = 0;
   post.radius_m = 0.3;
   post.height_m = 2.0;
-  StaticObject tree = post;
+  sim::StaticObject tree = post;
   tree.kind = "tree";
   tree.center_m = {0, 8};
   tree.height_m = 1.2;  // crown of radius 0.6 centred on the trunk's top
-  OccluderSpec person;
+  sim::OccluderSpec person;
   person.waypoints = {{6, 8}};
-  TerrainOptions t;
+  sim::TerrainOptions t;
   t.extent_m = {-8, -8, 14, 16};
   t.cell_size_m = 0.5;
-  const World world(WorldOptions{}, Terrain(t, 1), {box, post, tree});
+  const sim::World world(sim::WorldOptions{}, sim::Terrain(t, 1), {box, post, tree});
   SceneAppearance a = Flat();
   a.tree_crowns = true;
   Renderer renderer(world, a, {person}, 3, 640, 480, 0.05, 120.0);
@@ -422,8 +425,8 @@ TEST(RendererTest, EveryShapeIsSeenFromEverySideWithBackFacesCulled) {
 // left is brighter on its left half (a surface wound the wrong way would be lit
 // from inside, as the posts and trunks were before back faces were culled).
 TEST(RendererTest, APostIsBrighterOnItsSunlitSide) {
-  StaticObject post;
-  post.shape = StaticObject::Shape::kCylinder;
+  sim::StaticObject post;
+  post.shape = sim::StaticObject::Shape::kCylinder;
   post.kind = "post";
   post.appearance = "plain_test";  // no texture of that name: plain grey
   post.center_m = {4, 0};
@@ -436,7 +439,7 @@ TEST(RendererTest, APostIsBrighterOnItsSunlitSide) {
   a.sun_azimuth_deg = 90;  // from +y: the left of a camera looking along +x
   a.sun_elevation_deg = 10;
   a.sky_gray = 0.0;
-  const World world = MakeWorld({post});
+  const sim::World world = MakeWorld({post});
   Renderer renderer(world, a, {}, 3, 640, 480, 0.05, 120.0);
   const robot::StereoRig rig = LevelRig();
   GrayImage img;
@@ -456,8 +459,8 @@ TEST(RendererTest, APostIsBrighterOnItsSunlitSide) {
 }
 
 TEST(RendererTest, WalkingOccluderMovesThroughTheView) {
-  World world = MakeWorld({});
-  OccluderSpec person;
+  sim::World world = MakeWorld({});
+  sim::OccluderSpec person;
   person.waypoints = {{4.0, -3.0}, {4.0, 3.0}};
   person.speed_mps = 1.0;
   const robot::StereoRig rig = LevelRig();
@@ -485,4 +488,4 @@ TEST(RendererTest, WalkingOccluderMovesThroughTheView) {
 }
 
 }  // namespace
-}  // namespace trackbed::sim
+}  // namespace trackbed::render

@@ -8,9 +8,9 @@
 #include <opencv2/core.hpp>
 
 #include "trackbed/perception/harris_corners.h"
+#include "trackbed/render/renderer.h"
 #include "trackbed/robot/stereo_rig.h"
 #include "trackbed/scenario/scenario_yaml.h"
-#include "trackbed/sim/renderer.h"
 
 namespace trackbed {
 namespace {
@@ -21,9 +21,9 @@ double MeanCornersAlongRoute(const std::string& file, int views, double min_resp
       scenario::LoadScenario(std::string(TRACKBED_SOURCE_DIR) + "/scenes/" + file);
   const sim::World world(s.scene.world, sim::Terrain(s.scene.terrain, s.seed), s.scene.objects);
   const robot::StereoRig rig(s.robot.stereo);
-  sim::Renderer renderer(world, s.scene.appearance, s.scene.occluders, s.seed,
-                         s.robot.stereo.width_px, s.robot.stereo.height_px, s.robot.stereo.near_m,
-                         s.robot.stereo.far_m);
+  render::Renderer renderer(world, s.scene.appearance, s.scene.occluders, s.seed,
+                            s.robot.stereo.width_px, s.robot.stereo.height_px,
+                            s.robot.stereo.near_m, s.robot.stereo.far_m);
   const std::vector<Eigen::Vector2d>& w = s.drive.waypoints;
   std::vector<double> cumulative{0.0};
   for (std::size_t k = 1; k < w.size(); ++k) {

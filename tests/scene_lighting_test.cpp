@@ -1,7 +1,7 @@
-// Light that changes (sim/scene_lighting.h): the baked shadows fall where the sun's
+// Light that changes (render/scene_lighting.h): the baked shadows fall where the sun's
 // geometry puts them, a zone's gain and the exposure scale the rendered grey levels, and
 // the lit shader draws what the fixed-function pipeline draws where nothing changes.
-#include "trackbed/sim/scene_lighting.h"
+#include "trackbed/render/scene_lighting.h"
 
 #include <cmath>
 #include <cstdio>
@@ -10,14 +10,14 @@
 #include <gtest/gtest.h>
 
 #include "render_test_scene.h"
-#include "trackbed/sim/renderer.h"
+#include "trackbed/render/renderer.h"
 
-namespace trackbed::sim {
+namespace trackbed::render {
 namespace {
 
-StaticObject Post(const Eigen::Vector2d& c, double radius, double height, const char* kind) {
-  StaticObject o;
-  o.shape = StaticObject::Shape::kCylinder;
+sim::StaticObject Post(const Eigen::Vector2d& c, double radius, double height, const char* kind) {
+  sim::StaticObject o;
+  o.shape = sim::StaticObject::Shape::kCylinder;
   o.kind = kind;
   o.center_m = c;
   o.base_z_m = 0.0;
@@ -46,7 +46,7 @@ TEST(SceneLightingTest, AZoneWeighsOneInsideZeroOutsideAndAHalfOnItsBorder) {
 // A post and a tree in the sun from +x at 45°: each shadow lies towards −x, as long as
 // the object is tall, as wide as it is; the crown's (a sphere) is an ellipse.
 TEST(SceneLightingTest, ShadowsFallWhereTheSunsGeometryPutsThem) {
-  const World world = test::FlatWorld(
+  const sim::World world = test::FlatWorld(
       {Post({0, 0}, 0.2, 2.0, "post"), Post({0, 6}, 0.1, 3.0, "tree")}, {-6, -3, 3, 9});
   SceneLighting lighting;
   lighting.texel_m = 0.05;
@@ -82,7 +82,7 @@ Eigen::Isometry3d LookingDown(double x, double y) {
   return T;
 }
 
-GrayImage RenderDown(const World& world, const SceneAppearance& appearance, double exposure,
+GrayImage RenderDown(const sim::World& world, const SceneAppearance& appearance, double exposure,
                      double x) {
   const geometry::PinholeCamera K = geometry::PinholeCamera::FromFieldOfView(160, 120, M_PI / 3);
   Renderer renderer(world, appearance, {}, 3, K.width_px, K.height_px, 0.05, 50.0);
@@ -107,7 +107,7 @@ double WorstDifference(const GrayImage& a, const GrayImage& b, double scale,
 }
 
 TEST(SceneLightingTest, TheLitShaderDrawsWhatTheFixedPipelineDraws) {
-  const World world = test::FlatWorld({});
+  const sim::World world = test::FlatWorld({});
   SceneAppearance plain;
   plain.sun_elevation_deg = 60.0;
   plain.ambient = 0.3;
@@ -123,7 +123,7 @@ TEST(SceneLightingTest, TheLitShaderDrawsWhatTheFixedPipelineDraws) {
 // A zone of gain 0.5 over x < 4 under the camera (its border on the image's middle
 // column), and the exposure: each scales the grey levels it covers.
 TEST(SceneLightingTest, AZonesGainAndTheExposureScaleTheGreyLevels) {
-  const World world = test::FlatWorld({});
+  const sim::World world = test::FlatWorld({});
   SceneAppearance lit = test::AmbientOnly();
   lit.ambient = 0.9;
   lit.lighting.emplace();
@@ -162,8 +162,8 @@ TEST(SceneLightingTest, AZonesGainAndTheExposureScaleTheGreyLevels) {
 // + diffuse · sin elevation) as bright as without the shadow.
 TEST(SceneLightingTest, AShadowTakesTheSunsLightAndLeavesTheSkys) {
   // Out of the camera's view, 2 m off its axis.
-  StaticObject post = Post({4, 2}, 0.3, 6.0, "post");
-  const World world = test::FlatWorld({post});
+  sim::StaticObject post = Post({4, 2}, 0.3, 6.0, "post");
+  const sim::World world = test::FlatWorld({post});
   SceneAppearance lit;
   lit.sun_azimuth_deg = 90.0;  // from +y: the shadow falls along −y, under the camera
   lit.sun_elevation_deg = 60.0;
@@ -190,4 +190,4 @@ TEST(SceneLightingTest, AShadowTakesTheSunsLightAndLeavesTheSkys) {
 }
 
 }  // namespace
-}  // namespace trackbed::sim
+}  // namespace trackbed::render

@@ -1,8 +1,8 @@
-// What the sensor records of a render (sim/sensor_warp.h, sim/camera_exposure.h): a
+// What the sensor records of a render (render/sensor_warp.h, render/camera_exposure.h): a
 // marker through a lens lands where the lens model puts it, a rolling shutter shears a
 // vertical edge by line delay × rows × ω × f, the warp in time matches renders of each
 // band of rows at its own pose, and an exposure smears an edge by the motion during it.
-#include "trackbed/sim/sensor_warp.h"
+#include "trackbed/render/sensor_warp.h"
 
 #include <cmath>
 #include <cstdio>
@@ -14,15 +14,15 @@
 
 #include "render_test_scene.h"
 #include "trackbed/common/units.h"
+#include "trackbed/render/camera_exposure.h"
+#include "trackbed/render/renderer.h"
 #include "trackbed/robot/stereo_rig.h"
-#include "trackbed/sim/camera_exposure.h"
-#include "trackbed/sim/renderer.h"
 
-namespace trackbed::sim {
+namespace trackbed::render {
 namespace {
 
 // A floor 80 m across, the scene's plates (render_test_scene.h).
-World MakeWorld(std::vector<StaticObject> objects) {
+sim::World MakeWorld(std::vector<sim::StaticObject> objects) {
   return test::FlatWorld(std::move(objects), {-2, -40, 40, 40});
 }
 
@@ -100,12 +100,12 @@ TEST(SensorWarpTest, AMarkerThroughTheLensLandsWhereTheModelPredicts) {
   // Marker centres in the camera frame (x right, y down), out to 40 px from a corner.
   const std::vector<Eigen::Vector2d> xy = {{0.0, 0.0},  {1.2, 0.0},   {-2.4, 0.9},
                                            {2.6, -1.5}, {-2.8, -2.0}, {3.0, 2.1}};
-  std::vector<StaticObject> plates;
+  std::vector<sim::StaticObject> plates;
   for (const Eigen::Vector2d& p : xy) {
     // Camera (x, y, z) is world (z, −x, 100 − y).
     plates.push_back(Plate({depth, -p.x(), 100.0 - p.y()}, side, side, "plain_paint"));
   }
-  const World world = MakeWorld(plates);
+  const sim::World world = MakeWorld(plates);
   const geometry::PinholeCamera render = RenderCameraFor(K, 0);
   ASSERT_GT(render.width_px, 640);
   Renderer renderer(world, Flat(), {}, 3, render.width_px, render.height_px, 0.05, 120.0);
@@ -143,7 +143,7 @@ double EdgeColumn(const GrayImage& image, int v, double bright) {
 // shifts the edge between the first and the last row by line delay × (H − 1) × ω × f.
 TEST(SensorWarpTest, ARollingShutterShearsAVerticalEdgeByTheYawDuringReadout) {
   // A plate 30 m ahead, 40 m wide and tall, its left edge straight ahead.
-  const World world = MakeWorld({Plate({30.0, -20.0, 100.0}, 40.0, 40.0, "ceiling")});
+  const sim::World world = MakeWorld({Plate({30.0, -20.0, 100.0}, 40.0, 40.0, "ceiling")});
   const geometry::PinholeCamera K = Camera();
   const geometry::PinholeCamera render = RenderCameraFor(K, 4);
   Renderer renderer(world, Flat(), {}, 3, render.width_px, render.height_px, 0.05, 120.0);
@@ -185,9 +185,9 @@ std::pair<double, double> Difference(const GrayImage& a, const GrayImage& b) {
 // warp in time against renders of each 4-row band at its own pose, and against the
 // global-shutter image (what ignoring the rolling shutter would give).
 TEST(SensorWarpTest, TheWarpInTimeMatchesRendersOfEachBandAtItsPose) {
-  const World world = MakeWorld({Plate({2.5, 0.6, 1.0}, 0.5, 1.2, "brick"),
-                                 Plate({4.0, -0.5, 0.8}, 0.8, 0.8, "wood"),
-                                 Plate({12.0, 1.5, 2.0}, 3.0, 4.0, "bark")});
+  const sim::World world = MakeWorld({Plate({2.5, 0.6, 1.0}, 0.5, 1.2, "brick"),
+                                      Plate({4.0, -0.5, 0.8}, 0.8, 0.8, "wood"),
+                                      Plate({12.0, 1.5, 2.0}, 3.0, 4.0, "bark")});
   const geometry::PinholeCamera K = Camera();
   const geometry::PinholeCamera render = RenderCameraFor(K, 4);
   SceneAppearance lit = Flat();
@@ -226,7 +226,7 @@ TEST(SensorWarpTest, TheWarpInTimeMatchesRendersOfEachBandAtItsPose) {
 // An exposure of T seconds while the camera yaws at ω smears a vertical edge into a
 // ramp ω·T·fx wide and leaves its mean position; an instant is the render itself.
 TEST(SensorWarpTest, AnExposureSmearsAnEdgeByTheCameraMotionDuringIt) {
-  const World world = MakeWorld({Plate({4.0, 0.0, 1.3}, 1.0, 1.0, "ceiling")});
+  const sim::World world = MakeWorld({Plate({4.0, 0.0, 1.3}, 1.0, 1.0, "ceiling")});
   const geometry::PinholeCamera K = Camera();
   Renderer plain_renderer(world, Flat(), {}, 3, 640, 480, 0.05, 120.0);
   BodyMotion motion = AtRest();
@@ -270,7 +270,7 @@ TEST(SensorWarpTest, AnExposureSmearsAnEdgeByTheCameraMotionDuringIt) {
 // Supersampled twice, each pixel is the mean of the 2 × 2 render pixels it covers
 // (to rounding): what a pixel integrating over its area records.
 TEST(SensorWarpTest, ASupersampledPixelIsTheMeanOfTheRenderPixelsItCovers) {
-  const World world = MakeWorld({Plate({3.0, 0.4, 1.2}, 0.7, 0.5, "brick")});
+  const sim::World world = MakeWorld({Plate({3.0, 0.4, 1.2}, 0.7, 0.5, "brick")});
   const geometry::PinholeCamera K = Camera();
   const geometry::PinholeCamera fine = Supersampled(K, 2);
   ASSERT_EQ(fine.width_px, 1280);
@@ -291,4 +291,4 @@ TEST(SensorWarpTest, ASupersampledPixelIsTheMeanOfTheRenderPixelsItCovers) {
 }
 
 }  // namespace
-}  // namespace trackbed::sim
+}  // namespace trackbed::render

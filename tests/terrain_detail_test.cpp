@@ -1,7 +1,7 @@
 // The rendered terrain's levels of detail: exact near the rig, no cracks
 // between chunks meshed at different levels, coarse meshes equal to the blended
 // fine surface, and a ground that changes by fractions of a millimetre per frame.
-#include "trackbed/sim/terrain_detail.h"
+#include "trackbed/render/terrain_detail.h"
 
 #include <algorithm>
 #include <array>
@@ -11,12 +11,12 @@
 
 #include <gtest/gtest.h>
 
-namespace trackbed::sim {
+namespace trackbed::render {
 namespace {
 
 // The outdoor park's ground (scenes/outdoor.yaml), with a second material.
-TerrainOptions Park() {
-  TerrainOptions o;
+sim::TerrainOptions Park() {
+  sim::TerrainOptions o;
   o.extent_m = {-13, -11, 13, 11};
   o.cell_size_m = 0.1;
   o.roughness.undulation_amplitude_m = 0.25;
@@ -24,7 +24,7 @@ TerrainOptions Park() {
   o.roughness.bump_amplitude_m = 0.03;
   o.roughness.bump_wavelength_m = 0.7;
   o.default_material = "grass";
-  MaterialRegion sand;
+  sim::MaterialRegion sand;
   sand.material = "dry_sand";
   sand.min_m = {-7, -6.5};
   sand.max_m = {1, 1};
@@ -51,7 +51,7 @@ double MeshHeight(const TerrainDetail::Chunk& c, const TerrainDetail::Mesh& m, i
 }
 
 TEST(TerrainDetailTest, LevelIsContinuousMonotoneAndWholeOnPlateaus) {
-  const Terrain t(Park(), 1);
+  const sim::Terrain t(Park(), 1);
   const TerrainDetail d(t, kFullDetail);
   EXPECT_EQ(d.LevelAt(0.0), 0.0);
   EXPECT_EQ(d.LevelAt(2.99), 0.0);
@@ -70,7 +70,7 @@ TEST(TerrainDetailTest, LevelIsContinuousMonotoneAndWholeOnPlateaus) {
 }
 
 TEST(TerrainDetailTest, WithinFullDetailTheDrawnGroundIsThePhysicalGround) {
-  const Terrain t(Park(), 1);
+  const sim::Terrain t(Park(), 1);
   const TerrainDetail d(t, kFullDetail);
   const Eigen::Vector2d center(4.5, 0.0);
   int checked = 0;
@@ -87,7 +87,7 @@ TEST(TerrainDetailTest, WithinFullDetailTheDrawnGroundIsThePhysicalGround) {
 }
 
 TEST(TerrainDetailTest, ChunksMeetWithoutCracksAndCoarseMeshesAreTheBlendedSurface) {
-  const Terrain t(Park(), 1);
+  const sim::Terrain t(Park(), 1);
   const TerrainDetail d(t, kFullDetail);
   const std::vector<TerrainDetail::Chunk>& chunks = d.chunks();
   int coarse = 0, shared = 0;
@@ -139,7 +139,7 @@ TEST(TerrainDetailTest, ChunksMeetWithoutCracksAndCoarseMeshesAreTheBlendedSurfa
 // leaves that edge and the two halves beside it in one triangle each; a rasterizer
 // may leave pixels open along it.
 TEST(TerrainDetailTest, ChunksMeetEdgeToEdgeWithoutTJunctions) {
-  const Terrain t(Park(), 1);
+  const sim::Terrain t(Park(), 1);
   const TerrainDetail d(t, kFullDetail);
   using Key = std::array<float, 8>;
   const auto key = [](const TerrainVertex& v) {
@@ -184,7 +184,7 @@ TEST(TerrainDetailTest, ChunksMeetEdgeToEdgeWithoutTJunctions) {
 }
 
 TEST(TerrainDetailTest, TheGroundChangesBySubMillimetresPerFrameAsTheRigMoves) {
-  const Terrain t(Park(), 1);
+  const sim::Terrain t(Park(), 1);
   const TerrainDetail d(t, kFullDetail);
   // 0.4 m/s at 10 Hz: 4 cm per frame, along a straight line across the park.
   const double cell = t.cell_size_m();
@@ -205,7 +205,7 @@ TEST(TerrainDetailTest, TheGroundChangesBySubMillimetresPerFrameAsTheRigMoves) {
 }
 
 TEST(TerrainDetailTest, FarTerrainIsDrawnWithAFractionOfTheTriangles) {
-  const Terrain t(Park(), 1);
+  const sim::Terrain t(Park(), 1);
   const TerrainDetail full(t, 0.0), lod(t, kFullDetail);
   std::size_t n_full = 0, n_lod = 0;
   TerrainDetail::Mesh m;
@@ -227,4 +227,4 @@ TEST(TerrainDetailTest, FarTerrainIsDrawnWithAFractionOfTheTriangles) {
 }
 
 }  // namespace
-}  // namespace trackbed::sim
+}  // namespace trackbed::render

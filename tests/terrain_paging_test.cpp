@@ -3,22 +3,22 @@
 // stays far enough that the ground beyond it is already at the coarsest level; the
 // first ring is that level exactly; a paged world's near ground is drawn as a small
 // world's, bit for bit; and the rings leave no more cracks than the full grid.
-#include "trackbed/sim/far_terrain.h"
-#include "trackbed/sim/terrain_window.h"
+#include "trackbed/render/far_terrain.h"
+#include "trackbed/render/terrain_window.h"
 
 #include <cmath>
 #include <cstdio>
 
 #include <gtest/gtest.h>
 
+#include "trackbed/render/renderer.h"
 #include "trackbed/robot/stereo_rig.h"
-#include "trackbed/sim/renderer.h"
 
-namespace trackbed::sim {
+namespace trackbed::render {
 namespace {
 
-TerrainOptions Hills(double half_side_m, double cell_m) {
-  TerrainOptions t;
+sim::TerrainOptions Hills(double half_side_m, double cell_m) {
+  sim::TerrainOptions t;
   t.extent_m = {-half_side_m, -half_side_m, half_side_m, half_side_m};
   t.cell_size_m = cell_m;
   t.roughness.undulation_amplitude_m = 1.0;
@@ -26,7 +26,7 @@ TerrainOptions Hills(double half_side_m, double cell_m) {
   t.roughness.bump_amplitude_m = 0.03;
   t.roughness.bump_wavelength_m = 0.7;
   t.default_material = "grass";
-  MaterialRegion sand;
+  sim::MaterialRegion sand;
   sand.material = "dry_sand";
   sand.min_m = {-30, -3};
   sand.max_m = {40, 2};
@@ -35,7 +35,7 @@ TerrainOptions Hills(double half_side_m, double cell_m) {
 }
 
 TEST(TerrainWindowTest, ASmallWorldOrFullDetailIsNotPaged) {
-  const Terrain park(Hills(13, 0.1), 1), big(Hills(100, 0.1), 1);
+  const sim::Terrain park(Hills(13, 0.1), 1), big(Hills(100, 0.1), 1);
   EXPECT_FALSE(TerrainWindow(park, 2.0).paged());
   EXPECT_FALSE(TerrainWindow(big, 0.0).paged());  // the full grid everywhere, as asked
   const auto whole = TerrainWindow(park, 2.0).Follow({50, 50}, std::nullopt);
@@ -45,7 +45,7 @@ TEST(TerrainWindowTest, ASmallWorldOrFullDetailIsNotPaged) {
 }
 
 TEST(TerrainWindowTest, TheWindowMovesInStepsAndKeepsTheCoarsestLevelBeyondIt) {
-  const Terrain t(Hills(100, 0.1), 1);
+  const sim::Terrain t(Hills(100, 0.1), 1);
   const TerrainWindow w(t, 2.0);
   ASSERT_TRUE(w.paged());
   // TerrainDetail reaches its coarsest level 12 m out with 2 m of full detail.
@@ -64,7 +64,7 @@ TEST(TerrainWindowTest, TheWindowMovesInStepsAndKeepsTheCoarsestLevelBeyondIt) {
 }
 
 TEST(FarTerrainTest, TheFirstRingIsTheNearWindowsCoarsestLevel) {
-  const Terrain t(Hills(100, 0.1), 3);
+  const sim::Terrain t(Hills(100, 0.1), 3);
   const TerrainWindow w(t, 2.0);
   const GridWindow near = w.Follow({5, 5}, std::nullopt)->window;
   const TerrainDetail detail(t, 2.0, 16, near);
@@ -89,7 +89,7 @@ TEST(FarTerrainTest, TheFirstRingIsTheNearWindowsCoarsestLevel) {
 
 // A camera `height_m` above the ground at (x, y), pitched `pitch_deg` down, turned
 // to `yaw_deg`.
-Eigen::Isometry3d Camera(const Terrain& t, double x, double y, double yaw_deg,
+Eigen::Isometry3d Camera(const sim::Terrain& t, double x, double y, double yaw_deg,
                          double height_m = 1.0, double pitch_deg = 5.0) {
   const Eigen::Matrix3d level =
       (Eigen::AngleAxisd(yaw_deg * M_PI / 180, Eigen::Vector3d::UnitZ()) *
@@ -105,12 +105,12 @@ Eigen::Isometry3d Camera(const Terrain& t, double x, double y, double yaw_deg,
 
 TEST(TerrainPagingTest, APagedWorldsNearGroundIsASmallWorldsAndPagingOpensNoCracks) {
   // 160 m x 160 m of hills at 0.2 m: the full grid is 640 000 vertices.
-  const World big(WorldOptions{}, Terrain(Hills(80, 0.2), 5), {});
+  const sim::World big(sim::WorldOptions{}, sim::Terrain(Hills(80, 0.2), 5), {});
   // The small world fits the window; its grid is the big one's shifted by a multiple
   // of every level's lattice and of the chunks (256 cells).
-  TerrainOptions small_options = Hills(80, 0.2);
+  sim::TerrainOptions small_options = Hills(80, 0.2);
   small_options.extent_m = {-28.8, -28.8, 22.4, 22.4};
-  const World small(WorldOptions{}, Terrain(small_options, 5), {});
+  const sim::World small(sim::WorldOptions{}, sim::Terrain(small_options, 5), {});
   SceneAppearance lod, full;
   lod.terrain_full_detail_m = 2.0;
   ASSERT_TRUE(TerrainWindow(big.terrain(), 2.0).paged());
@@ -190,4 +190,4 @@ TEST(TerrainPagingTest, APagedWorldsNearGroundIsASmallWorldsAndPagingOpensNoCrac
 }
 
 }  // namespace
-}  // namespace trackbed::sim
+}  // namespace trackbed::render

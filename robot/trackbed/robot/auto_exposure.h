@@ -16,7 +16,7 @@
 #include <Eigen/Core>
 
 #include "trackbed/common/archive_eigen.h"
-#include "trackbed/sim/image.h"
+#include "trackbed/render/image.h"
 
 namespace trackbed::robot {
 

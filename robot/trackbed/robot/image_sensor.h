@@ -24,7 +24,7 @@
 #include <vector>
 
 #include "trackbed/common/archive.h"
-#include "trackbed/sim/image.h"
+#include "trackbed/render/image.h"
 
 namespace trackbed::robot {
 

@@ -35,7 +35,7 @@ int CalibratedLensCoefficients(geometry::LensModel model);
 /// The covariance of the calibrated coefficients (CalibratedLensCoefficients' order, the
 /// top-left p × p block; the rest zero) of `camera`'s lens calibrated to `rms_px`.
 /// Throws std::invalid_argument when the lens cannot be inverted inside the image (the
-/// check sim::RenderCameraFor makes).
+/// check render::RenderCameraFor makes).
 Eigen::Matrix4d LensCalibrationCovariance(const geometry::PinholeCamera& camera, double rms_px);
 
 /// A drawn error of the coefficients (k1, k2, p1, p2; for the equidistant model p1 and

@@ -12,14 +12,14 @@
 #include "trackbed/common/archive.h"
 #include "trackbed/common/robot_calibration.h"
 #include "trackbed/common/stereo_camera.h"
+#include "trackbed/render/image.h"
+#include "trackbed/render/pinhole.h"
 #include "trackbed/robot/auto_exposure.h"
 #include "trackbed/robot/image_sensor.h"
-#include "trackbed/sim/image.h"
-#include "trackbed/sim/pinhole.h"
 
 namespace trackbed::robot {
 
-/// `robot.stereo.rolling_shutter`: rows exposed one after another (sim/sensor_warp.h).
+/// `robot.stereo.rolling_shutter`: rows exposed one after another (render/sensor_warp.h).
 struct RollingShutterOptions {
   /// Delay from one row's exposure to the next's [s], >= 0; 0 is a global shutter.
   /// Absent: the realism profile's (docs/camera_model.md).
@@ -63,7 +63,7 @@ struct StereoRigOptions {
   /// Standard deviation of the sensor's additive noise [grey levels], >= 0.
   double noise_std = 1.0;
   /// How long the shutter is open [s], in [0, 1 / rate_hz]: what moves across the
-  /// view meanwhile is smeared (sim/camera_exposure.h). 0 takes an instant.
+  /// view meanwhile is smeared (render/camera_exposure.h). 0 takes an instant.
   double exposure_time_s = 0.0;
   /// Instants of the render's warp averaged over an exposure, in [1, 64] (used when
   /// the exposure time is > 0).

@@ -9,9 +9,9 @@
 #include <Eigen/Geometry>
 
 #include "trackbed/estimation/localization.h"
+#include "trackbed/render/renderer.h"
 #include "trackbed/robot/stereo_rig.h"
 #include "trackbed/robot/tracked_vehicle.h"
-#include "trackbed/sim/renderer.h"
 
 namespace trackbed::runner {
 

@@ -16,6 +16,7 @@
 #include "trackbed/common/archive.h"
 #include "trackbed/common/archive_eigen.h"
 #include "trackbed/estimation/localization.h"
+#include "trackbed/render/renderer.h"
 #include "trackbed/robot/as_built.h"
 #include "trackbed/robot/encoder.h"
 #include "trackbed/robot/imu.h"
@@ -24,7 +25,6 @@
 #include "trackbed/robot/tracked_vehicle.h"
 #include "trackbed/sim/object_scatter.h"
 #include "trackbed/sim/occluder.h"
-#include "trackbed/sim/renderer.h"
 #include "trackbed/sim/static_object.h"
 #include "trackbed/sim/terrain.h"
 #include "trackbed/sim/world.h"
@@ -56,7 +56,7 @@ struct SceneSpec {
   /// `objects`; the drive's route and the start are kept clear of them.
   std::vector<sim::ObjectScatter> scatter;
   /// Light and visual dressing for the cameras.
-  sim::SceneAppearance appearance;
+  render::SceneAppearance appearance;
   /// People walking scripted paths (seen by the cameras).
   std::vector<sim::OccluderSpec> occluders;
 

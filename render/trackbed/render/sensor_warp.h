@@ -36,9 +36,9 @@
 #include <Eigen/Geometry>
 
 #include "trackbed/common/pinhole_camera.h"
-#include "trackbed/sim/image.h"
+#include "trackbed/render/image.h"
 
-namespace trackbed::sim {
+namespace trackbed::render {
 
 /// How a frame is exposed.
 struct SensorTiming {
@@ -111,4 +111,4 @@ class SensorWarp {
   std::vector<float> q_u_, q_v_;
 };
 
-}  // namespace trackbed::sim
+}  // namespace trackbed::render

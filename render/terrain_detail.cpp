@@ -1,14 +1,14 @@
 // Levels of detail of the rendered terrain (see terrain_detail.h).
-#include "trackbed/sim/terrain_detail.h"
+#include "trackbed/render/terrain_detail.h"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
-namespace trackbed::sim {
+namespace trackbed::render {
 
-TerrainDetail::TerrainDetail(const Terrain& terrain, double full_detail_m, int chunk_cells,
+TerrainDetail::TerrainDetail(const sim::Terrain& terrain, double full_detail_m, int chunk_cells,
                              std::optional<GridWindow> window)
     : terrain_(terrain),
       full_detail_m_(full_detail_m),
@@ -36,7 +36,7 @@ TerrainDetail::TerrainDetail(const Terrain& terrain, double full_detail_m, int c
 }
 
 // Every level's height and normal at the window's vertices.
-void TerrainDetail::BuildLevels(const Terrain& terrain) {
+void TerrainDetail::BuildLevels(const sim::Terrain& terrain) {
   const double cell = terrain.cell_size_m();
   // The grid's heights over the window and the border the coarsest level's
   // normals reach into, indices clamped to the grid: the corners of the coarse
@@ -89,7 +89,7 @@ void TerrainDetail::BuildLevels(const Terrain& terrain) {
 }
 
 // The window's chunks (one per material in each square) and their neighbours.
-void TerrainDetail::BuildChunks(const Terrain& terrain, int chunk_cells) {
+void TerrainDetail::BuildChunks(const sim::Terrain& terrain, int chunk_cells) {
   const double cell = terrain.cell_size_m();
   for (int j0 = window_.j0; j0 < window_.j1; j0 += chunk_cells) {
     for (int i0 = window_.i0; i0 < window_.i1; i0 += chunk_cells) {
@@ -413,4 +413,4 @@ void TerrainDetail::BuildMesh(const Chunk& c, const Eigen::Vector2d& center_xy,
   Triangulate(c, level, sides, mesh);
 }
 
-}  // namespace trackbed::sim
+}  // namespace trackbed::render

@@ -25,10 +25,10 @@
 
 #include <Eigen/Geometry>
 
+#include "trackbed/render/terrain_detail.h"
 #include "trackbed/sim/terrain.h"
-#include "trackbed/sim/terrain_detail.h"
 
-namespace trackbed::sim {
+namespace trackbed::render {
 
 class FarTerrain {
  public:
@@ -50,7 +50,7 @@ class FarTerrain {
   /// Rings around `inner` (corners multiples of 2^kMaxLevel of TerrainDetail, or the
   /// grid's edges) until they reach `reach_m` beyond it on every side or the grid's
   /// edge; texture coordinates are world metres over `meters_per_repeat(material)`.
-  FarTerrain(const Terrain& terrain, const GridWindow& inner, double reach_m,
+  FarTerrain(const sim::Terrain& terrain, const GridWindow& inner, double reach_m,
              const std::vector<double>& meters_per_repeat);
 
   const std::vector<Piece>& pieces() const { return pieces_; }
@@ -59,15 +59,15 @@ class FarTerrain {
 
  private:
   struct RingLattice;  // a ring's lattice positions, heights and normals
-  static RingLattice SampleRing(const Terrain& terrain, const GridWindow& out, int s);
-  static void StitchOuterEdges(const Terrain& terrain, const GridWindow& out, int s,
+  static RingLattice SampleRing(const sim::Terrain& terrain, const GridWindow& out, int s);
+  static void StitchOuterEdges(const sim::Terrain& terrain, const GridWindow& out, int s,
                                RingLattice* r);
   Piece& PieceFor(int block_a, int block_b, int material);
   void AddVertex(Piece* p, double x, double y, double z, const Eigen::Vector3d& n,
                  double s_offset_m);
-  void AddQuads(const Terrain& terrain, const RingLattice& r, const GridWindow& in, int s,
+  void AddQuads(const sim::Terrain& terrain, const RingLattice& r, const GridWindow& in, int s,
                 bool meet_finer);
-  void AddSkirts(const Terrain& terrain, const RingLattice& r, const GridWindow& in);
+  void AddSkirts(const sim::Terrain& terrain, const RingLattice& r, const GridWindow& in);
 
   GridWindow outer_;
   std::vector<double> meters_per_repeat_;
@@ -76,4 +76,4 @@ class FarTerrain {
   std::map<std::tuple<int, int, int, int>, std::size_t> piece_index_;  // ring, block, material
 };
 
-}  // namespace trackbed::sim
+}  // namespace trackbed::render

@@ -10,9 +10,9 @@
 
 #include <Eigen/Core>
 
-#include "trackbed/sim/scene_lighting.h"
+#include "trackbed/render/scene_lighting.h"
 
-namespace trackbed::sim {
+namespace trackbed::render {
 
 class LitProgram {
  public:
@@ -33,4 +33,4 @@ class LitProgram {
   GLint world_from_eye_ = -1, sun_eye_ = -1, exposure_ = -1;
 };
 
-}  // namespace trackbed::sim
+}  // namespace trackbed::render

@@ -7,7 +7,7 @@
 
 #include "trackbed/common/gray_image.h"
 
-namespace trackbed::sim {
+namespace trackbed::render {
 
 /// Depth along the camera's optical axis (z of the OpenCV camera frame) [m];
 /// +infinity where the ray meets nothing (sky).
@@ -19,4 +19,4 @@ struct DepthImage {
   float at(int u, int v) const { return depth_m[static_cast<std::size_t>(v) * width + u]; }
 };
 
-}  // namespace trackbed::sim
+}  // namespace trackbed::render

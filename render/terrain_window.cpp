@@ -1,13 +1,14 @@
 // The renderer's window of a large terrain (see terrain_window.h).
-#include "trackbed/sim/terrain_window.h"
+#include "trackbed/render/terrain_window.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 
-namespace trackbed::sim {
+namespace trackbed::render {
 
-TerrainWindow::TerrainWindow(const Terrain& terrain, double full_detail_m) : terrain_(terrain) {
+TerrainWindow::TerrainWindow(const sim::Terrain& terrain, double full_detail_m)
+    : terrain_(terrain) {
   const double coarsest_m = 1.5 * (1 << (TerrainDetail::kMaxLevel - 1)) * full_detail_m;
   const int reach = static_cast<int>(std::ceil(std::max(coarsest_m, 12.0) / terrain.cell_size_m()));
   half_cells_ = (reach + 2 * kSnapCells + kSnapCells - 1) / kSnapCells * kSnapCells;
@@ -41,4 +42,4 @@ std::optional<TerrainWindow::Placement> TerrainWindow::Follow(
   return p;
 }
 
-}  // namespace trackbed::sim
+}  // namespace trackbed::render

@@ -1,5 +1,5 @@
 // The far terrain's nested rings (see far_terrain.h).
-#include "trackbed/sim/far_terrain.h"
+#include "trackbed/render/far_terrain.h"
 
 #include <algorithm>
 #include <array>
@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <tuple>
 
-namespace trackbed::sim {
+namespace trackbed::render {
 namespace {
 
 int FloorTo(int v, int m) { return v >= 0 ? v / m * m : -((-v + m - 1) / m) * m; }
@@ -16,7 +16,7 @@ int CeilTo(int v, int m) { return -FloorTo(-v, m); }
 
 // `inner` grown by `cells` on every side, outward to multiples of `multiple`, clipped
 // to the grid.
-GridWindow Grown(const GridWindow& inner, int cells, int multiple, const Terrain& t) {
+GridWindow Grown(const GridWindow& inner, int cells, int multiple, const sim::Terrain& t) {
   return {std::max(FloorTo(inner.i0 - cells, multiple), 0),
           std::max(FloorTo(inner.j0 - cells, multiple), 0),
           std::min(CeilTo(inner.i1 + cells, multiple), t.cols() - 1),
@@ -25,7 +25,7 @@ GridWindow Grown(const GridWindow& inner, int cells, int multiple, const Terrain
 
 // Smooth normal at grid vertex (i, j) from central differences at spacing s, as
 // TerrainDetail gives its level's lattice vertices.
-Eigen::Vector3d CornerNormal(const Terrain& t, int i, int j, int s) {
+Eigen::Vector3d CornerNormal(const sim::Terrain& t, int i, int j, int s) {
   const auto H = [&](int a, int b) {
     return t.VertexHeight(std::clamp(a, 0, t.cols() - 1), std::clamp(b, 0, t.rows() - 1));
   };
@@ -54,7 +54,7 @@ struct FarTerrain::RingLattice {
   std::size_t at(std::size_t a, std::size_t b) const { return b * xs.size() + a; }
 };
 
-FarTerrain::RingLattice FarTerrain::SampleRing(const Terrain& terrain, const GridWindow& out,
+FarTerrain::RingLattice FarTerrain::SampleRing(const sim::Terrain& terrain, const GridWindow& out,
                                                int s) {
   RingLattice r;
   r.xs = Positions(out.i0, out.i1, s);
@@ -72,7 +72,7 @@ FarTerrain::RingLattice FarTerrain::SampleRing(const Terrain& terrain, const Gri
 
 // On the ring's outer edges that the next (twice as coarse) ring meets, puts every
 // vertex between that ring's on the segment between them.
-void FarTerrain::StitchOuterEdges(const Terrain& terrain, const GridWindow& out, int s,
+void FarTerrain::StitchOuterEdges(const sim::Terrain& terrain, const GridWindow& out, int s,
                                   RingLattice* r) {
   const std::size_t nx = r->xs.size(), ny = r->ys.size();
   // Along one edge: `count` vertices, the k-th at grid position pos[k] and lattice
@@ -97,7 +97,7 @@ void FarTerrain::StitchOuterEdges(const Terrain& terrain, const GridWindow& out,
   }
 }
 
-FarTerrain::FarTerrain(const Terrain& terrain, const GridWindow& inner, double reach_m,
+FarTerrain::FarTerrain(const sim::Terrain& terrain, const GridWindow& inner, double reach_m,
                        const std::vector<double>& meters_per_repeat)
     : outer_(inner), meters_per_repeat_(meters_per_repeat) {
   if (meters_per_repeat.size() != terrain.materials().size()) {
@@ -153,8 +153,8 @@ void FarTerrain::AddVertex(Piece* p, double x, double y, double z, const Eigen::
 // diagonal, in the block and material piece they belong to. With `meet_finer`, a
 // quad with a side on `in`'s edge also takes the finer ring's vertex on that side
 // (where it put it: on the segment), so the rings share every edge vertex.
-void FarTerrain::AddQuads(const Terrain& terrain, const RingLattice& r, const GridWindow& in, int s,
-                          bool meet_finer) {
+void FarTerrain::AddQuads(const sim::Terrain& terrain, const RingLattice& r, const GridWindow& in,
+                          int s, bool meet_finer) {
   const double c = terrain.cell_size_m();
   for (std::size_t b = 0; b + 1 < r.ys.size(); ++b) {
     for (std::size_t a = 0; a + 1 < r.xs.size(); ++a) {
@@ -211,7 +211,8 @@ void FarTerrain::AddQuads(const Terrain& terrain, const RingLattice& r, const Gr
 // Skirts hanging from the first ring's inner edge, on every side of the near window
 // that is not the grid's edge: down past the lowest grid vertex between two lattice
 // vertices, double-sided.
-void FarTerrain::AddSkirts(const Terrain& terrain, const RingLattice& r, const GridWindow& in) {
+void FarTerrain::AddSkirts(const sim::Terrain& terrain, const RingLattice& r,
+                           const GridWindow& in) {
   const double c = terrain.cell_size_m();
   // One side: along x (y fixed at grid row `fixed`, the ring's lattice row `row`) or
   // along y; `outside` is the step from the side to the cell beyond it.
@@ -261,4 +262,4 @@ void FarTerrain::AddSkirts(const Terrain& terrain, const RingLattice& r, const G
   if (in.i1 < terrain.cols() - 1) side(false, in.i1, 1);
 }
 
-}  // namespace trackbed::sim
+}  // namespace trackbed::render

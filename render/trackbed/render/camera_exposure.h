@@ -1,5 +1,5 @@
 // A camera's exposure: one render of the scene at the frame's instant, warped into what
-// the sensor records (sim/sensor_warp.h): through its lens, each row at its own time
+// the sensor records (render/sensor_warp.h): through its lens, each row at its own time
 // under a rolling shutter, and integrated over the time the shutter is open, so that
 // what moves across the view meanwhile is smeared (motion blur).
 //
@@ -17,12 +17,12 @@
 
 #include <Eigen/Geometry>
 
-#include "trackbed/sim/image.h"
-#include "trackbed/sim/pinhole.h"
-#include "trackbed/sim/renderer.h"
-#include "trackbed/sim/sensor_warp.h"
+#include "trackbed/render/image.h"
+#include "trackbed/render/pinhole.h"
+#include "trackbed/render/renderer.h"
+#include "trackbed/render/sensor_warp.h"
 
-namespace trackbed::sim {
+namespace trackbed::render {
 
 /// The body's pose and velocities at an exposure's centre (world frame).
 struct BodyMotion {
@@ -68,4 +68,4 @@ class CameraExposure {
   DepthImage depth_;
 };
 
-}  // namespace trackbed::sim
+}  // namespace trackbed::render

@@ -11,7 +11,7 @@
 // SplitMix64 only; floating point uses + − × ÷ sqrt floor, never libm's transcendental
 // functions; and no expression draws from a generator twice (operand order of
 // evaluation is unspecified in C++).
-#include "trackbed/sim/procedural_texture.h"
+#include "trackbed/render/procedural_texture.h"
 
 #include <algorithm>
 #include <cassert>
@@ -31,7 +31,7 @@
 #pragma GCC optimize("fp-contract=off")
 #endif
 
-namespace trackbed::sim {
+namespace trackbed::render {
 
 std::uint8_t Texture::at(int x, int y) const {
   assert(size_px > 0 && (size_px & (size_px - 1)) == 0);
@@ -1266,4 +1266,4 @@ Texture MakePlainTexture(double albedo, std::uint64_t seed, int size_px) {
   return Quantize(f, 1.0);
 }
 
-}  // namespace trackbed::sim
+}  // namespace trackbed::render

@@ -8,7 +8,7 @@
 
 #include "trackbed/common/pinhole_camera.h"
 
-namespace trackbed::sim {
+namespace trackbed::render {
 
 /// The OpenGL projection matrix (column vectors, OpenGL eye coordinates: x right, y up,
 /// z backward) that rasterises exactly like `K`'s ideal pinhole: a point projecting to
@@ -21,4 +21,4 @@ Eigen::Matrix4d OpenGlProjection(const geometry::PinholeCamera& K, double near_m
 /// written with OpenGlProjection(K, near_m, far_m). d = 1 (nothing drawn) gives +infinity.
 double DepthFromBuffer(double d, double near_m, double far_m);
 
-}  // namespace trackbed::sim
+}  // namespace trackbed::render

@@ -1,10 +1,10 @@
 // Far versions of trees (see object_detail.h).
-#include "trackbed/sim/object_detail.h"
+#include "trackbed/render/object_detail.h"
 
 #include <algorithm>
 #include <cmath>
 
-namespace trackbed::sim {
+namespace trackbed::render {
 
 double InscribedPolygonSag(double radius, int sides) {
   return radius * (1.0 - std::cos(M_PI / sides));
@@ -29,4 +29,4 @@ double FarVersionDistance(double departure_m, double focal_px, double max_error_
   return focal_px * departure_m / max_error_px;
 }
 
-}  // namespace trackbed::sim
+}  // namespace trackbed::render

@@ -1,5 +1,5 @@
 // The sensor's image of a render, through the lens and in time (see sensor_warp.h).
-#include "trackbed/sim/sensor_warp.h"
+#include "trackbed/render/sensor_warp.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 
 #include "trackbed/common/units.h"
 
-namespace trackbed::sim {
+namespace trackbed::render {
 namespace {
 
 // Where a bilinear sample of a w × h image at (u, v), clamped to the edge, reads: the
@@ -330,4 +330,4 @@ void SensorWarp::Apply(const GrayImage& rendered, const DepthImage* depth,
   }
 }
 
-}  // namespace trackbed::sim
+}  // namespace trackbed::render

@@ -14,13 +14,13 @@
 
 #include <Eigen/Geometry>
 
-#include "trackbed/sim/image.h"
+#include "trackbed/render/image.h"
+#include "trackbed/render/pinhole.h"
+#include "trackbed/render/scene_lighting.h"
 #include "trackbed/sim/occluder.h"
-#include "trackbed/sim/pinhole.h"
-#include "trackbed/sim/scene_lighting.h"
 #include "trackbed/sim/world.h"
 
-namespace trackbed::sim {
+namespace trackbed::render {
 
 /// Light and dressing of a scene.
 struct SceneAppearance {
@@ -79,9 +79,9 @@ class Renderer {
   /// Builds the context, the textures and the geometry for images of
   /// `width_px` × `height_px`, depth clipped to [near_m, far_m]. Throws
   /// std::runtime_error when OSMesa cannot make a context.
-  Renderer(const World& world, const SceneAppearance& appearance,
-           std::vector<OccluderSpec> occluders, std::uint64_t seed, int width_px, int height_px,
-           double near_m, double far_m);
+  Renderer(const sim::World& world, const SceneAppearance& appearance,
+           std::vector<sim::OccluderSpec> occluders, std::uint64_t seed, int width_px,
+           int height_px, double near_m, double far_m);
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
@@ -113,4 +113,4 @@ class Renderer {
   std::unique_ptr<Gl> gl_;
 };
 
-}  // namespace trackbed::sim
+}  // namespace trackbed::render

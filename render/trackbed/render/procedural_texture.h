@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-namespace trackbed::sim {
+namespace trackbed::render {
 
 /// A square grayscale texture that tiles seamlessly (its left edge continues its right
 /// edge, its top edge its bottom edge), for GL_REPEAT.
@@ -49,4 +49,4 @@ Texture MakeTexture(const std::string& appearance, std::uint64_t seed, int size_
 /// `albedo` is outside [0, 1] or `size_px` is not a power of two in [16, 2048].
 Texture MakePlainTexture(double albedo, std::uint64_t seed, int size_px = 64);
 
-}  // namespace trackbed::sim
+}  // namespace trackbed::render

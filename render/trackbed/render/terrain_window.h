@@ -1,6 +1,6 @@
 // Which part of a large terrain's grid the renderer meshes in detail: a square
 // window around the detail centre (the stereo rig), moved in steps as the robot
-// drives, with the far terrain's coarse rings beyond it (trackbed/sim/far_terrain.h).
+// drives, with the far terrain's coarse rings beyond it (trackbed/render/far_terrain.h).
 //
 // The window reaches at least as far as TerrainDetail blends to its coarsest level
 // (1.5 · 2^(kMaxLevel−1) · full_detail_m, 12 m for the park's 2 m) and 12 m, plus
@@ -15,17 +15,17 @@
 
 #include <Eigen/Core>
 
+#include "trackbed/render/terrain_detail.h"
 #include "trackbed/sim/terrain.h"
-#include "trackbed/sim/terrain_detail.h"
 
-namespace trackbed::sim {
+namespace trackbed::render {
 
 class TerrainWindow {
  public:
   /// Grid cells the window's centre snaps to, and may wander before it moves.
   static constexpr int kSnapCells = 32;
 
-  TerrainWindow(const Terrain& terrain, double full_detail_m);
+  TerrainWindow(const sim::Terrain& terrain, double full_detail_m);
 
   /// True when the window moves with the centre (else it is the whole grid).
   bool paged() const { return paged_; }
@@ -43,9 +43,9 @@ class TerrainWindow {
                                   const std::optional<Placement>& current) const;
 
  private:
-  const Terrain& terrain_;
+  const sim::Terrain& terrain_;
   int half_cells_ = 0;
   bool paged_ = false;
 };
 
-}  // namespace trackbed::sim
+}  // namespace trackbed::render

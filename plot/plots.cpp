@@ -1,6 +1,6 @@
 // PNG plots (see run_plots.h). A small plotting canvas on cv::Mat: data bounds
 // to pixels, "nice" ticks, axes, lines, bars, legend.
-#include "trackbed/runner/run_plots.h"
+#include "trackbed/plot/plots.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-namespace trackbed::runner {
+namespace trackbed::plot {
 namespace {
 
 const cv::Scalar kColors[] = {{0, 0, 0},      {200, 80, 20}, {30, 140, 30},   {20, 20, 210},
@@ -383,4 +383,4 @@ void WriteBarPlot(const std::filesystem::path& png, const std::string& title,
   Save(png, img);
 }
 
-}  // namespace trackbed::runner
+}  // namespace trackbed::plot

@@ -31,7 +31,7 @@
 
 #include "trackbed/sim/terrain.h"
 
-namespace trackbed::sim {
+namespace trackbed::render {
 
 /// One drawn terrain vertex, as OpenGL's interleaved arrays take it.
 struct TerrainVertex {
@@ -47,7 +47,7 @@ struct GridWindow {
     return i0 == o.i0 && j0 == o.j0 && i1 == o.i1 && j1 == o.j1;
   }
   /// The whole grid of `terrain`.
-  static GridWindow Whole(const Terrain& terrain) {
+  static GridWindow Whole(const sim::Terrain& terrain) {
     return {0, 0, terrain.cols() - 1, terrain.rows() - 1};
   }
 };
@@ -89,7 +89,7 @@ class TerrainDetail {
   /// beyond it are read from the terrain. Throws std::invalid_argument when
   /// `chunk_cells` is not a positive multiple of 2^kMaxLevel, the window is not one
   /// of the grid's, or it has more than kMaxCells cells.
-  TerrainDetail(const Terrain& terrain, double full_detail_m, int chunk_cells = 16,
+  TerrainDetail(const sim::Terrain& terrain, double full_detail_m, int chunk_cells = 16,
                 std::optional<GridWindow> window = std::nullopt);
 
   const GridWindow& window() const { return window_; }
@@ -134,11 +134,11 @@ class TerrainDetail {
                                                    double meters_per_repeat, Mesh* mesh) const;
   void Triangulate(const Chunk& c, int level, const std::array<SideVertices, 4>& sides,
                    Mesh* mesh) const;
-  void BuildLevels(const Terrain& terrain);
-  void BuildChunks(const Terrain& terrain, int chunk_cells);
+  void BuildLevels(const sim::Terrain& terrain);
+  void BuildChunks(const sim::Terrain& terrain, int chunk_cells);
   void DistanceRange(const Chunk& c, const Eigen::Vector2d& p, double* d_min, double* d_max) const;
 
-  const Terrain& terrain_;
+  const sim::Terrain& terrain_;
   double full_detail_m_;
   GridWindow window_;
   int cols_, rows_;  // vertices of the window
@@ -148,4 +148,4 @@ class TerrainDetail {
   std::vector<Chunk> chunks_;
 };
 
-}  // namespace trackbed::sim
+}  // namespace trackbed::render

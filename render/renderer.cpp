@@ -7,7 +7,7 @@
 // filter) so that the bytes do not depend on the driver's mipmap generation.
 // Each frame: cull chunks against the view frustum, draw near to far into a
 // frame buffer object of one 8-bit channel, read it back flipped to top-down rows.
-#include "trackbed/sim/renderer.h"
+#include "trackbed/render/renderer.h"
 
 #define GL_GLEXT_PROTOTYPES 1  // buffer objects (GL 1.5), which libOSMesa exports
 #include <GL/gl.h>
@@ -26,13 +26,13 @@
 #include "lit_program.h"
 #include "trackbed/common/option_error.h"
 #include "trackbed/common/units.h"
-#include "trackbed/sim/far_terrain.h"
-#include "trackbed/sim/object_detail.h"
-#include "trackbed/sim/procedural_texture.h"
-#include "trackbed/sim/terrain_detail.h"
-#include "trackbed/sim/terrain_window.h"
+#include "trackbed/render/far_terrain.h"
+#include "trackbed/render/object_detail.h"
+#include "trackbed/render/procedural_texture.h"
+#include "trackbed/render/terrain_detail.h"
+#include "trackbed/render/terrain_window.h"
 
-namespace trackbed::sim {
+namespace trackbed::render {
 
 void SceneAppearance::Validate() const {
   option_check::InRange("sun_elevation_deg", sun_elevation_deg, 1.0, 90.0);
@@ -129,7 +129,7 @@ struct Renderer::Gl {
   double near_m = 0.05, far_m = 100.0;
   SceneAppearance appearance;
   std::uint64_t seed = 0;
-  const Terrain* terrain = nullptr;
+  const sim::Terrain* terrain = nullptr;
   // OSMesa's own frame buffer, 1 x 1 and never drawn into: the frame buffer
   // object (one 8-bit channel and depth) is what is drawn and read, so the
   // shaders write one byte per pixel and OSMesa copies nothing at glFinish.
@@ -144,7 +144,7 @@ struct Renderer::Gl {
   std::unique_ptr<TerrainDetail> detail;              // the near window's levels
   std::vector<TerrainDrawable> terrain_drawables;
   std::size_t terrain_drawable_count = 0;  // drawables[0, count) are the terrain's
-  std::vector<OccluderSpec> occluders;
+  std::vector<sim::OccluderSpec> occluders;
   std::vector<GLuint> occluder_lists;
   std::vector<std::pair<double, int>> draw_order;  // per frame, kept to avoid reallocation
   std::unique_ptr<LitProgram> lit;                 // with scene lighting
@@ -212,8 +212,8 @@ struct Renderer::Gl {
     auto it = textures.find(name);
     if (it != textures.end()) return it->second;
     const std::uint64_t s = seed ^ TextureNameHash(name);
-    sim::Texture t = HasTexture(name) ? MakeTexture(name, s, appearance.texture_size_px)
-                                      : MakePlainTexture(fallback_albedo, s, 64);
+    render::Texture t = HasTexture(name) ? MakeTexture(name, s, appearance.texture_size_px)
+                                         : MakePlainTexture(fallback_albedo, s, 64);
     GlTexture g;
     g.meters_per_repeat = t.meters_per_repeat;
     glGenTextures(1, &g.name);
@@ -259,7 +259,7 @@ struct Renderer::Gl {
     std::vector<Drawable> boxes;
     for (std::size_t c = 0; c < detail->chunks().size(); ++c) {
       const TerrainDetail::Chunk& chunk = detail->chunks()[c];
-      const TerrainMaterial& material = terrain->materials()[chunk.material];
+      const sim::TerrainMaterial& material = terrain->materials()[chunk.material];
       TerrainDrawable t;
       t.chunk = c;
       t.texture = Texture(material.name, material.albedo);
@@ -276,12 +276,12 @@ struct Renderer::Gl {
 
   void BuildFarTerrain(const GridWindow& w, std::vector<Drawable>* boxes) {
     std::vector<double> meters_per_repeat;
-    for (const TerrainMaterial& m : terrain->materials()) {
+    for (const sim::TerrainMaterial& m : terrain->materials()) {
       meters_per_repeat.push_back(Texture(m.name, m.albedo).meters_per_repeat);
     }
     FarTerrain far(*terrain, w, far_m, meters_per_repeat);
     for (const FarTerrain::Piece& piece : far.pieces()) {
-      const TerrainMaterial& material = terrain->materials()[piece.material];
+      const sim::TerrainMaterial& material = terrain->materials()[piece.material];
       TerrainDrawable t;
       t.fixed = true;
       t.texture = Texture(material.name, material.albedo);
@@ -470,15 +470,15 @@ struct Renderer::Gl {
 
   // Objects of kind "tree" drawn as cylinders: the trunks that carry a crown (when
   // crowns are drawn) and have far versions.
-  static bool IsTree(const StaticObject& o) {
-    return o.kind == "tree" && o.shape == StaticObject::Shape::kCylinder;
+  static bool IsTree(const sim::StaticObject& o) {
+    return o.kind == "tree" && o.shape == sim::StaticObject::Shape::kCylinder;
   }
-  bool DrawsCrown(const StaticObject& o) const { return IsTree(o) && appearance.tree_crowns; }
+  bool DrawsCrown(const sim::StaticObject& o) const { return IsTree(o) && appearance.tree_crowns; }
 
   // One object's display list; a tree's with the facets of `level`. Its textures
   // are made before the list is compiled: made inside it, their upload would be
   // compiled into the list instead of done.
-  GLuint CompileObject(const StaticObject& o, const TreeTessellation& level) {
+  GLuint CompileObject(const sim::StaticObject& o, const TreeTessellation& level) {
     const GlTexture& tex = Texture(o.appearance);
     const bool crown = DrawsCrown(o);
     const GlTexture& leaves = crown ? Texture("leaves") : tex;
@@ -487,7 +487,7 @@ struct Renderer::Gl {
     glBindTexture(GL_TEXTURE_2D, tex.name);
     glPushMatrix();
     glTranslated(o.center_m.x(), o.center_m.y(), o.base_z_m);
-    if (o.shape == StaticObject::Shape::kBox) {
+    if (o.shape == sim::StaticObject::Shape::kBox) {
       glRotated(units::Degrees(o.yaw_rad), 0, 0, 1);
       glTranslated(0, 0, o.size_m.z() / 2);
       DrawBox(o.size_m, tex.meters_per_repeat);
@@ -507,8 +507,8 @@ struct Renderer::Gl {
   }
 
   // World-frame bounds of an object as drawn, crown included.
-  Eigen::AlignedBox3d DrawnBounds(const StaticObject& o) const {
-    if (o.shape == StaticObject::Shape::kBox) {
+  Eigen::AlignedBox3d DrawnBounds(const sim::StaticObject& o) const {
+    if (o.shape == sim::StaticObject::Shape::kBox) {
       const double r = 0.5 * o.size_m.head<2>().norm();
       return Eigen::AlignedBox3d(
           Eigen::Vector3d(o.center_m.x() - r, o.center_m.y() - r, o.base_z_m),
@@ -524,8 +524,8 @@ struct Renderer::Gl {
         Eigen::Vector3d(o.center_m.x() + reach, o.center_m.y() + reach, o.base_z_m + top));
   }
 
-  void BuildObjects(const World& world) {
-    for (const StaticObject& o : world.objects()) {
+  void BuildObjects(const sim::World& world) {
+    for (const sim::StaticObject& o : world.objects()) {
       Drawable d;
       d.list = CompileObject(o, kTreeLevels[0]);
       d.box = DrawnBounds(o);
@@ -539,7 +539,7 @@ struct Renderer::Gl {
       drawables.push_back(d);
     }
     if (appearance.ceiling_height_m > 0.0) {
-      const Terrain& t = *terrain;
+      const sim::Terrain& t = *terrain;
       const GlTexture& tex = Texture("ceiling");
       const double z = appearance.ceiling_height_m, m = tex.meters_per_repeat;
       Drawable d;
@@ -562,7 +562,7 @@ struct Renderer::Gl {
       glEndList();
       drawables.push_back(d);
     }
-    for (const OccluderSpec& o : occluders) {
+    for (const sim::OccluderSpec& o : occluders) {
       // A person: body cylinder to shoulder height, a head above it.
       const GlTexture& tex = Texture(o.appearance);
       const GLuint list = glGenLists(1);
@@ -578,8 +578,8 @@ struct Renderer::Gl {
   }
 };
 
-Renderer::Renderer(const World& world, const SceneAppearance& appearance,
-                   std::vector<OccluderSpec> occluders, std::uint64_t seed, int width_px,
+Renderer::Renderer(const sim::World& world, const SceneAppearance& appearance,
+                   std::vector<sim::OccluderSpec> occluders, std::uint64_t seed, int width_px,
                    int height_px, double near_m, double far_m)
     : gl_(std::make_unique<Gl>()) {
   appearance.Validate();
@@ -764,7 +764,7 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
   glDisableClientState(GL_NORMAL_ARRAY);
   glDisableClientState(GL_TEXTURE_COORD_ARRAY);
   for (std::size_t k = 0; k < g.occluders.size(); ++k) {
-    const OccluderPose pose = OccluderPoseAt(g.occluders[k], t_s);
+    const sim::OccluderPose pose = sim::OccluderPoseAt(g.occluders[k], t_s);
     glPushMatrix();
     glTranslated(pose.position_m.x(), pose.position_m.y(),
                  g.terrain->Height(pose.position_m.x(), pose.position_m.y()));
@@ -776,4 +776,4 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
   g.ReadBack(gray, depth);
 }
 
-}  // namespace trackbed::sim
+}  // namespace trackbed::render

@@ -1,5 +1,5 @@
 // The light map: the sun's shadows and the lit zones, baked once (see scene_lighting.h).
-#include "trackbed/sim/scene_lighting.h"
+#include "trackbed/render/scene_lighting.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include "trackbed/common/units.h"
 #include "trackbed/sim/world.h"
 
-namespace trackbed::sim {
+namespace trackbed::render {
 
 void LightZone::Validate() const {
   option_check::Finite("center", center_m.x());
@@ -57,7 +57,7 @@ Eigen::Vector3d SunDirection(double azimuth_deg, double elevation_deg) {
   return {std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)};
 }
 
-double TreeCrownRadius(const StaticObject& tree) { return std::max(0.6, tree.height_m / 3.0); }
+double TreeCrownRadius(const sim::StaticObject& tree) { return std::max(0.6, tree.height_m / 3.0); }
 
 namespace {
 
@@ -81,7 +81,7 @@ bool ClipSlab(double o, double v, double lo, double hi, double* s0, double* s1) 
 }
 
 // Whether the ray meets the upright cylinder of `o` (its trunk or post).
-bool HitsCylinder(const Eigen::Vector3d& p, const Eigen::Vector3d& d, const StaticObject& o) {
+bool HitsCylinder(const Eigen::Vector3d& p, const Eigen::Vector3d& d, const sim::StaticObject& o) {
   double s0 = 0.0, s1 = std::numeric_limits<double>::infinity();
   if (!ClipSlab(p.z(), d.z(), o.base_z_m, o.base_z_m + o.height_m, &s0, &s1)) return false;
   // |(p + s d − c)_xy|² <= r², a quadratic in s.
@@ -95,7 +95,7 @@ bool HitsCylinder(const Eigen::Vector3d& p, const Eigen::Vector3d& d, const Stat
 }
 
 // Whether the ray meets the box of `o`.
-bool HitsBox(const Eigen::Vector3d& p, const Eigen::Vector3d& d, const StaticObject& o) {
+bool HitsBox(const Eigen::Vector3d& p, const Eigen::Vector3d& d, const sim::StaticObject& o) {
   const double c = std::cos(o.yaw_rad), s = std::sin(o.yaw_rad);
   const Eigen::Vector2d m = p.head<2>() - o.center_m;
   const double px = c * m.x() + s * m.y(), py = -s * m.x() + c * m.y();
@@ -107,10 +107,10 @@ bool HitsBox(const Eigen::Vector3d& p, const Eigen::Vector3d& d, const StaticObj
 }
 
 // The object's bounds in x, y and its top [m]: what its shadow can reach.
-void Bounds(const StaticObject& o, bool crown, Eigen::Vector2d* lo, Eigen::Vector2d* hi,
+void Bounds(const sim::StaticObject& o, bool crown, Eigen::Vector2d* lo, Eigen::Vector2d* hi,
             double* top) {
   double reach = 0.0;
-  if (o.shape == StaticObject::Shape::kBox) {
+  if (o.shape == sim::StaticObject::Shape::kBox) {
     reach = 0.5 * o.size_m.head<2>().norm();
     *top = o.base_z_m + o.size_m.z();
   } else {
@@ -127,12 +127,12 @@ void Bounds(const StaticObject& o, bool crown, Eigen::Vector2d* lo, Eigen::Vecto
 
 // Multiplies `map.sunlit` by the fraction of each texel's ground, in 2 × 2 points, that
 // sees the sun past `o`: only the texels its shadow can reach are tested.
-void CastShadow(const World& world, const StaticObject& o, bool crown, const Eigen::Vector3d& sun,
-                LightMap* map) {
+void CastShadow(const sim::World& world, const sim::StaticObject& o, bool crown,
+                const Eigen::Vector3d& sun, LightMap* map) {
   Eigen::Vector2d lo, hi;
   double top = 0.0;
   Bounds(o, crown, &lo, &hi, &top);
-  const Terrain& terrain = world.terrain();
+  const sim::Terrain& terrain = world.terrain();
   // The shadow falls away from the sun, as far as the top's height above the lowest
   // ground can be over the tangent of the elevation.
   const double fall = (top - terrain.min_height_bound_m()) / std::max(sun.z(), 1e-3);
@@ -149,7 +149,7 @@ void CastShadow(const World& world, const StaticObject& o, bool crown, const Eig
         const double y = map->y_min + (j + 0.25 + 0.5 * (k / 2)) * map->texel_m;
         const Eigen::Vector3d p(x, y, terrain.Height(x, y) + 1e-3);
         const bool blocked =
-            o.shape == StaticObject::Shape::kBox
+            o.shape == sim::StaticObject::Shape::kBox
                 ? HitsBox(p, sun, o)
                 : HitsCylinder(p, sun, o) ||
                       (tree && HitsSphere(p, sun, crown_center, TreeCrownRadius(o)));
@@ -162,10 +162,10 @@ void CastShadow(const World& world, const StaticObject& o, bool crown, const Eig
 
 }  // namespace
 
-LightMap BakeLightMap(const World& world, const SceneLighting& lighting, const Eigen::Vector3d& sun,
-                      bool tree_crowns) {
+LightMap BakeLightMap(const sim::World& world, const SceneLighting& lighting,
+                      const Eigen::Vector3d& sun, bool tree_crowns) {
   lighting.Validate();
-  const Terrain& terrain = world.terrain();
+  const sim::Terrain& terrain = world.terrain();
   LightMap map;
   map.x_min = terrain.x_min();
   map.y_min = terrain.y_min();
@@ -190,9 +190,9 @@ LightMap BakeLightMap(const World& world, const SceneLighting& lighting, const E
     }
   }
   if (lighting.sun_shadows) {
-    for (const StaticObject& o : world.objects()) CastShadow(world, o, tree_crowns, sun, &map);
+    for (const sim::StaticObject& o : world.objects()) CastShadow(world, o, tree_crowns, sun, &map);
   }
   return map;
 }
 
-}  // namespace trackbed::sim
+}  // namespace trackbed::render

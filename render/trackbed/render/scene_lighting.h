@@ -27,9 +27,11 @@
 #include "trackbed/common/archive_eigen.h"
 
 namespace trackbed::sim {
-
 class World;
 struct StaticObject;
+}  // namespace trackbed::sim
+
+namespace trackbed::render {
 
 /// A region of the ground whose light is `gain` times the scene's.
 struct LightZone {
@@ -91,12 +93,12 @@ Eigen::Vector3d SunDirection(double azimuth_deg, double elevation_deg);
 
 /// The radius of the visual crown of a tree (the renderer draws it as a sphere centred
 /// on the trunk's top).
-double TreeCrownRadius(const StaticObject& tree);
+double TreeCrownRadius(const sim::StaticObject& tree);
 
 /// Bakes `lighting` for `world` lit from `sun` (unit, towards the sun), tree crowns
 /// included when `tree_crowns`. Throws OptionError when the map would exceed 16 million
 /// texels.
-LightMap BakeLightMap(const World& world, const SceneLighting& lighting, const Eigen::Vector3d& sun,
-                      bool tree_crowns);
+LightMap BakeLightMap(const sim::World& world, const SceneLighting& lighting,
+                      const Eigen::Vector3d& sun, bool tree_crowns);
 
-}  // namespace trackbed::sim
+}  // namespace trackbed::render

@@ -10,7 +10,7 @@
 // version's: at distance d and focal length f [px], f · sag / d pixels.
 #include <array>
 
-namespace trackbed::sim {
+namespace trackbed::render {
 
 /// The facets of one version of a tree.
 struct TreeTessellation {
@@ -42,4 +42,4 @@ double TreeLevelDeparture(double crown_radius_m, double trunk_radius_m,
 /// `max_error_px` at focal length `focal_px`: f · departure / max_error.
 double FarVersionDistance(double departure_m, double focal_px, double max_error_px);
 
-}  // namespace trackbed::sim
+}  // namespace trackbed::render

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace trackbed::sim {
+namespace trackbed::render {
 namespace {
 
 // Per vertex, as the fixed-function pipeline lights: ambient, and the sun's diffuse
@@ -121,4 +121,4 @@ void LitProgram::Begin(const Eigen::Matrix4d& view, const Eigen::Vector3d& sun,
 
 void LitProgram::End() const { glUseProgram(0); }
 
-}  // namespace trackbed::sim
+}  // namespace trackbed::render

@@ -1,11 +1,11 @@
 // A camera's exposure as the mean of renders over it (see camera_exposure.h).
-#include "trackbed/sim/camera_exposure.h"
+#include "trackbed/render/camera_exposure.h"
 
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
-namespace trackbed::sim {
+namespace trackbed::render {
 
 Eigen::Isometry3d BodyMotion::PoseAfter(double dt_s) const {
   Eigen::Isometry3d T = T_world_body;
@@ -55,4 +55,4 @@ void CameraExposure::Render(Renderer& renderer, const BodyMotion& motion,
   warp_.Apply(rendered_, timing.instant() ? nullptr : &depth_, camera_motion, timing, gray);
 }
 
-}  // namespace trackbed::sim
+}  // namespace trackbed::render

@@ -9,7 +9,7 @@
 
 #include <Eigen/Core>
 
-namespace trackbed::runner {
+namespace trackbed::plot {
 
 /// One named curve: points (x, y) in data units.
 struct PlotSeries {
@@ -84,4 +84,4 @@ struct BarValue {
 void WriteBarPlot(const std::filesystem::path& png, const std::string& title,
                   const std::string& x_label, const std::vector<BarValue>& bars, double x_max);
 
-}  // namespace trackbed::runner
+}  // namespace trackbed::plot

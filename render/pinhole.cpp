@@ -8,13 +8,13 @@
 //   x_ndc = 2 fx/W · X/Z + 2 (cx + 0.5)/W − 1,
 //   y_ndc = −2 fy/H · Y/Z + 1 − 2 (cy + 0.5)/H,
 // which, multiplied by w_clip = Z = −z_gl, are the first two rows below.
-#include "trackbed/sim/pinhole.h"
+#include "trackbed/render/pinhole.h"
 
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
-namespace trackbed::sim {
+namespace trackbed::render {
 
 Eigen::Matrix4d OpenGlProjection(const geometry::PinholeCamera& K, double near_m, double far_m) {
   if (!K.distortion.is_zero()) {
@@ -40,4 +40,4 @@ double DepthFromBuffer(double d, double near_m, double far_m) {
   return 2.0 * far_m * near_m / ((far_m + near_m) - z_ndc * (far_m - near_m));
 }
 
-}  // namespace trackbed::sim
+}  // namespace trackbed::render
