@@ -44,7 +44,7 @@ std::size_t Teach(const teach_repeat::testing::CorridorScene& scene, double leng
   teach_repeat::MilestoneBuilder builder(teach_repeat::testing::TestCamera(), options);
   const int images = static_cast<int>(length_m / 0.02) + 1;
   for (int k = 0; k < images; ++k) {
-    const estimation::Pose2 pose{0.02 * k, 0.0, 0.0};
+    const geometry::Pose2 pose{0.02 * k, 0.0, 0.0};
     if (builder.AddImage(scene.Render(CameraPose(pose)), 0.1 * k, pose).milestone_closed) {
       builder.SpillMilestones(dir);
     }
@@ -80,7 +80,7 @@ int main(int argc, char** argv) {
         method, teach_repeat::LoadTeachMap(dir, teach_repeat::MapLoading::kOnDemand), o2, o3);
     std::vector<double> ms, x;
     int most_held = 0;
-    estimation::Pose2 pose;
+    geometry::Pose2 pose;
     for (int k = 0; k < static_cast<int>(1.5 * length_m / 0.02); ++k) {
       const cv::Mat image = scene.Render(CameraPose(pose));
       const double start = ThreadCpuSeconds();

@@ -30,7 +30,7 @@ void EkfOdometryOptions::Validate() const {
   option_check::Positive("vo_reference_inliers", vo_reference_inliers);
 }
 
-EkfOdometry::EkfOdometry(const EkfOdometryOptions& options, const Pose2& initial_pose)
+EkfOdometry::EkfOdometry(const EkfOdometryOptions& options, const geometry::Pose2& initial_pose)
     : options_(options) {
   options_.Validate();
   x_(kX) = initial_pose.x;
@@ -125,7 +125,8 @@ void EkfOdometry::AddGyro(double t_s, double yaw_rate_radps) {
   Update<1>(z - H * x_, H, R);
 }
 
-void EkfOdometry::AddCameraFrame(double t_s, const std::optional<Pose2>& motion, int inliers) {
+void EkfOdometry::AddCameraFrame(double t_s, const std::optional<geometry::Pose2>& motion,
+                                 int inliers) {
   PredictTo(t_s);
   const double dt = t_s - t_clone_;
   if (motion && has_clone_ && inliers > 0 && dt > 0.0) {
@@ -147,7 +148,7 @@ void EkfOdometry::AddCameraFrame(double t_s, const std::optional<Pose2>& motion,
     H(2, kTheta) = 1.0;
     H(2, kCloneTheta) = -1.0;
     Eigen::Vector3d innovation = Eigen::Vector3d(motion->x, motion->y, motion->yaw) - h;
-    innovation(2) = WrapAngle(innovation(2));
+    innovation(2) = geometry::WrapAngle(innovation(2));
     const double scale = options_.vo_reference_inliers / static_cast<double>(inliers);
     const double var_t = scale * std::pow(options_.vo_speed_std * dt, 2);
     const double var_r = scale * std::pow(options_.vo_yaw_rate_std * dt, 2);

@@ -64,13 +64,14 @@ double FuzzyFusionWeight::Weight(double slip_velocity_mps, double features) {
   return std::isfinite(w) ? std::clamp(w, 0.0, 1.0) : 1.0;
 }
 
-void FusedOdometry::Add(const Pose2& wheel, const std::optional<Pose2>& vo, double w) {
+void FusedOdometry::Add(const geometry::Pose2& wheel, const std::optional<geometry::Pose2>& vo,
+                        double w) {
   if (!vo) {
     pose_ = Compose(pose_, wheel);
     return;
   }
-  const Pose2 blended{w * wheel.x + (1 - w) * vo->x, w * wheel.y + (1 - w) * vo->y,
-                      w * wheel.yaw + (1 - w) * WrapAngle(vo->yaw)};
+  const geometry::Pose2 blended{w * wheel.x + (1 - w) * vo->x, w * wheel.y + (1 - w) * vo->y,
+                                w * wheel.yaw + (1 - w) * geometry::WrapAngle(vo->yaw)};
   pose_ = Compose(pose_, blended);
 }
 

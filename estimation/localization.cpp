@@ -43,16 +43,16 @@ LocalizationStack::LocalizationStack(const LocalizationOptions& options,
     : options_(options),
       T_body_left_(T_body_left),
       z0_(T_world_body0.translation().z()),
-      wheel_(WithSlip(options.wheel, true), PlanarPose(T_world_body0)),
-      wheel_noslip_(WithSlip(options.wheel, false), PlanarPose(T_world_body0)),
+      wheel_(WithSlip(options.wheel, true), geometry::PlanarPose(T_world_body0)),
+      wheel_noslip_(WithSlip(options.wheel, false), geometry::PlanarPose(T_world_body0)),
       vo_(camera ? std::make_unique<StereoVisualOdometry>(*camera, options.vo) : nullptr),
       fuzzy_(MakeFuzzy(options.fusion.rules_file)),
-      fused_(PlanarPose(T_world_body0)),
-      ekf_(options.ekf, PlanarPose(T_world_body0)),
+      fused_(geometry::PlanarPose(T_world_body0)),
+      ekf_(options.ekf, geometry::PlanarPose(T_world_body0)),
       weight_(options.fusion.weight_rise_time_s),
       imu_(options.imu),
       T_world_body_vo_(T_world_body0),
-      wheel_at_frame_(PlanarPose(T_world_body0)) {
+      wheel_at_frame_(geometry::PlanarPose(T_world_body0)) {
   options_.Validate();
 }
 
@@ -194,18 +194,18 @@ LocalizationFrameReport LocalizationStack::ProcessStereoFrame(double t_s, const 
   R_gyro_since_frame_.setIdentity();
   gyro_since_frame_ = false;
   report.vo_valid = report.vo.status == VoStatus::kOk;
-  std::optional<Pose2> vo_increment;
+  std::optional<geometry::Pose2> vo_increment;
   if (report.vo_valid) {
     // The left camera's motion, expressed as the body's motion.
     const Eigen::Isometry3d T_body_motion =
         T_body_left_ * report.vo.T_prev_curr * T_body_left_.inverse();
-    const Pose2 planar_before = PlanarPose(T_world_body_vo_);
+    const geometry::Pose2 planar_before = geometry::PlanarPose(T_world_body_vo_);
     T_world_body_vo_ = T_world_body_vo_ * T_body_motion;
     // The planar motion is the change of the 3-D pose's planar projection, not the
     // planar part of the 3-D increment: on tilted ground the body's x axis is not
     // horizontal, and chaining the planar parts of tilted increments over-counts the
     // horizontal distance (by 1 − cos(pitch)) and leaks roll into heading.
-    vo_increment = Between(planar_before, PlanarPose(T_world_body_vo_));
+    vo_increment = Between(planar_before, geometry::PlanarPose(T_world_body_vo_));
     if (has_frame_ && t_s > t_frame_ && report.vo.inliers >= options_.min_inliers_for_slip) {
       // Slip from the independent (visual) velocity over the frame interval.
       const double dt = t_s - t_frame_;
@@ -232,7 +232,7 @@ LocalizationFrameReport LocalizationStack::ProcessStereoFrame(double t_s, const 
   report.slip_velocity_mps = report.slip.max_abs_mps();
   report.features = report.vo.inliers;
   if (has_frame_) {
-    const Pose2 wheel_increment = Between(wheel_at_frame_, wheel_.pose());
+    const geometry::Pose2 wheel_increment = Between(wheel_at_frame_, wheel_.pose());
     // A frame without VO counts as w = 1: the weight climbs back toward the wheels.
     report.w_rule =
         report.vo_valid ? fuzzy_.Weight(report.slip_velocity_mps, report.features) : 1.0;

@@ -24,7 +24,8 @@ void WheelOdometryOptions::Validate() const {
 
 double TrackSlip::max_abs_mps() const { return std::max(std::abs(left_mps), std::abs(right_mps)); }
 
-WheelOdometry::WheelOdometry(const WheelOdometryOptions& options, const Pose2& initial_pose)
+WheelOdometry::WheelOdometry(const WheelOdometryOptions& options,
+                             const geometry::Pose2& initial_pose)
     : options_(options), pose_(initial_pose) {
   options_.Validate();
 }

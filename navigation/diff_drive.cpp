@@ -52,7 +52,7 @@ Pose2 Arc(const Pose2& pose, double ds, double dyaw) {
   const double chord = ds * Sinc(dyaw / 2.0);
   const double mid = pose.yaw + dyaw / 2.0;
   return {pose.x + chord * std::cos(mid), pose.y + chord * std::sin(mid),
-          estimation::WrapAngle(pose.yaw + dyaw)};
+          geometry::WrapAngle(pose.yaw + dyaw)};
 }
 
 }  // namespace

@@ -99,7 +99,7 @@ DynamicWindowChoice ChooseDynamicWindowVelocity(const NavigationSetup& setup,
       const Pose2 after = IntegrateTwist(pose, twist, dt);
       const Pose2 stop = IntegrateTwist(after, twist, v / (2.0 * a_v));
       const double bearing = std::atan2(goal_world.y() - stop.y, goal_world.x() - stop.x);
-      Sample s{twist, 1.0 - std::abs(estimation::WrapAngle(bearing - stop.yaw)) / M_PI,
+      Sample s{twist, 1.0 - std::abs(geometry::WrapAngle(bearing - stop.yaw)) / M_PI,
                std::min(dist, options.clearance_cap_m) / options.clearance_cap_m,
                v / options.max_speed_mps};
       max_heading = std::max(max_heading, s.heading);

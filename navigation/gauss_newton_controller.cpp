@@ -37,7 +37,7 @@ GaussNewtonStep ComputeGaussNewtonStep(const NavigationSetup& setup,
   double position_weight = 1.0;
   if (step.position_error_m > options.epsilon_m) {
     step.target_heading_rad = std::atan2(delta.y(), delta.x());
-    const double off = estimation::WrapAngle(step.target_heading_rad - pose.yaw);
+    const double off = geometry::WrapAngle(step.target_heading_rad - pose.yaw);
     if (std::abs(off) > options.heading_band_rad) {
       step.phase = GaussNewtonPhase::kTurn;
       step.rho = 1.0;
@@ -51,7 +51,7 @@ GaussNewtonStep ComputeGaussNewtonStep(const NavigationSetup& setup,
     step.target_heading_rad = target.yaw;
     step.rho = 1.0;
   }
-  step.heading_error_rad = estimation::WrapAngle(step.target_heading_rad - pose.yaw);
+  step.heading_error_rad = geometry::WrapAngle(step.target_heading_rad - pose.yaw);
 
   // Eqs. (5)–(12): Δφ = (JᵀWJ + λI)⁻¹ JᵀW e, damped (see the header).
   const Eigen::Vector3d e(delta.x(), delta.y(), step.heading_error_rad);

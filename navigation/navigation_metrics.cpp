@@ -58,7 +58,7 @@ NavigationMetrics ComputeNavigationMetrics(const std::vector<NavigationLogEntry>
 
   auto errors = [&](const NavigationLogEntry& row, double* position, double* heading) {
     *position = std::hypot(goal.x - row.x_m, goal.y - row.y_m);
-    *heading = std::abs(estimation::WrapAngle(goal.yaw - row.yaw_rad));
+    *heading = std::abs(geometry::WrapAngle(goal.yaw - row.yaw_rad));
   };
   double position = 0.0, heading = 0.0;
   errors(log.back(), &position, &heading);

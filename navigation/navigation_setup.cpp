@@ -13,7 +13,7 @@ void NavigationSetup::Validate() const {
 }
 
 GoalError GoalErrorOf(const Pose2& pose, const Pose2& goal) {
-  return {std::hypot(goal.x - pose.x, goal.y - pose.y), estimation::WrapAngle(goal.yaw - pose.yaw)};
+  return {std::hypot(goal.x - pose.x, goal.y - pose.y), geometry::WrapAngle(goal.yaw - pose.yaw)};
 }
 
 bool AtGoal(const NavigationSetup& setup, const Pose2& pose, const Pose2& goal) {

@@ -83,7 +83,7 @@ void PotentialFieldNavigator::Drive(const Pose2& pose, const std::vector<Circle>
     const double magnitude = force.total.norm();
     if (magnitude > 0.0) {
       const double heading = std::atan2(force.total.y(), force.total.x());
-      const double off = estimation::WrapAngle(heading - pose.yaw);
+      const double off = geometry::WrapAngle(heading - pose.yaw);
       twist.yaw_rate_radps = std::clamp(options_.heading_gain_per_s * off,
                                         -options_.max_yaw_rate_radps, options_.max_yaw_rate_radps);
       if (std::abs(off) <= options_.turn_in_place_rad) {

@@ -11,7 +11,7 @@
 namespace trackbed::navigation {
 namespace {
 
-using estimation::WrapAngle;
+using geometry::WrapAngle;
 
 // Candidates whose distances to the goal differ by less than this [m] are a tie.
 constexpr double kTieM = 1e-3;

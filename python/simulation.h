@@ -34,7 +34,7 @@ class ExternalCommander : public runner::Commander {
 
  private:
   double period_s_;
-  estimation::TrackSpeeds tracks_;
+  kinematics::TrackSpeeds tracks_;
 };
 
 /// The overrides of a run: `key=value` texts (ParseOverride), then the seed if given.

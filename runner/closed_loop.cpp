@@ -13,9 +13,9 @@
 #include <string>
 #include <utility>
 
+#include "trackbed/common/skid_steer.h"
 #include "trackbed/common/split_mix.h"
 #include "trackbed/common/units.h"
-#include "trackbed/estimation/skid_steer.h"
 #include "trackbed/perception/opencv_views.h"
 #include "trackbed/render/camera_exposure.h"
 #include "trackbed/render/renderer.h"

@@ -59,12 +59,12 @@ ClosedLoopNavigation::ClosedLoopNavigation(const scenario::Scenario& s,
 
 ControlOutput ClosedLoopNavigation::Update(const ControlInput& input) {
   const auto believed = [&] {
-    if (pose_source_ == "ground_truth") return estimation::PlanarPose(input.T_world_body);
+    if (pose_source_ == "ground_truth") return geometry::PlanarPose(input.T_world_body);
     // The scenario's validation makes estimation on for the other pose sources.
     if (!input.estimates)
       throw std::logic_error("navigation: " + pose_source_ + " has no estimate");
-    return estimation::PlanarPose(pose_source_ == "fused" ? input.estimates->fused()
-                                                          : input.estimates->wheel_odometry());
+    return geometry::PlanarPose(pose_source_ == "fused" ? input.estimates->fused()
+                                                        : input.estimates->wheel_odometry());
   };
   ControlOutput out;
   out.tracks = Command(input.t_s, believed(), input.T_world_body);
@@ -79,19 +79,18 @@ void ClosedLoopNavigation::AddMetrics(bool time_ran_out, RunMetrics* metrics) co
   metrics->navigation_subgoals = subgoals();
 }
 
-estimation::TrackSpeeds ClosedLoopNavigation::Command(double t_s, const estimation::Pose2& pose,
+kinematics::TrackSpeeds ClosedLoopNavigation::Command(double t_s, const geometry::Pose2& pose,
                                                       const Eigen::Isometry3d& T_world_body) {
   obstacles_.clear();
   if (scan_) {
     // The scan is placed where the robot believes its sensor is.
-    const estimation::Pose2 sensor =
-        estimation::Compose(pose, {mount_xy_m_.x(), mount_xy_m_.y(), 0.0});
+    const geometry::Pose2 sensor = geometry::Compose(pose, {mount_xy_m_.x(), mount_xy_m_.y(), 0.0});
     navigation::RangeScan scan{scan_->ranges_m, scan_->angles_rad, scan_->max_range_m};
     obstacles_ = navigation::ClusterScan(scan, sensor, clustering_);
   }
   const navigation::NavigationCommand c = navigator_->Update(pose, obstacles_);
   status_ = c.status;
-  const estimation::Pose2 truth = estimation::PlanarPose(T_world_body);
+  const geometry::Pose2 truth = geometry::PlanarPose(T_world_body);
   navigation::NavigationLogEntry e;
   e.t_s = t_s;
   e.x_m = truth.x;
@@ -106,7 +105,7 @@ estimation::TrackSpeeds ClosedLoopNavigation::Command(double t_s, const estimati
   e.subgoal_active = c.subgoal_active;
   e.clearance_m = ChassisClearance(T_world_body, hull_xy_m_, objects_);
   log_.push_back(e);
-  estimation::BodyTwist twist{c.twist.v_mps, c.twist.yaw_rate_radps};
+  kinematics::BodyTwist twist{c.twist.v_mps, c.twist.yaw_rate_radps};
   if (std::abs(twist.yaw_rate_radps) > max_yaw_rate_radps_) {
     const double scale = max_yaw_rate_radps_ / std::abs(twist.yaw_rate_radps);
     twist.v_mps *= scale;
@@ -115,7 +114,7 @@ estimation::TrackSpeeds ClosedLoopNavigation::Command(double t_s, const estimati
   e.v_mps = twist.v_mps;
   e.yaw_rate_radps = twist.yaw_rate_radps;
   log_.back() = e;
-  return estimation::TrackSpeedsFromTwist(twist, gauge_eff_m_);
+  return kinematics::TrackSpeedsFromTwist(twist, gauge_eff_m_);
 }
 
 navigation::NavigationMetrics ClosedLoopNavigation::Metrics(bool time_limit) const {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <memory>
 
-#include "trackbed/estimation/pose2.h"
+#include "trackbed/common/pose2.h"
 #include "trackbed/estimation/trajectory.h"
 #include "trackbed/navigation/kinematic_simulation.h"
 #include "trackbed/navigation/navigator_factory.h"
@@ -30,7 +30,7 @@ RunMetrics RunKinematicNavigation(const scenario::Scenario& scenario,
   for (std::size_t k = 0; k < run.log.size(); ++k) {
     const navigation::NavigationLogEntry& e = run.log[k];
     truth.Line(
-        estimation::FormatTumLine({e.t_s, estimation::ToIsometry({e.x_m, e.y_m, e.yaw_rad}, 0.0)})
+        estimation::FormatTumLine({e.t_s, geometry::ToIsometry({e.x_m, e.y_m, e.yaw_rad}, 0.0)})
             .c_str());
     csv.Line(NavigationCsvRow(e).c_str());
     if (k > 0) {

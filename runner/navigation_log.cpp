@@ -22,7 +22,7 @@ std::string NavigationCsvRow(const navigation::NavigationLogEntry& e) {
 void WriteNavigationMap(const std::filesystem::path& png, const std::string& title,
                         const std::vector<navigation::NavigationLogEntry>& log,
                         const std::vector<navigation::Circle>& obstacles, double safety_radius_m,
-                        const estimation::Pose2& start, const estimation::Pose2& goal,
+                        const geometry::Pose2& start, const geometry::Pose2& goal,
                         const std::vector<navigation::SubgoalRecord>& subgoals) {
   std::vector<plot::PlotCircle> circles;
   for (const navigation::Circle& c : obstacles) {

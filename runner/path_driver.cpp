@@ -29,15 +29,15 @@ ControlOutput PathDriver::Update(const ControlInput& input) {
     const navigation::PurePursuitCommand c =
         follower_->Update({T.translation().x(), T.translation().y(), yaw});
     if (c.finished) out.stop_reason = "path finished";
-    out.tracks = estimation::TrackSpeedsFromTwist(c.twist, gauge_);
+    out.tracks = kinematics::TrackSpeedsFromTwist(c.twist, gauge_);
     return out;
   }
   while (next_ < spec_.script.size() && spec_.script[next_].t_s <= input.t_s + 1e-9) ++next_;
   if (next_ == 0) return out;
   const scenario::DriveCommand& c = spec_.script[next_ - 1];
   out.tracks = c.track_speeds
-                   ? estimation::TrackSpeeds{c.left_mps, c.right_mps}
-                   : estimation::TrackSpeedsFromTwist({c.v_mps, c.yaw_rate_radps}, gauge_);
+                   ? kinematics::TrackSpeeds{c.left_mps, c.right_mps}
+                   : kinematics::TrackSpeedsFromTwist({c.v_mps, c.yaw_rate_radps}, gauge_);
   return out;
 }
 

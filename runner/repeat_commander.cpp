@@ -33,7 +33,7 @@ ControlOutput RepeatCommander::Update(const ControlInput& input) {
   features_lost_ = c.features_lost;
   features_recovered_ = c.features_recovered;
   ControlOutput out;
-  out.tracks = estimation::TrackSpeedsFromTwist(c.twist, gauge_eff_m_);
+  out.tracks = kinematics::TrackSpeedsFromTwist(c.twist, gauge_eff_m_);
   if (c.status != teach_repeat::RepeatStatus::kDriving) {
     out.stop_reason = std::string("repeat ") + teach_repeat::ToString(c.status);
   }

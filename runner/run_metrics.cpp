@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "trackbed/estimation/skid_steer.h"
+#include "trackbed/common/skid_steer.h"
 #include "trackbed/robot/encoder.h"
 
 namespace trackbed::runner {
@@ -36,7 +36,7 @@ void MetricsAccumulator::Add(const RunSample& s, double terrain_height_m) {
             .norm();
     const double dl = robot::TicksToAngle(s.ticks[0] - previous_.ticks[0], ticks_per_rev_);
     const double dr = robot::TicksToAngle(s.ticks[1] - previous_.ticks[1], ticks_per_rev_);
-    m_.encoder_distance_m += estimation::EncoderDistanceIncrement(dl, dr, r_);
+    m_.encoder_distance_m += kinematics::EncoderDistanceIncrement(dl, dr, r_);
     if (dt > 0) {
       // True yaw rate about the body z axis, from the world angular velocity.
       const Eigen::Vector3d z = s.chassis.T_world_body.linear().col(2);

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "trackbed/estimation/pose2.h"
+#include "trackbed/common/pose2.h"
 #include "trackbed/robot/encoder.h"
 
 namespace trackbed::runner {
@@ -54,8 +54,8 @@ calibration::VehicleCalibration StraightRunFit::Result() const {
     throw std::runtime_error("straight calibration run: the robot drove " + std::to_string(chord) +
                              " m, less than the 1 m a fit needs");
   }
-  double dyaw = estimation::PlanarPose(last_.chassis.T_world_body).yaw -
-                estimation::PlanarPose(first_.chassis.T_world_body).yaw;
+  double dyaw = geometry::PlanarPose(last_.chassis.T_world_body).yaw -
+                geometry::PlanarPose(first_.chassis.T_world_body).yaw;
   dyaw = std::remainder(dyaw, 2.0 * M_PI);
   const double half = 0.5 * dyaw;
   const double path = std::abs(half) < 1e-9 ? chord : chord * half / std::sin(half);

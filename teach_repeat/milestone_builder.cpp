@@ -122,7 +122,7 @@ void MilestoneBuilder::CloseMilestone(const Snapshot& end, MilestoneCut cut) {
 }
 
 void MilestoneBuilder::CheckImage(const cv::Mat& gray, double t_s,
-                                  const std::optional<estimation::Pose2>& odometry) const {
+                                  const std::optional<geometry::Pose2>& odometry) const {
   if (gray.empty() || gray.type() != CV_8UC1 || gray.size() != perception::CvImageSize(camera_)) {
     throw std::invalid_argument("MilestoneBuilder::AddImage: needs a CV_8UC1 image of " +
                                 std::to_string(camera_.width_px) + "x" +
@@ -228,7 +228,7 @@ void MilestoneBuilder::Cut(MilestoneCut cut, const cv::Mat& gray, Snapshot* curr
 }
 
 TeachStep MilestoneBuilder::AddImage(const cv::Mat& gray, double t_s,
-                                     const std::optional<estimation::Pose2>& odometry) {
+                                     const std::optional<geometry::Pose2>& odometry) {
   CheckImage(gray, t_s, odometry);
   const int j = static_cast<int>(map_.images.size());
   map_.images.push_back({t_s, odometry});

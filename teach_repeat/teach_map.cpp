@@ -562,7 +562,7 @@ void ImagesFromFile(const ImagesFile& images, TeachMap* map) {
   for (std::size_t i = 0; i < map->images.size(); ++i) {
     map->images[i].t_s = images.t_s[i];
     if (const std::optional<Eigen::Vector3d>& p = images.odometry[i]) {
-      map->images[i].odometry = estimation::Pose2{p->x(), p->y(), p->z()};
+      map->images[i].odometry = geometry::Pose2{p->x(), p->y(), p->z()};
     }
   }
 }

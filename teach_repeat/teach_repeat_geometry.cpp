@@ -13,8 +13,8 @@
 
 #include "trackbed/common/median.h"
 #include "trackbed/common/option_error.h"
+#include "trackbed/common/pose2.h"
 #include "trackbed/common/se3.h"
-#include "trackbed/estimation/pose2.h"
 #include "trackbed/perception/opencv_views.h"
 
 namespace trackbed::teach_repeat {
@@ -365,7 +365,7 @@ PathOffset ComputePathOffset(const Eigen::Isometry3d& T_first_cam,
   }
   o.lateral_m = direction.x() * p.y() - direction.y() * p.x();
   const double reference = std::clamp(o.progress, 0.0, 1.0) * end_heading;
-  o.heading_rad = estimation::WrapAngle(CameraHeading(T_first_cam.linear()) - reference);
+  o.heading_rad = geometry::WrapAngle(CameraHeading(T_first_cam.linear()) - reference);
   return o;
 }
 

@@ -32,7 +32,7 @@ struct Corruption {
 };
 
 struct Result {
-  Pose2 truth, estimate;
+  geometry::Pose2 truth, estimate;
   double bias = 0.0;
   double truth_yaw_unwrapped = 0.0;  // the truth's yaw rate integrated [rad]
   double wheel_only_yaw = 0.0;       // the wheels' yaw rate integrated alone [rad]
@@ -43,7 +43,7 @@ Result Simulate(const std::function<Twist(double)>& twist, double duration_s, co
   std::mt19937 rng(7);
   std::normal_distribution<double> unit(0.0, 1.0);
   Result r;
-  Pose2 at_frame;
+  geometry::Pose2 at_frame;
   const double dt = 0.001;  // truth integration step; sensors on multiples of it
   const int n = static_cast<int>(std::lround(duration_s / dt));
   for (int k = 1; k <= n; ++k) {
@@ -60,11 +60,11 @@ Result Simulate(const std::function<Twist(double)>& twist, double duration_s, co
     }
     if (k % 100 == 0) {
       const bool gap = t > c.vo_gap_from_s && t <= c.vo_gap_to_s;
-      Pose2 motion = Between(at_frame, r.truth);
+      geometry::Pose2 motion = Between(at_frame, r.truth);
       motion.x += c.vo_noise * unit(rng);
       motion.y += c.vo_noise * unit(rng);
       motion.yaw += c.vo_noise * unit(rng);
-      ekf.AddCameraFrame(t, gap ? std::nullopt : std::optional<Pose2>(motion), 150);
+      ekf.AddCameraFrame(t, gap ? std::nullopt : std::optional<geometry::Pose2>(motion), 150);
       at_frame = r.truth;
     }
   }
@@ -77,7 +77,7 @@ double PositionError(const Result& r) {
   return std::hypot(r.estimate.x - r.truth.x, r.estimate.y - r.truth.y);
 }
 double HeadingErrorDeg(const Result& r) {
-  return std::abs(WrapAngle(r.estimate.yaw - r.truth.yaw)) * kDegPerRad;
+  return std::abs(geometry::WrapAngle(r.estimate.yaw - r.truth.yaw)) * kDegPerRad;
 }
 
 double Ramp(double s) { return std::clamp(s / 0.3, 0.0, 1.0); }

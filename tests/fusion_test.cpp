@@ -31,7 +31,7 @@ TEST(WheelOdometryTest, TurnInPlaceUsesTheEffectiveGauge) {
   for (int k = 0; k <= 500; ++k)
     odo.AddEncoderSample(0.01 * k, Ticks(-2.0, 0.01 * k), Ticks(2.0, 0.01 * k));
   // Track speeds ±0.2 m/s, B_eff = 0.625 m: 0.64 rad/s for 5 s.
-  EXPECT_NEAR(odo.pose().yaw, WrapAngle(3.2), 2e-3);
+  EXPECT_NEAR(odo.pose().yaw, geometry::WrapAngle(3.2), 2e-3);
 }
 
 TEST(WheelOdometryTest, MeasuredVelocityRevealsSlipAndCorrectsTheOdometry) {
@@ -168,7 +168,7 @@ TEST(FuzzyFusionTest, BadRuleFilesAreRejectedWithTheirName) {
 
 TEST(FusedOdometryTest, BlendsIncrementsAndFallsBackToWheelsWithoutVision) {
   FusedOdometry fused({});
-  fused.Add({0.10, 0.0, 0.0}, Pose2{0.06, 0.0, 0.0}, 0.25);  // 0.25·0.10 + 0.75·0.06
+  fused.Add({0.10, 0.0, 0.0}, geometry::Pose2{0.06, 0.0, 0.0}, 0.25);  // 0.25·0.10 + 0.75·0.06
   EXPECT_NEAR(fused.pose().x, 0.07, 1e-12);
   fused.Add({0.10, 0.0, 0.0}, std::nullopt, 0.25);
   EXPECT_NEAR(fused.pose().x, 0.17, 1e-12);

@@ -5,8 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "trackbed/common/skid_steer.h"
 #include "trackbed/estimation/icr_calibration.h"
-#include "trackbed/estimation/skid_steer.h"
 #include "trackbed/navigation/pure_pursuit.h"
 
 namespace trackbed {
@@ -16,19 +16,19 @@ TEST(SkidSteerTest, TwistAndTrackSpeedsAreInverse) {
   std::mt19937_64 rng(1);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int k = 0; k < 100; ++k) {
-    const estimation::BodyTwist t{u(rng), u(rng)};
+    const kinematics::BodyTwist t{u(rng), u(rng)};
     const double gauge = 0.3 + std::abs(u(rng));
-    const estimation::BodyTwist back =
-        estimation::TwistFromTrackSpeeds(estimation::TrackSpeedsFromTwist(t, gauge), gauge);
+    const kinematics::BodyTwist back =
+        kinematics::TwistFromTrackSpeeds(kinematics::TrackSpeedsFromTwist(t, gauge), gauge);
     EXPECT_NEAR(back.v_mps, t.v_mps, 1e-15);
     EXPECT_NEAR(back.yaw_rate_radps, t.yaw_rate_radps, 1e-14);
   }
 }
 
 TEST(SkidSteerTest, EncoderDistanceIsTheAbsoluteMeanTrackTravel) {
-  EXPECT_DOUBLE_EQ(estimation::EncoderDistanceIncrement(1.0, 3.0, 0.1), 0.2);
-  EXPECT_DOUBLE_EQ(estimation::EncoderDistanceIncrement(-1.0, -3.0, 0.1), 0.2);
-  EXPECT_DOUBLE_EQ(estimation::EncoderDistanceIncrement(-2.0, 2.0, 0.1), 0.0);  // turn in place
+  EXPECT_DOUBLE_EQ(kinematics::EncoderDistanceIncrement(1.0, 3.0, 0.1), 0.2);
+  EXPECT_DOUBLE_EQ(kinematics::EncoderDistanceIncrement(-1.0, -3.0, 0.1), 0.2);
+  EXPECT_DOUBLE_EQ(kinematics::EncoderDistanceIncrement(-2.0, 2.0, 0.1), 0.0);  // turn in place
 }
 
 TEST(IcrCalibrationTest, RecoversTheExpansionFactorFromNoisySamples) {

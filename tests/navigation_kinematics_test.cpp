@@ -28,7 +28,7 @@ TEST(DiffDriveTest, JacobianMatchesNumericDifferentiationOfTheExactArc) {
       const Pose2 plus = IntegrateWheelAngles(params, pose, dl, dr);
       const Pose2 minus = IntegrateWheelAngles(params, pose, -dl, -dr);
       const Eigen::Vector3d numeric((plus.x - minus.x) / (2 * h), (plus.y - minus.y) / (2 * h),
-                                    estimation::WrapAngle(plus.yaw - minus.yaw) / (2 * h));
+                                    geometry::WrapAngle(plus.yaw - minus.yaw) / (2 * h));
       EXPECT_LT((numeric - J.col(wheel)).norm(), 1e-8) << "trial " << trial << " wheel " << wheel;
     }
   }
@@ -65,7 +65,7 @@ TEST(DiffDriveTest, ExactArcAgreesWithFineEulerIntegration) {
   }
   EXPECT_NEAR(exact.x, euler.x, 1e-4);
   EXPECT_NEAR(exact.y, euler.y, 1e-4);
-  EXPECT_NEAR(exact.yaw, estimation::WrapAngle(euler.yaw), 1e-9);
+  EXPECT_NEAR(exact.yaw, geometry::WrapAngle(euler.yaw), 1e-9);
   const Pose2 same = IntegrateWheelAngles(params, {0.5, -0.5, 0.3}, 3.5, 9.5);
   EXPECT_NEAR(same.x, exact.x, 1e-12);
   EXPECT_NEAR(same.y, exact.y, 1e-12);

@@ -25,7 +25,7 @@ namespace trackbed::teach_repeat {
 namespace {
 
 namespace fs = std::filesystem;
-using estimation::Pose2;
+using geometry::Pose2;
 using testing::CameraPose;
 using testing::CorridorScene;
 using testing::TestCamera;

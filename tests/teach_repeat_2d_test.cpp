@@ -25,7 +25,7 @@
 namespace trackbed::teach_repeat {
 namespace {
 
-using estimation::Pose2;
+using geometry::Pose2;
 using navigation::IntegrateTwist;  // the robot of these tests drives the twist exactly
 using testing::CameraPose;
 using testing::CorridorScene;

@@ -17,7 +17,7 @@
 namespace trackbed::teach_repeat {
 namespace {
 
-using estimation::Pose2;
+using geometry::Pose2;
 using testing::CameraPose;
 using testing::CorridorScene;
 using testing::TestCamera;
@@ -29,7 +29,7 @@ Pose2 TeachPose(int k) {
   Pose2 p;
   for (int i = 0; i < k; ++i) {
     const double yaw_rate = i >= 40 ? 0.15 * M_PI / 180.0 : 0.0;
-    p = estimation::Compose(p, {0.02, 0.0, yaw_rate});
+    p = geometry::Compose(p, {0.02, 0.0, yaw_rate});
   }
   return p;
 }

@@ -60,7 +60,7 @@ TeachMap RandomMap(std::uint64_t seed) {
   for (int i = 0; i < 12; ++i) {
     TeachImageRecord r;
     r.t_s = 0.1 * i + 1e-13 * u(rng);
-    if (i % 3 != 0) r.odometry = estimation::Pose2{u(rng) * 3.0, u(rng) / 3.0, u(rng) * M_PI};
+    if (i % 3 != 0) r.odometry = geometry::Pose2{u(rng) * 3.0, u(rng) / 3.0, u(rng) * M_PI};
     map.images.push_back(r);
   }
   for (int k = 0; k < 2; ++k) {
@@ -226,7 +226,7 @@ TEST(TeachMapTest, ATaughtMapRoundTrips) {
   options.mode = TeachMode::k3d;
   MilestoneBuilder builder(testing::TestCamera(), options);
   for (int k = 0; k < 30; ++k) {
-    const estimation::Pose2 pose{0.02 * k, 0.0, 0.0};
+    const geometry::Pose2 pose{0.02 * k, 0.0, 0.0};
     builder.AddImage(scene.Render(testing::CameraPose(pose)), 0.1 * k, pose);
   }
   const TeachMap map = builder.Finish();

@@ -23,7 +23,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "trackbed/estimation/pose2.h"
+#include "trackbed/common/pose2.h"
 #include "trackbed/teach_repeat/teach_map.h"
 
 namespace trackbed::teach_repeat::testing {
@@ -44,14 +44,14 @@ inline geometry::PinholeCamera TestCamera() {
 }
 
 /// T_world_cam of the camera on a robot at planar pose `body`.
-inline Eigen::Isometry3d CameraPose(const estimation::Pose2& body) {
+inline Eigen::Isometry3d CameraPose(const geometry::Pose2& body) {
   Eigen::Matrix3d R_body_cam;
   // Columns: the camera's x (right = −body y), y (down = −body z), z (forward = body x).
   R_body_cam << 0.0, 0.0, 1.0, -1.0, 0.0, 0.0, 0.0, -1.0, 0.0;
   Eigen::Isometry3d T_body_cam = Eigen::Isometry3d::Identity();
   T_body_cam.linear() = R_body_cam;
   T_body_cam.translation() = Eigen::Vector3d(kCameraForward, 0.0, kCameraHeight);
-  return estimation::ToIsometry(body) * T_body_cam;
+  return geometry::ToIsometry(body) * T_body_cam;
 }
 
 struct CorridorOptions {

@@ -30,7 +30,7 @@
 
 #include <Eigen/Core>
 
-#include "trackbed/estimation/pose2.h"
+#include "trackbed/common/pose2.h"
 
 namespace trackbed::estimation {
 
@@ -79,7 +79,7 @@ struct EkfOdometryOptions {
 /// Not copyable; feed measurements in time order.
 class EkfOdometry {
  public:
-  EkfOdometry(const EkfOdometryOptions& options, const Pose2& initial_pose);
+  EkfOdometry(const EkfOdometryOptions& options, const geometry::Pose2& initial_pose);
   EkfOdometry(const EkfOdometry&) = delete;
   EkfOdometry& operator=(const EkfOdometry&) = delete;
 
@@ -90,9 +90,9 @@ class EkfOdometry {
   /// A camera frame at t. `motion`: visual odometry's planar motion since the previous
   /// frame, in that frame's body axes, or none (a failed frame, or the first). Either
   /// way the pose now is what the next frame's motion starts from.
-  void AddCameraFrame(double t_s, const std::optional<Pose2>& motion, int inliers);
+  void AddCameraFrame(double t_s, const std::optional<geometry::Pose2>& motion, int inliers);
 
-  Pose2 pose() const { return {x_(0), x_(1), WrapAngle(x_(2))}; }
+  geometry::Pose2 pose() const { return {x_(0), x_(1), geometry::WrapAngle(x_(2))}; }
   double gyro_bias() const { return x_(6); }
 
  private:

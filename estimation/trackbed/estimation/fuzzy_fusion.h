@@ -13,7 +13,7 @@
 #include <optional>
 #include <string>
 
-#include "trackbed/estimation/pose2.h"
+#include "trackbed/common/pose2.h"
 
 namespace fl {
 class Engine;
@@ -81,18 +81,19 @@ class FuzzyFusionWeight {
 /// Composes fused motion increments into a planar pose.
 class FusedOdometry {
  public:
-  explicit FusedOdometry(const Pose2& initial_pose) : pose_(initial_pose) {}
+  explicit FusedOdometry(const geometry::Pose2& initial_pose) : pose_(initial_pose) {}
 
   /// One fusion step over a camera interval: the wheel-odometry increment and,
   /// when visual odometry produced a motion, its increment, blended with the
   /// wheel weight `w`. Without a VO increment the wheel increment is taken
   /// whole (a failed VO frame has no motion to weigh).
-  void Add(const Pose2& wheel_increment, const std::optional<Pose2>& vo_increment, double w);
+  void Add(const geometry::Pose2& wheel_increment,
+           const std::optional<geometry::Pose2>& vo_increment, double w);
 
-  const Pose2& pose() const { return pose_; }
+  const geometry::Pose2& pose() const { return pose_; }
 
  private:
-  Pose2 pose_;
+  geometry::Pose2 pose_;
 };
 
 }  // namespace trackbed::estimation

@@ -14,13 +14,13 @@
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
+#include "trackbed/common/pose2.h"
 #include "trackbed/common/robot_calibration.h"
 #include "trackbed/common/stereo_camera.h"
 #include "trackbed/estimation/ekf_odometry.h"
 #include "trackbed/estimation/fusion_weight_rise.h"
 #include "trackbed/estimation/fuzzy_fusion.h"
 #include "trackbed/estimation/imu_correction.h"
-#include "trackbed/estimation/pose2.h"
 #include "trackbed/estimation/stereo_visual_odometry.h"
 #include "trackbed/estimation/wheel_odometry.h"
 #include "trackbed/perception/stereo_rectifier.h"
@@ -187,7 +187,7 @@ class LocalizationStack {
   bool has_vo_motion_ = false;
   // Wheel pose and time at the last stereo frame: the fusion step's interval.
   // (Declared after the estimators: initialised from the initial pose.)
-  Pose2 wheel_at_frame_;
+  geometry::Pose2 wheel_at_frame_;
   double t_frame_ = 0.0;
   bool has_frame_ = false;
   // The body's rotation since the last stereo frame, integrated from the gyro.

@@ -21,7 +21,7 @@
 #include <cstdint>
 #include <optional>
 
-#include "trackbed/estimation/pose2.h"
+#include "trackbed/common/pose2.h"
 
 namespace trackbed::estimation {
 
@@ -83,7 +83,7 @@ struct TrackSlip {
 /// Integrates encoder samples into a planar pose. Not copyable.
 class WheelOdometry {
  public:
-  WheelOdometry(const WheelOdometryOptions& options, const Pose2& initial_pose);
+  WheelOdometry(const WheelOdometryOptions& options, const geometry::Pose2& initial_pose);
   WheelOdometry(const WheelOdometry&) = delete;
   WheelOdometry& operator=(const WheelOdometry&) = delete;
 
@@ -97,7 +97,7 @@ class WheelOdometry {
   /// mean speeds over the same interval. Ignored by the no-slip baseline.
   void AddMeasuredVelocity(double t0_s, double t1_s, double forward_mps, double yaw_rate_radps);
 
-  const Pose2& pose() const { return pose_; }
+  const geometry::Pose2& pose() const { return pose_; }
   const TrackSlip& slip() const { return slip_; }
   /// Forward speed [m/s] and yaw rate [rad/s] of the last step (eqs. 3–5).
   double forward_mps() const { return forward_mps_; }
@@ -109,7 +109,7 @@ class WheelOdometry {
   bool AnglesAt(double t_s, double* left_rad, double* right_rad) const;
 
   WheelOdometryOptions options_;
-  Pose2 pose_;
+  geometry::Pose2 pose_;
   TrackSlip slip_;
   double forward_mps_ = 0.0, yaw_rate_radps_ = 0.0;
   double last_measurement_t_ = -1e300;

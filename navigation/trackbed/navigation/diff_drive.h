@@ -8,13 +8,13 @@
 
 #include <Eigen/Core>
 
-#include "trackbed/estimation/pose2.h"
-#include "trackbed/estimation/skid_steer.h"
+#include "trackbed/common/pose2.h"
+#include "trackbed/common/skid_steer.h"
 
 namespace trackbed::navigation {
 
-using Pose2 = estimation::Pose2;
-using BodyTwist = estimation::BodyTwist;
+using Pose2 = geometry::Pose2;
+using BodyTwist = kinematics::BodyTwist;
 
 /// The differential-drive robot of Jung & Kim 2014 (§3): its defaults are the paper's.
 struct DiffDriveParams {

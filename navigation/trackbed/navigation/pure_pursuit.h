@@ -7,8 +7,8 @@
 
 #include <Eigen/Core>
 
-#include "trackbed/estimation/pose2.h"
-#include "trackbed/estimation/skid_steer.h"
+#include "trackbed/common/pose2.h"
+#include "trackbed/common/skid_steer.h"
 
 namespace trackbed::navigation {
 
@@ -28,11 +28,11 @@ struct PurePursuitOptions {
 };
 
 /// Planar pose of the robot: position [m] and heading [rad].
-using Pose2 = estimation::Pose2;
+using Pose2 = geometry::Pose2;
 
 /// Output of one control step.
 struct PurePursuitCommand {
-  estimation::BodyTwist twist;
+  kinematics::BodyTwist twist;
   bool finished = false;       ///< The end of an open path (or one lap) is reached.
   double progress_m = 0.0;     ///< Arc length of the path's closest point, cumulative over laps.
   double cross_track_m = 0.0;  ///< Signed distance to the path (left positive).

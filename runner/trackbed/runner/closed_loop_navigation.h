@@ -13,7 +13,7 @@
 
 #include <Eigen/Geometry>
 
-#include "trackbed/estimation/skid_steer.h"
+#include "trackbed/common/skid_steer.h"
 #include "trackbed/navigation/navigation_metrics.h"
 #include "trackbed/navigation/navigator.h"
 #include "trackbed/navigation/scan_clustering.h"
@@ -44,7 +44,7 @@ class ClosedLoopNavigation : public Commander {
 
   /// One control step at `t_s`: `pose` is what the robot believes, `T_world_body` the
   /// truth (logged, never shown to the navigator). Returns the track speeds to command.
-  estimation::TrackSpeeds Command(double t_s, const estimation::Pose2& pose,
+  kinematics::TrackSpeeds Command(double t_s, const geometry::Pose2& pose,
                                   const Eigen::Isometry3d& T_world_body);
   /// The navigator has ended the run (reached, goal in obstacle, stalled).
   bool finished() const { return status_ != navigation::NavigationStatus::kDriving; }

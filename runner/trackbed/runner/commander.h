@@ -11,8 +11,8 @@
 #include <Eigen/Geometry>
 #include <opencv2/core/mat.hpp>
 
+#include "trackbed/common/skid_steer.h"
 #include "trackbed/estimation/localization.h"
-#include "trackbed/estimation/skid_steer.h"
 #include "trackbed/robot/range_sensor.h"
 
 namespace trackbed::runner {
@@ -34,7 +34,7 @@ struct ControlInput {
 
 /// A commander's answer.
 struct ControlOutput {
-  estimation::TrackSpeeds tracks;  ///< held until the next call [m/s]
+  kinematics::TrackSpeeds tracks;  ///< held until the next call [m/s]
   /// Set: the run ends after this call, for this reason (metrics.json `stop_reason`).
   std::optional<std::string> stop_reason;
 };

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "trackbed/estimation/pose2.h"
+#include "trackbed/common/pose2.h"
 #include "trackbed/navigation/circle_obstacle.h"
 #include "trackbed/navigation/navigation_metrics.h"
 #include "trackbed/navigation/subgoal_planner.h"
@@ -28,7 +28,7 @@ std::string NavigationCsvRow(const navigation::NavigationLogEntry& e);
 void WriteNavigationMap(const std::filesystem::path& png, const std::string& title,
                         const std::vector<navigation::NavigationLogEntry>& log,
                         const std::vector<navigation::Circle>& obstacles, double safety_radius_m,
-                        const estimation::Pose2& start, const estimation::Pose2& goal,
+                        const geometry::Pose2& start, const geometry::Pose2& goal,
                         const std::vector<navigation::SubgoalRecord>& subgoals);
 
 /// The scene's colliding objects as circles, for the map: cylinders as they are, boxes

@@ -45,7 +45,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "trackbed/estimation/pose2.h"
+#include "trackbed/common/pose2.h"
 #include "trackbed/perception/feature_tracker.h"
 #include "trackbed/perception/harris_corners.h"
 #include "trackbed/teach_repeat/teach_map.h"
@@ -128,7 +128,7 @@ class MilestoneBuilder {
   /// and for distance intervals; metadata otherwise). Throws std::invalid_argument
   /// otherwise (the builder is then unchanged).
   TeachStep AddImage(const cv::Mat& gray, double t_s,
-                     const std::optional<estimation::Pose2>& odometry = std::nullopt);
+                     const std::optional<geometry::Pose2>& odometry = std::nullopt);
 
   /// Closes the open milestone (if it spans at least two images) and returns the map.
   /// The builder is empty afterwards and may teach a new route.
@@ -161,7 +161,7 @@ class MilestoneBuilder {
 
   // AddImage's steps. The checks of its arguments (throwing std::invalid_argument).
   void CheckImage(const cv::Mat& gray, double t_s,
-                  const std::optional<estimation::Pose2>& odometry) const;
+                  const std::optional<geometry::Pose2>& odometry) const;
   // Whether a feature lies at least half a patch inside the image.
   bool InsidePatchBorder(const cv::Point2f& p) const;
   // A new milestone at image `index` (`image`): its features detected afresh.

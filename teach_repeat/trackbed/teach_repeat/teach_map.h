@@ -56,7 +56,7 @@
 #include <opencv2/core.hpp>
 
 #include "trackbed/common/pinhole_camera.h"
-#include "trackbed/estimation/pose2.h"
+#include "trackbed/common/pose2.h"
 #include "trackbed/teach_repeat/milestone_feature.h"
 
 namespace trackbed::teach_repeat {
@@ -141,7 +141,7 @@ struct TeachImageRecord {
   double t_s = 0.0;  ///< [s]
   /// Wheel-odometry pose of the body at that time, if the teach recorded it (metadata;
   /// 3D teach uses the distance between poses for the reconstruction's scale).
-  std::optional<estimation::Pose2> odometry;
+  std::optional<geometry::Pose2> odometry;
 };
 
 /// A taught route.

@@ -26,7 +26,7 @@
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
-#include "trackbed/estimation/skid_steer.h"
+#include "trackbed/common/skid_steer.h"
 #include "trackbed/teach_repeat/teach_map.h"
 
 namespace trackbed::teach_repeat {
@@ -49,7 +49,7 @@ const char* ToString(TurnVote vote);
 struct RepeatCommand {
   RepeatStatus status = RepeatStatus::kDriving;
   /// Forward speed [m/s] and yaw rate [rad/s] (> 0 turns left, counter-clockwise).
-  estimation::BodyTwist twist;
+  kinematics::BodyTwist twist;
   int milestone = 0;                  ///< active milestone (after a switch in this frame)
   bool switched = false;              ///< a milestone switch happened in this frame
   bool switched_by_distance = false;  ///< that by the 2D distance bound, not the images

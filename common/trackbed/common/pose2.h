@@ -6,7 +6,7 @@
 
 #include <Eigen/Geometry>
 
-namespace trackbed::estimation {
+namespace trackbed::geometry {
 
 /// A pose in the plane: position [m] and heading [rad], or a motion
 /// expressed in the frame it starts from (dx forward, dy left, dyaw).
@@ -44,4 +44,4 @@ inline Eigen::Isometry3d ToIsometry(const Pose2& p, double z = 0.0) {
   return T;
 }
 
-}  // namespace trackbed::estimation
+}  // namespace trackbed::geometry

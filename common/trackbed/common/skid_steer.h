@@ -7,7 +7,7 @@
 
 #include <cstdint>
 
-namespace trackbed::estimation {
+namespace trackbed::kinematics {
 
 struct BodyTwist {
   double v_mps = 0.0;  ///< Forward speed.
@@ -37,4 +37,4 @@ inline double EncoderDistanceIncrement(double delta_left_rad, double delta_right
   return d < 0 ? -d : d;
 }
 
-}  // namespace trackbed::estimation
+}  // namespace trackbed::kinematics
