@@ -124,7 +124,7 @@ int main(int argc, char** argv) {
     std::vector<trackbed::scenario::Override> overrides;
     for (const std::string& s : sets) overrides.push_back(trackbed::scenario::ParseOverride(s));
     const trackbed::scenario::Scenario s = trackbed::scenario::LoadScenario(file, overrides);
-    // The closed loop's terrain seed (runner/closed_loop.cpp).
+    // The closed loop's terrain seed (runner/plant.cpp).
     const Terrain t(s.scene.terrain, trackbed::split_mix::Stream(s.seed, 0));
     const std::vector<double> heights = GridHeights(t);
     PrintStatistics(t, heights);

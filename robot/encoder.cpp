@@ -31,4 +31,18 @@ bool EncoderOptions::InDropout(int side, double t_s) const {
   return false;
 }
 
+SprocketEncoders::SprocketEncoders(const EncoderOptions& options) : options_(options) {}
+
+std::array<std::int64_t, 2> SprocketEncoders::Sample(
+    double t_s, const std::array<double, 2>& sprocket_angle_rad) {
+  for (int side = 0; side < 2; ++side) {
+    // In a dropout the count freezes, and what the shaft turns meanwhile is lost.
+    const std::int64_t shaft = EncoderTicks(sprocket_angle_rad[side], options_.ticks_per_rev);
+    if (options_.InDropout(side, t_s)) lost_[side] += shaft - last_shaft_[side];
+    last_shaft_[side] = shaft;
+    counts_[side] = shaft - lost_[side];
+  }
+  return counts_;
+}
+
 }  // namespace trackbed::robot

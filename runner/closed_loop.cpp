@@ -1,38 +1,27 @@
 // The closed loop (see closed_loop.h).
 #include "trackbed/runner/closed_loop.h"
 
-#include <sys/resource.h>
-
-#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
-#include <map>
 #include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
-#include "trackbed/common/skid_steer.h"
-#include "trackbed/common/split_mix.h"
-#include "trackbed/common/units.h"
 #include "trackbed/perception/opencv_views.h"
-#include "trackbed/render/camera_exposure.h"
-#include "trackbed/render/renderer.h"
-#include "trackbed/robot/auto_exposure.h"
-#include "trackbed/robot/encoder.h"
-#include "trackbed/robot/image_sensor.h"
-#include "trackbed/robot/pose_path_carrier.h"
-#include "trackbed/robot/tracked_vehicle.h"
 #include "trackbed/runner/closed_loop_navigation.h"
 #include "trackbed/runner/estimator_scoring.h"
 #include "trackbed/runner/localization_options.h"
 #include "trackbed/runner/ordered_worker.h"
 #include "trackbed/runner/path_driver.h"
+#include "trackbed/runner/plant.h"
+#include "trackbed/runner/reported_estimates.h"
 #include "trackbed/runner/run_folder.h"
+#include "trackbed/runner/stage_times.h"
 #include "trackbed/runner/wheel_calibration_run.h"
 #include "trackbed/sim/sim_clock.h"
-#include "trackbed/sim/world.h"
 
 namespace trackbed::runner {
 namespace {
@@ -40,6 +29,12 @@ namespace {
 // Tasks (encoder samples, gyro samples, stereo frames) the simulation may run ahead of
 // the localization stack.
 constexpr std::int64_t kMaxTasksAhead = 64;
+
+// Steps of the clock between a sensor's samples, between a periodic commander's calls;
+// the step at which the duration is reached.
+struct Schedule {
+  std::int64_t encoders = 1, imu = 1, camera = 1, scan = 1, control = 1, end_step = 0;
+};
 
 EstimateSample EstimateAfterEncoders(estimation::LocalizationStack& stack, const RunSample& s,
                                      bool has_camera) {
@@ -66,94 +61,6 @@ LocalizationFrame LocalizeStereoFrame(estimation::LocalizationStack& stack, doub
   return lf;
 }
 
-// Peak resident set size of this process so far [MB].
-double PeakRssMb() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
-}
-
-// Wall-clock seconds of the main thread's stages.
-struct StageTimes {
-  double setup_s = 0.0, physics_s = 0.0, control_s = 0.0, sensing_s = 0.0, io_s = 0.0;
-};
-
-// Runs `f`, adding its wall-clock time to *seconds.
-template <class F>
-auto Timed(double* seconds, F&& f) {
-  const auto start = std::chrono::steady_clock::now();
-  struct Add {
-    double* seconds;
-    std::chrono::steady_clock::time_point start;
-    ~Add() {
-      *seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    }
-  } add{seconds, start};
-  return f();
-}
-
-// The camera's stages after rendering: the sensor model (exposure, gain, noise keyed
-// by seed, frame and camera: in electrons when `sensors` are given, else in grey
-// levels), then the blackout fault, on a rendered pair.
-struct CameraPipeline {
-  const robot::StereoRigOptions& stereo;
-  const robot::ImageSensor* sensors;  // left, right; null: the grey-level model
-  double exposure;                    // light on the sensor relative to the render's
-  double gain;                        // analog gain (auto-exposure)
-  bool clipped_render;                // exposed before the render's 8 bits clipped
-  std::uint64_t noise_seed;
-  std::int64_t frame_index;
-  bool blackout;
-
-  void Apply(GrayImage* left, GrayImage* right) const {
-    const auto frame = static_cast<std::uint64_t>(frame_index);
-    if (sensors) {
-      sensors[0].Apply(exposure, noise_seed, frame, left, gain, clipped_render);
-      sensors[1].Apply(exposure, noise_seed, frame, right, gain, clipped_render);
-    } else {
-      robot::ApplySensorModel(exposure * gain, stereo.noise_std, noise_seed, frame, 0, left);
-      robot::ApplySensorModel(exposure * gain, stereo.noise_std, noise_seed, frame, 1, right);
-    }
-    if (blackout) {
-      std::fill(left->pixels.begin(), left->pixels.end(), 0);
-      std::fill(right->pixels.begin(), right->pixels.end(), 0);
-    }
-  }
-};
-
-// The observers, each call's time added to *io_s (they write the run folder).
-RunObservers TimedObservers(const RunObservers& o, double* io_s) {
-  return CombineObservers(o, o, [io_s](const auto& f, const auto&) -> std::decay_t<decltype(f)> {
-    if (!f) return {};
-    return [f, io_s](const auto& x) { Timed(io_s, [&] { f(x); }); };
-  });
-}
-
-// The body's pose `dt_s` later at constant velocity (dt small: a camera's time offset).
-render::BodyMotion Advanced(const render::BodyMotion& m, double dt_s) {
-  if (dt_s == 0.0) return m;
-  render::BodyMotion out = m;
-  out.T_world_body = m.PoseAfter(dt_s);
-  return out;
-}
-
-// The carrier of a pose path: the drive's curve, the robot's weight and footprint.
-robot::PosePathOptions PosePathOf(const scenario::Scenario& scenario) {
-  const robot::TrackedVehicleOptions& v = scenario.robot.vehicle;
-  robot::PosePathOptions o;
-  o.waypoints = scenario.drive.waypoints;
-  o.closed = scenario.drive.closed;
-  o.laps = scenario.drive.laps;
-  o.speed_mps = scenario.drive.speed_mps;
-  o.body_height_m = v.com_height_m;
-  o.footprint_length_m = v.track_contact_length_m;
-  o.footprint_width_m = v.track_gauge_m;
-  o.mass_kg = v.mass_kg;
-  o.stations_per_track =
-      v.station_x_m.empty() ? v.road_wheels_per_track : static_cast<int>(v.station_x_m.size());
-  return o;
-}
-
 // The straight calibration run of `scenario`'s robot, in closed loop.
 calibration::VehicleCalibration CalibrateWheels(const scenario::Scenario& scenario) {
   StraightRunFit fit(scenario.robot.encoders.ticks_per_rev, scenario.robot.vehicle.track_gauge_m,
@@ -170,42 +77,6 @@ calibration::VehicleCalibration CalibrateWheels(const scenario::Scenario& scenar
   } catch (const std::exception& e) {
     throw std::runtime_error(what + ": " + e.what());
   }
-}
-
-// The estimators' names a reported estimate may not take: the stack's, and the TUM
-// file of ground truth.
-constexpr const char* kTakenNames[] = {"wheel_odometry", "wheel_odometry_noslip", "ekf",
-                                       "fused",          "visual_odometry",       "ground_truth"};
-
-// Throws std::invalid_argument unless `name` may name a reported estimator.
-void CheckEstimatorName(const std::string& name) {
-  const auto fail = [&name](const std::string& why) {
-    throw std::invalid_argument("estimate \"" + name + "\": " + why);
-  };
-  if (name.empty()) fail("the name must not be empty");
-  for (const char c : name) {
-    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
-                    c == '_' || c == '-';
-    if (!ok) fail("the name may hold only letters, digits, '_' and '-'");
-  }
-  for (const char* taken : kTakenNames) {
-    if (name == taken) fail("the name is taken (the built-in estimators' and ground_truth)");
-  }
-}
-
-// Throws std::invalid_argument unless `T` is a rigid transform: finite, the last row
-// 0 0 0 1, the rotation orthonormal (to 1e-6) with determinant +1.
-void CheckRigid(const std::string& name, const Eigen::Matrix4d& T) {
-  const auto fail = [&name](const std::string& why) {
-    throw std::invalid_argument("estimate \"" + name + "\": not a rigid transform: " + why);
-  };
-  if (!T.allFinite()) fail("it has non-finite entries");
-  if (T.row(3) != Eigen::RowVector4d(0, 0, 0, 1)) fail("the last row is not 0 0 0 1");
-  const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();
-  const double off = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
-  if (off > 1e-6)
-    fail("the rotation is not orthonormal (|R^T R - I| = " + std::to_string(off) + ")");
-  if (R.determinant() < 0) fail("the rotation is a reflection (determinant -1)");
 }
 
 }  // namespace
@@ -228,8 +99,17 @@ class ClosedLoop::Impl {
   bool done() const { return done_; }
   const estimation::LocalizationStack* localization();
   void ReportEstimate(const std::string& name, const Eigen::Matrix4d& T_world_body);
-  // Writes metrics.json saying why the run failed (when there is a folder).
-  void RecordFailure(const std::exception& e);
+  // Runs `f`; should it throw, writes a metrics.json that says why (when there is a
+  // folder) and rethrows.
+  template <class F>
+  decltype(auto) Recorded(F&& f) {
+    try {
+      return f();
+    } catch (const std::exception& e) {
+      RecordFailure(e);
+      throw;
+    }
+  }
   scenario::DriveSource drive_source() const {
     return options_.commander ? scenario::DriveSource::kExternal : scenario::DriveSource::kScenario;
   }
@@ -237,8 +117,6 @@ class ClosedLoop::Impl {
  private:
   using ImagePair = std::pair<GrayImage, GrayImage>;
 
-  void BuildWorld();
-  void BuildCameras();
   void BuildSoftware();
   void BuildSchedule();
   // One physics step and whatever fires in it; true when the commander was called.
@@ -246,8 +124,8 @@ class ClosedLoop::Impl {
   bool SampleEncoders(const robot::ChassisState& truth, StepResult* out);
   bool TakeStereoFrame(const robot::ChassisState& truth, StepResult* out);
   ImagePair* FreePair();
-  void SubmitFrame(ImagePair* pair, const Eigen::Isometry3d& T_world_body, double t_s,
-                   const CameraPipeline& finish, bool finish_on_worker);
+  void SubmitFrame(ImagePair* pair, const Eigen::Isometry3d& T_world_body,
+                   const robot::StereoCapture& capture, bool develop_on_worker);
   void SampleImu(const robot::ChassisState& truth, StepResult* out);
   void Scan(const robot::ChassisState& truth, StepResult* out);
   // Calls the commander and commands the tracks; false when it ended the run.
@@ -258,6 +136,7 @@ class ClosedLoop::Impl {
   }
   RunMetrics Metrics();
   void ReleaseSimulation();
+  void RecordFailure(const std::exception& e);
 
   scenario::Scenario scenario_;
   ClosedLoopOptions options_;
@@ -272,24 +151,10 @@ class ClosedLoop::Impl {
   RunObservers observers_;
   StepResult step_;  // Step()'s result, reused
 
-  std::unique_ptr<sim::World> world_;
-  // The tracked vehicle in the physics, or the carrier of a pose path.
-  std::unique_ptr<robot::Platform> vehicle_;
-  const robot::PosePathCarrier* carrier_ = nullptr;  // vehicle_, when it is one
-  std::unique_ptr<robot::Imu> imu_;
+  std::optional<Plant> plant_;  // the world and the robot in it
   Commander* commander_ = nullptr;
-  std::int64_t last_ticks_[2] = {0, 0};
-  // Encoder dropouts: the shaft's count at the last sample, and the counts lost so far.
-  std::int64_t last_shaft_ticks_[2] = {0, 0}, lost_ticks_[2] = {0, 0};
-  std::optional<robot::StereoRig> rig_;
-  std::unique_ptr<render::Renderer> renderer_;
-  GrayImage left_image_, right_image_;
-  std::unique_ptr<render::CameraExposure> exposures_[2];  // left, right
-  std::vector<robot::ImageSensor> image_sensors_;         // left, right; or none
-  std::optional<robot::AutoExposure> auto_exposure_;      // when on
   std::unique_ptr<estimation::LocalizationStack> stack_;
   EstimatorScoring estimates_;
-  double estimation_wall_s_ = 0.0;
   // With the camera on, the localization stack runs on a second thread, fed the same
   // samples in the same order as it would be inline (identical results), while this
   // thread simulates and renders ahead. The worker gets copies of each stereo pair in
@@ -299,19 +164,13 @@ class ClosedLoop::Impl {
   std::vector<std::unique_ptr<ImagePair>> image_pairs_;
   std::vector<ImagePair*> free_pairs_;
   std::unique_ptr<OrderedWorker> worker_;
-  std::unique_ptr<robot::RangeSensor> range_sensor_;
   std::uint64_t scan_index_ = 0;
-  std::int64_t stereo_index_ = 0;
-  double render_wall_s_ = 0.0;
-  double sensor_model_wall_s_ = 0.0;       // on this thread
   double sensor_model_on_worker_s_ = 0.0;  // written by the worker, read after Drain()
-  std::uint64_t noise_seed_ = 0;
   std::unique_ptr<MetricsAccumulator> metrics_;
   std::unique_ptr<sim::SimClock> clock_;
-  std::int64_t encoder_period_ = 1, imu_period_ = 1, camera_period_ = 1, scan_period_ = 1;
-  std::int64_t control_period_ = 1, end_step_ = 0;
+  Schedule schedule_;
   Eigen::Vector3d v_at_last_imu_ = Eigen::Vector3d::Zero();
-  std::map<std::string, double> reported_t_;  // reported estimator → time of its last estimate
+  ReportedEstimates reported_;
 };
 
 void ClosedLoop::Impl::Start() {
@@ -327,77 +186,13 @@ void ClosedLoop::Impl::Start() {
   }
   observers_ = TimedObservers(observers, &times_.io_s);
   Timed(&times_.setup_s, [&] {
-    BuildWorld();
+    plant_.emplace(BuildPlant(scenario_, robot_, scenario_.CarriedOnPosePath(drive_source())));
+    const scenario::RobotSpec& rs = scenario_.robot;
+    metrics_ = std::make_unique<MetricsAccumulator>(
+        rs.vehicle.sprocket_radius_m, rs.vehicle.track_gauge_m, rs.encoders.ticks_per_rev);
     BuildSoftware();
     BuildSchedule();
   });
-}
-
-void ClosedLoop::Impl::BuildWorld() {
-  const scenario::RobotSpec& rs = scenario_.robot;
-  world_ = std::make_unique<sim::World>(
-      scenario_.scene.world,
-      sim::Terrain(scenario_.scene.terrain, split_mix::Stream(scenario_.seed, 0)),
-      scenario::SceneObjects(scenario_));
-  if (scenario_.CarriedOnPosePath(drive_source())) {
-    auto carrier = std::make_unique<robot::PosePathCarrier>(
-        PosePathOf(scenario_), &world_->terrain(), robot_.truth.vehicle,
-        scenario_.scene.world.gravity_mps2);
-    carrier_ = carrier.get();
-    vehicle_ = std::move(carrier);
-  } else {
-    vehicle_ = std::make_unique<robot::TrackedVehicle>(
-        rs.vehicle, world_.get(), rs.start.x_m, rs.start.y_m, units::Radians(rs.start.yaw_deg),
-        &robot_.truth.vehicle);
-  }
-  imu_ = std::make_unique<robot::Imu>(rs.imu, scenario_.scene.world.gravity_mps2,
-                                      split_mix::Stream(scenario_.seed, 1), &robot_.truth.imu);
-  if (rs.stereo.enabled) BuildCameras();
-  if (rs.range_sensor.enabled) {
-    range_sensor_ =
-        std::make_unique<robot::RangeSensor>(rs.range_sensor, split_mix::Stream(scenario_.seed, 4));
-  }
-  noise_seed_ = split_mix::Stream(scenario_.seed, 3);
-  metrics_ = std::make_unique<MetricsAccumulator>(
-      rs.vehicle.sprocket_radius_m, rs.vehicle.track_gauge_m, rs.encoders.ticks_per_rev);
-}
-
-// The stereo rig as built, one renderer for both cameras, sized for the wider of their
-// renders through the lens, and each camera's exposure.
-void ClosedLoop::Impl::BuildCameras() {
-  const scenario::RobotSpec& rs = scenario_.robot;
-  const robot::StereoRigOptions stereo = robot::WithCameraEffectsResolved(rs.stereo, rs.realism);
-  rig_.emplace(stereo, *robot_.truth.stereo);
-  // Four pixels of margin: what a rolling shutter or blur warp may reach past the edge;
-  // the render drawn `supersampling` times as finely.
-  const int margin = stereo.distortion->is_zero() && *stereo.rolling_shutter.line_delay_s == 0 &&
-                             stereo.exposure_time_s == 0
-                         ? 0
-                         : 4;
-  const geometry::PinholeCamera left = render::Supersampled(
-      render::RenderCameraFor(rig_->intrinsics(), margin), stereo.supersampling);
-  const geometry::PinholeCamera right = render::Supersampled(
-      render::RenderCameraFor(rig_->right_intrinsics(), margin), stereo.supersampling);
-  const int w = std::max(left.width_px, right.width_px);
-  const int h = std::max(left.height_px, right.height_px);
-  renderer_ = std::make_unique<render::Renderer>(
-      *world_, scenario_.scene.appearance, scenario_.scene.occluders,
-      split_mix::Stream(scenario_.seed, 2), w, h, stereo.near_m, stereo.far_m);
-  const double line_delay = *stereo.rolling_shutter.line_delay_s;
-  exposures_[0] = std::make_unique<render::CameraExposure>(
-      rig_->intrinsics(), render::GrownTo(left, w, h), stereo.exposure_samples, line_delay);
-  exposures_[1] = std::make_unique<render::CameraExposure>(
-      rig_->right_intrinsics(), render::GrownTo(right, w, h), stereo.exposure_samples, line_delay);
-  if (stereo.auto_exposure.enabled) {
-    auto_exposure_.emplace(stereo.auto_exposure, stereo.exposure_time_s);
-  }
-  if (*stereo.photometric.enabled) {
-    const std::uint64_t pattern_seed = split_mix::Stream(scenario_.seed, 6);
-    for (int camera = 0; camera < 2; ++camera) {
-      image_sensors_.emplace_back(stereo.photometric, stereo.width_px, stereo.height_px,
-                                  pattern_seed, camera);
-    }
-  }
 }
 
 // The robot software: the localization stack on the robot's own sensors, and the
@@ -406,19 +201,19 @@ void ClosedLoop::Impl::BuildSoftware() {
   const scenario::RobotSpec& rs = scenario_.robot;
   if (scenario_.estimation.enabled) {
     const calibration::StereoCalibration* given_stereo =
-        rig_ && robot_.given.stereo ? &*robot_.given.stereo : nullptr;
+        plant_->camera && robot_.given.stereo ? &*robot_.given.stereo : nullptr;
     stack_ = std::make_unique<estimation::LocalizationStack>(
         LocalizationOptionsOf(scenario_, robot_.given), given_stereo,
-        vehicle_->chassis().T_world_body);
+        plant_->vehicle->chassis().T_world_body);
   }
-  if (stack_ && rig_) worker_ = std::make_unique<OrderedWorker>();
+  if (stack_ && plant_->camera) worker_ = std::make_unique<OrderedWorker>();
   if (!options_.commander) {
     if (scenario_.navigation.enabled) {
-      options_.commander = std::make_unique<ClosedLoopNavigation>(scenario_, world_->objects(),
-                                                                  observers_.on_navigation_step);
-    } else if (carrier_) {
+      options_.commander = std::make_unique<ClosedLoopNavigation>(
+          scenario_, plant_->world->objects(), observers_.on_navigation_step);
+    } else if (plant_->carrier) {
       options_.commander = std::make_unique<PathDriver>(scenario_.drive, rs.vehicle.track_gauge_m,
-                                                        carrier_->end_time_s());
+                                                        plant_->carrier->end_time_s());
     } else {
       options_.commander = std::make_unique<PathDriver>(scenario_.drive, rs.vehicle.track_gauge_m);
     }
@@ -429,15 +224,16 @@ void ClosedLoop::Impl::BuildSoftware() {
 void ClosedLoop::Impl::BuildSchedule() {
   const scenario::RobotSpec& rs = scenario_.robot;
   clock_ = std::make_unique<sim::SimClock>(scenario_.scene.world.physics_step_s);
-  encoder_period_ = clock_->StepsPerPeriod(rs.encoders.rate_hz);
-  imu_period_ = clock_->StepsPerPeriod(rs.imu.rate_hz);
-  camera_period_ = clock_->StepsPerPeriod(rs.stereo.rate_hz);
-  scan_period_ = clock_->StepsPerPeriod(rs.range_sensor.rate_hz);
+  schedule_.encoders = clock_->StepsPerPeriod(rs.encoders.rate_hz);
+  schedule_.imu = clock_->StepsPerPeriod(rs.imu.rate_hz);
+  schedule_.camera = clock_->StepsPerPeriod(rs.stereo.rate_hz);
+  schedule_.scan = clock_->StepsPerPeriod(rs.range_sensor.rate_hz);
   if (commander_->trigger() == Commander::Trigger::kPeriodic) {
-    control_period_ = clock_->StepsPerPeriod(1.0 / commander_->period_s());
+    schedule_.control = clock_->StepsPerPeriod(1.0 / commander_->period_s());
   }
-  end_step_ = static_cast<std::int64_t>(std::llround(scenario_.duration_s / clock_->step_s()));
-  v_at_last_imu_ = vehicle_->chassis().v_world;
+  schedule_.end_step =
+      static_cast<std::int64_t>(std::llround(scenario_.duration_s / clock_->step_s()));
+  v_at_last_imu_ = plant_->vehicle->chassis().v_world;
 }
 
 const StepResult& ClosedLoop::Impl::Step() {
@@ -452,35 +248,35 @@ const StepResult& ClosedLoop::Impl::Step() {
   while (!done_ && !StepOnce(&out)) {
   }
   out.t_s = clock_->now_s();
-  out.T_world_body = vehicle_->chassis().T_world_body;
+  out.T_world_body = plant_->vehicle->chassis().T_world_body;
   return out;
 }
 
 bool ClosedLoop::Impl::StepOnce(StepResult* out) {
-  const robot::ChassisState truth = vehicle_->chassis();
-  if (clock_->Fires(encoder_period_) && !SampleEncoders(truth, out)) return true;
+  const robot::ChassisState truth = plant_->vehicle->chassis();
+  if (clock_->Fires(schedule_.encoders) && !SampleEncoders(truth, out)) return true;
   bool controlled = false;
-  if (renderer_ && clock_->Fires(camera_period_)) {
+  if (plant_->camera && clock_->Fires(schedule_.camera)) {
     controlled = commander_->trigger() == Commander::Trigger::kStereoFrame;
     if (!TakeStereoFrame(truth, out)) return true;
   }
-  if (clock_->steps() > 0 && clock_->Fires(imu_period_)) SampleImu(truth, out);
-  if (range_sensor_ && clock_->Fires(scan_period_)) Scan(truth, out);
-  if (clock_->steps() >= end_step_) {
+  if (clock_->steps() > 0 && clock_->Fires(schedule_.imu)) SampleImu(truth, out);
+  if (plant_->range_sensor && clock_->Fires(schedule_.scan)) Scan(truth, out);
+  if (clock_->steps() >= schedule_.end_step) {
     time_ran_out_ = true;
     done_ = true;
     return true;
   }
-  if (commander_->trigger() == Commander::Trigger::kPeriodic && clock_->Fires(control_period_)) {
+  if (commander_->trigger() == Commander::Trigger::kPeriodic && clock_->Fires(schedule_.control)) {
     controlled = true;
     if (!Control(truth, nullptr)) return true;
   }
   Timed(&times_.physics_s, [&] {
-    vehicle_->ApplyForces(clock_->step_s());
-    if (vehicle_->needs_physics()) world_->Step();
+    plant_->vehicle->ApplyForces(clock_->step_s());
+    if (plant_->vehicle->needs_physics()) plant_->world->Step();
   });
   clock_->Tick();
-  if (vehicle_->stalled()) Stop("stalled");  // a motor at its torque limit that cannot turn
+  if (plant_->vehicle->stalled()) Stop("stalled");  // a motor at its torque limit that cannot turn
   return controlled;
 }
 
@@ -488,18 +284,14 @@ bool ClosedLoop::Impl::SampleEncoders(const robot::ChassisState& truth, StepResu
   RunSample s;
   s.t_s = clock_->now_s();
   s.chassis = truth;
-  const robot::EncoderOptions& encoders = scenario_.robot.encoders;
-  for (int side = 0; side < 2; ++side) {
-    s.tracks[side] = vehicle_->track(static_cast<robot::Side>(side));
-    // In a dropout the count freezes, and what the shaft turns meanwhile is lost.
-    const std::int64_t shaft =
-        robot::EncoderTicks(s.tracks[side].sprocket_angle_rad, encoders.ticks_per_rev);
-    if (encoders.InDropout(side, s.t_s)) lost_ticks_[side] += shaft - last_shaft_ticks_[side];
-    last_shaft_ticks_[side] = shaft;
-    s.ticks[side] = shaft - lost_ticks_[side];
-  }
+  s.tracks[0] = plant_->vehicle->track(robot::Side::kLeft);
+  s.tracks[1] = plant_->vehicle->track(robot::Side::kRight);
+  const std::array<std::int64_t, 2> ticks = plant_->encoders->Sample(
+      s.t_s, {s.tracks[0].sprocket_angle_rad, s.tracks[1].sprocket_angle_rad});
+  s.ticks[0] = ticks[0];
+  s.ticks[1] = ticks[1];
   const Eigen::Vector3d p = truth.T_world_body.translation();
-  const sim::GroundSample g = world_->terrain().Sample(p.x(), p.y());
+  const sim::GroundSample g = plant_->world->terrain().Sample(p.x(), p.y());
   s.material = &g.material->name;
   if (!p.allFinite() || !truth.v_world.allFinite()) {
     failed_ = true;
@@ -512,10 +304,8 @@ bool ClosedLoop::Impl::SampleEncoders(const robot::ChassisState& truth, StepResu
     return false;
   }
   metrics_->Add(s, g.height_m);
-  last_ticks_[0] = s.ticks[0];
-  last_ticks_[1] = s.ticks[1];
   out->encoders.push_back({s.t_s, {s.ticks[0], s.ticks[1]}});
-  const bool has_camera = rig_.has_value();
+  const bool has_camera = plant_->camera != nullptr;
   if (worker_) {
     worker_->Submit([this, s, has_camera] {
       const EstimateSample e = EstimateAfterEncoders(*stack_, s, has_camera);
@@ -527,10 +317,8 @@ bool ClosedLoop::Impl::SampleEncoders(const robot::ChassisState& truth, StepResu
     });
     worker_->RunDeliveries();
   } else if (stack_) {
-    const auto start = std::chrono::steady_clock::now();
-    const EstimateSample e = EstimateAfterEncoders(*stack_, s, has_camera);
-    estimation_wall_s_ +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const EstimateSample e =
+        Timed(&times_.estimation_s, [&] { return EstimateAfterEncoders(*stack_, s, has_camera); });
     estimates_.Add(s, e);
     s.estimate = &e;
     if (observers_.on_sample) observers_.on_sample(s);
@@ -553,96 +341,54 @@ ClosedLoop::Impl::ImagePair* ClosedLoop::Impl::FreePair() {
 }
 
 bool ClosedLoop::Impl::TakeStereoFrame(const robot::ChassisState& truth, StepResult* out) {
-  const scenario::RobotSpec& rs = scenario_.robot;
-  const auto render_start = std::chrono::steady_clock::now();
-  StereoFrame frame;
-  frame.index = stereo_index_++;
-  frame.t_s = clock_->now_s();
-  // The pair stamped now was exposed `offset` later on the IMU's clock (as built).
-  const double offset = robot_.truth.imu.camera_time_offset_s;
-  const render::BodyMotion motion =
-      Advanced({truth.T_world_body, truth.v_world, truth.omega_world}, offset);
-  frame.T_world_left = motion.T_world_body * rig_->T_body_left();
-  frame.T_world_right = motion.T_world_body * rig_->T_body_right();
-  // Both cameras see the terrain at the detail of the rig's centre.
-  const Eigen::Vector2d rig_xy =
-      0.5 * (frame.T_world_left.translation() + frame.T_world_right.translation()).head<2>();
+  robot::StereoCamera& camera = *plant_->camera;
   // With the worker, the pair is rendered straight into a buffer that the worker then
   // reads, so the main thread copies no image.
   ImagePair* pair = worker_ ? FreePair() : nullptr;
-  GrayImage& left = pair ? pair->first : left_image_;
-  GrayImage& right = pair ? pair->second : right_image_;
-  // Each image is exposed around the frame's time (an instant by default), for the
-  // time the auto-exposure chose if it is on.
-  frame.exposure_time_s =
-      auto_exposure_ ? auto_exposure_->exposure_time_s() : rs.stereo.exposure_time_s;
-  frame.gain = auto_exposure_ ? auto_exposure_->gain() : 1.0;
-  // The render shows the scene at `exposure_time_s`; the light scales with the time.
-  // With scene lighting the renderer applies it before its output clips (a zone
-  // brighter than the exposure holds saturates), else the sensor model does.
-  const double light = rs.stereo.exposure *
-                       (auto_exposure_ ? frame.exposure_time_s / rs.stereo.exposure_time_s : 1.0);
-  if (renderer_->pre_exposed()) renderer_->SetExposure(light);
-  exposures_[0]->Render(*renderer_, motion, rig_->T_body_left(), frame.t_s + offset,
-                        frame.exposure_time_s, &left, &rig_xy);
-  exposures_[1]->Render(*renderer_, motion, rig_->T_body_right(), frame.t_s + offset,
-                        frame.exposure_time_s, &right, &rig_xy);
-  frame.blackout = rs.stereo.InBlackout(frame.t_s);
-  const CameraPipeline finish{rs.stereo,
-                              image_sensors_.empty() ? nullptr : image_sensors_.data(),
-                              renderer_->pre_exposed() ? 1.0 : light,
-                              frame.gain,
-                              renderer_->pre_exposed(),
-                              noise_seed_,
-                              frame.index,
-                              frame.blackout};
+  const robot::StereoCapture capture = Timed(&times_.render_s, [&] {
+    return camera.Expose(clock_->now_s(), {truth.T_world_body, truth.v_world, truth.omega_world},
+                         pair ? &pair->first : nullptr, pair ? &pair->second : nullptr);
+  });
   // The sensor model is the camera's last stage. When nothing on this thread looks at
   // the images, it runs on the worker, off this thread's critical path; the bytes are
   // the same either way (its noise is keyed by seed, frame and camera).
   const bool image_commander = commander_->trigger() == Commander::Trigger::kStereoFrame;
-  const bool finish_on_worker =
-      pair && !observers_.on_stereo && !image_commander && !options_.step_images && !auto_exposure_;
-  const auto rendered = std::chrono::steady_clock::now();
-  render_wall_s_ += std::chrono::duration<double>(rendered - render_start).count();
-  if (!finish_on_worker) {
-    finish.Apply(&left, &right);
-    // The auto-exposure meters the left image for the next frame.
-    if (auto_exposure_ && !frame.blackout) {
-      auto_exposure_->Update(auto_exposure_->Meter(left), 1.0 / rs.stereo.rate_hz);
-    }
-    sensor_model_wall_s_ +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - rendered).count();
-  }
-  frame.left = &left;
-  frame.right = &right;
-  frame.rig = &*rig_;
-  frame.ticks[0] = last_ticks_[0];
-  frame.ticks[1] = last_ticks_[1];
+  const bool develop_on_worker = pair && !observers_.on_stereo && !image_commander &&
+                                 !options_.step_images && !camera.has_auto_exposure();
+  if (!develop_on_worker) Timed(&times_.sensor_model_s, [&] { camera.Finish(capture); });
+  StereoFrame frame;
+  frame.index = capture.index;
+  frame.t_s = capture.t_s;
+  frame.left = capture.left;
+  frame.right = capture.right;
+  frame.T_world_left = capture.T_world_left;
+  frame.T_world_right = capture.T_world_right;
+  frame.rig = &camera.rig();
+  frame.blackout = capture.blackout;
+  frame.exposure_time_s = capture.exposure_time_s;
+  frame.gain = capture.gain;
+  frame.ticks[0] = plant_->encoders->counts()[0];
+  frame.ticks[1] = plant_->encoders->counts()[1];
   ++out->stereo_frames;
-  if (options_.step_images) out->stereo.push_back({frame.t_s, left, right});
+  if (options_.step_images) out->stereo.push_back({frame.t_s, *frame.left, *frame.right});
   if (observers_.on_stereo) observers_.on_stereo(frame);
   if (image_commander) {
-    const cv::Mat left_mat = perception::AsCvMat(left);
+    const cv::Mat left_mat = perception::AsCvMat(*frame.left);
     if (!Control(truth, &left_mat)) return false;
   }
-  if (pair) SubmitFrame(pair, truth.T_world_body, frame.t_s, finish, finish_on_worker);
+  if (pair) SubmitFrame(pair, truth.T_world_body, capture, develop_on_worker);
   return true;
 }
 
 // Hands a rendered pair to the worker, which owns it until the frame's delivery gives
 // it back; the main thread meanwhile renders the next frames into other buffers.
 void ClosedLoop::Impl::SubmitFrame(ImagePair* pair, const Eigen::Isometry3d& T_world_body,
-                                   double t_s, const CameraPipeline& finish,
-                                   bool finish_on_worker) {
-  worker_->Submit([this, pair, T_world_body, t_s, finish, finish_on_worker] {
-    if (finish_on_worker) {
-      const auto start = std::chrono::steady_clock::now();
-      finish.Apply(&pair->first, &pair->second);
-      sensor_model_on_worker_s_ +=
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    }
+                                   const robot::StereoCapture& capture, bool develop_on_worker) {
+  const robot::StereoCamera* camera = plant_->camera.get();
+  worker_->Submit([this, pair, T_world_body, capture, camera, develop_on_worker] {
+    if (develop_on_worker) Timed(&sensor_model_on_worker_s_, [&] { camera->Develop(capture); });
     const LocalizationFrame lf =
-        LocalizeStereoFrame(*stack_, t_s, finish.blackout, pair->first, pair->second);
+        LocalizeStereoFrame(*stack_, capture.t_s, capture.blackout, pair->first, pair->second);
     worker_->Deliver([this, pair, T_world_body, lf] {
       free_pairs_.push_back(pair);
       estimates_.AddFrame(T_world_body, lf);
@@ -656,10 +402,10 @@ void ClosedLoop::Impl::SubmitFrame(ImagePair* pair, const Eigen::Isometry3d& T_w
 
 void ClosedLoop::Impl::SampleImu(const robot::ChassisState& truth, StepResult* out) {
   const double dt = clock_->step_s();
-  const Eigen::Vector3d accel = (truth.v_world - v_at_last_imu_) / (imu_period_ * dt);
+  const Eigen::Vector3d accel = (truth.v_world - v_at_last_imu_) / (schedule_.imu * dt);
   v_at_last_imu_ = truth.v_world;
   const robot::ImuSample sample =
-      imu_->Sample(clock_->now_s(), truth.T_world_body.linear(), truth.omega_world, accel);
+      plant_->imu->Sample(clock_->now_s(), truth.T_world_body.linear(), truth.omega_world, accel);
   out->imu.push_back(sample);
   if (observers_.on_imu) observers_.on_imu(sample);
   if (worker_) {
@@ -673,7 +419,8 @@ void ClosedLoop::Impl::SampleImu(const robot::ChassisState& truth, StepResult* o
 
 void ClosedLoop::Impl::Scan(const robot::ChassisState& truth, StepResult* out) {
   const robot::RangeScanSample scan = Timed(&times_.sensing_s, [&] {
-    return range_sensor_->Scan(*world_, truth.T_world_body, clock_->now_s(), scan_index_++);
+    return plant_->range_sensor->Scan(*plant_->world, truth.T_world_body, clock_->now_s(),
+                                      scan_index_++);
   });
   out->scans.push_back(scan);
   if (observers_.on_scan) observers_.on_scan(scan);
@@ -690,7 +437,7 @@ bool ClosedLoop::Impl::Control(const robot::ChassisState& truth, const cv::Mat* 
     input.estimates = stack_.get();
   }
   const ControlOutput c = Timed(&times_.control_s, [&] { return commander_->Update(input); });
-  vehicle_->CommandTrackSpeeds(c.tracks.left_mps, c.tracks.right_mps);
+  plant_->vehicle->CommandTrackSpeeds(c.tracks.left_mps, c.tracks.right_mps);
   if (c.stop_reason) {
     Stop(*c.stop_reason);
     return false;
@@ -708,22 +455,8 @@ const estimation::LocalizationStack* ClosedLoop::Impl::localization() {
 void ClosedLoop::Impl::ReportEstimate(const std::string& name, const Eigen::Matrix4d& T) {
   if (!started_) throw std::logic_error("ClosedLoop::ReportEstimate: Start() first");
   if (finished_) throw std::logic_error("ClosedLoop::ReportEstimate: the run is finished");
-  CheckEstimatorName(name);
-  CheckRigid(name, T);
-  const double t_s = clock_->now_s();
-  const auto [it, first] = reported_t_.try_emplace(name, t_s);
-  if (!first) {
-    if (!(t_s > it->second)) {
-      throw std::invalid_argument("estimate \"" + name + "\": already reported at t = " +
-                                  std::to_string(t_s) + " s (one estimate per name and time)");
-    }
-    it->second = t_s;
-  }
-  ExternalEstimate e;
-  e.name = &it->first;
-  e.t_s = t_s;
-  e.T_world_body.matrix() = T;
-  e.T_world_body_true = vehicle_->chassis().T_world_body;
+  const ExternalEstimate e =
+      reported_.Accept(name, T, clock_->now_s(), plant_->vehicle->chassis().T_world_body);
   estimates_.AddExternal(e);
   if (observers_.on_external_estimate) observers_.on_external_estimate(e);
 }
@@ -732,21 +465,13 @@ RunMetrics ClosedLoop::Impl::Metrics() {
   if (worker_) {
     worker_->Drain();
     // The sensor model is its own stage, wherever it ran.
-    estimation_wall_s_ = worker_->busy_s() - sensor_model_on_worker_s_;
-    sensor_model_wall_s_ += sensor_model_on_worker_s_;
+    times_.estimation_s = worker_->busy_s() - sensor_model_on_worker_s_;
+    times_.sensor_model_s += sensor_model_on_worker_s_;
   }
   RunMetrics m = metrics_->Metrics();
   m.completed = !failed_;
-  m.stereo_frames = stereo_index_;
-  m.render_wall_s = render_wall_s_;
-  m.sensor_model_wall_s = sensor_model_wall_s_;
-  m.estimation_wall_s = estimation_wall_s_;
-  m.setup_wall_s = times_.setup_s;
-  m.physics_wall_s = times_.physics_s;
-  m.control_wall_s = times_.control_s;
-  m.sensing_wall_s = times_.sensing_s;
-  m.io_wall_s = times_.io_s;
-  m.peak_rss_mb = PeakRssMb();
+  m.stereo_frames = plant_->camera ? plant_->camera->frames() : 0;
+  times_.WriteTo(&m);
   m.estimators = estimates_.Metrics(m.distance_m);
   m.localization = estimates_.Summary();
   m.stop_reason = stop_reason_;
@@ -764,12 +489,7 @@ void ClosedLoop::Impl::ReleaseSimulation() {
   estimates_ = EstimatorScoring();
   image_pairs_.clear();
   free_pairs_.clear();
-  renderer_.reset();
-  range_sensor_.reset();
-  imu_.reset();
-  carrier_ = nullptr;
-  vehicle_.reset();
-  world_.reset();
+  plant_.reset();
 }
 
 RunMetrics ClosedLoop::Impl::Finish() {
@@ -799,21 +519,11 @@ ClosedLoop::~ClosedLoop() = default;
 
 // Each stage leaves a metrics.json that says why, should it throw.
 void ClosedLoop::Start() {
-  try {
-    impl_->Start();
-  } catch (const std::exception& e) {
-    impl_->RecordFailure(e);
-    throw;
-  }
+  impl_->Recorded([this] { impl_->Start(); });
 }
 
 const StepResult& ClosedLoop::Step() {
-  try {
-    return impl_->Step();
-  } catch (const std::exception& e) {
-    impl_->RecordFailure(e);
-    throw;
-  }
+  return impl_->Recorded([this]() -> const StepResult& { return impl_->Step(); });
 }
 
 bool ClosedLoop::done() const { return impl_->done(); }
@@ -829,12 +539,7 @@ void ClosedLoop::ReportEstimate(const std::string& name, const Eigen::Matrix4d& 
 }
 
 RunMetrics ClosedLoop::Finish() {
-  try {
-    return impl_->Finish();
-  } catch (const std::exception& e) {
-    impl_->RecordFailure(e);
-    throw;
-  }
+  return impl_->Recorded([this] { return impl_->Finish(); });
 }
 
 RunMetrics ClosedLoop::Run() {

@@ -1,6 +1,7 @@
 // Sprocket encoders: quantized shaft angle, sampled at a fixed rate.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -61,5 +62,28 @@ inline std::int64_t EncoderTicks(double angle_rad, int ticks_per_rev) {
 inline double TicksToAngle(std::int64_t ticks, int ticks_per_rev) {
   return static_cast<double>(ticks) * 2.0 * M_PI / ticks_per_rev;
 }
+
+/// The two tracks' sprocket encoders (0 left, 1 right) as they count: the shaft's count,
+/// frozen in a dropout (EncoderOptions::dropouts_s), the motion meanwhile lost for good.
+/// Holds what each has lost so far. Not copyable.
+class SprocketEncoders {
+ public:
+  explicit SprocketEncoders(const EncoderOptions& options);
+  SprocketEncoders(const SprocketEncoders&) = delete;
+  SprocketEncoders& operator=(const SprocketEncoders&) = delete;
+
+  /// The counts at `t_s` (samples in time order) with the sprockets turned by
+  /// `sprocket_angle_rad` (left, right; since the start) [rad].
+  std::array<std::int64_t, 2> Sample(double t_s, const std::array<double, 2>& sprocket_angle_rad);
+  /// The last sample's counts (0, 0 before the first).
+  const std::array<std::int64_t, 2>& counts() const { return counts_; }
+  const EncoderOptions& options() const { return options_; }
+
+ private:
+  EncoderOptions options_;
+  std::array<std::int64_t, 2> last_shaft_ = {0, 0};  // the shaft's count at the last sample
+  std::array<std::int64_t, 2> lost_ = {0, 0};        // counts lost in dropouts so far
+  std::array<std::int64_t, 2> counts_ = {0, 0};
+};
 
 }  // namespace trackbed::robot

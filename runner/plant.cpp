@@ -1,0 +1,76 @@
+// The plant of one run (see plant.h).
+#include "trackbed/runner/plant.h"
+
+#include <utility>
+
+#include "trackbed/common/split_mix.h"
+#include "trackbed/common/units.h"
+#include "trackbed/robot/as_built.h"
+#include "trackbed/robot/tracked_vehicle.h"
+
+namespace trackbed::runner {
+namespace {
+
+// The carrier of a pose path: the drive's curve, the robot's weight and footprint.
+robot::PosePathOptions PosePathOf(const scenario::Scenario& scenario) {
+  const robot::TrackedVehicleOptions& v = scenario.robot.vehicle;
+  robot::PosePathOptions o;
+  o.waypoints = scenario.drive.waypoints;
+  o.closed = scenario.drive.closed;
+  o.laps = scenario.drive.laps;
+  o.speed_mps = scenario.drive.speed_mps;
+  o.body_height_m = v.com_height_m;
+  o.footprint_length_m = v.track_contact_length_m;
+  o.footprint_width_m = v.track_gauge_m;
+  o.mass_kg = v.mass_kg;
+  o.stations_per_track =
+      v.station_x_m.empty() ? v.road_wheels_per_track : static_cast<int>(v.station_x_m.size());
+  return o;
+}
+
+// The stereo camera as built, its effects resolved by the realism profile.
+std::unique_ptr<robot::StereoCamera> BuildCamera(const scenario::Scenario& scenario,
+                                                 const RobotBuild& robot, const sim::World& world) {
+  const scenario::RobotSpec& rs = scenario.robot;
+  robot::StereoCameraSeeds seeds;
+  seeds.scene = split_mix::Stream(scenario.seed, 2);
+  seeds.noise = split_mix::Stream(scenario.seed, 3);
+  seeds.pattern = split_mix::Stream(scenario.seed, 6);
+  return std::make_unique<robot::StereoCamera>(
+      robot::WithCameraEffectsResolved(rs.stereo, rs.realism), *robot.truth.stereo,
+      robot.truth.imu.camera_time_offset_s, world, scenario.scene.appearance,
+      scenario.scene.occluders, seeds);
+}
+
+}  // namespace
+
+Plant BuildPlant(const scenario::Scenario& scenario, const RobotBuild& robot, bool pose_path) {
+  const scenario::RobotSpec& rs = scenario.robot;
+  const double gravity = scenario.scene.world.gravity_mps2;
+  Plant p;
+  p.world = std::make_unique<sim::World>(
+      scenario.scene.world,
+      sim::Terrain(scenario.scene.terrain, split_mix::Stream(scenario.seed, 0)),
+      scenario::SceneObjects(scenario));
+  if (pose_path) {
+    auto carrier = std::make_unique<robot::PosePathCarrier>(
+        PosePathOf(scenario), &p.world->terrain(), robot.truth.vehicle, gravity);
+    p.carrier = carrier.get();
+    p.vehicle = std::move(carrier);
+  } else {
+    p.vehicle = std::make_unique<robot::TrackedVehicle>(
+        rs.vehicle, p.world.get(), rs.start.x_m, rs.start.y_m, units::Radians(rs.start.yaw_deg),
+        &robot.truth.vehicle);
+  }
+  p.encoders = std::make_unique<robot::SprocketEncoders>(rs.encoders);
+  p.imu = std::make_unique<robot::Imu>(rs.imu, gravity, split_mix::Stream(scenario.seed, 1),
+                                       &robot.truth.imu);
+  if (rs.stereo.enabled) p.camera = BuildCamera(scenario, robot, *p.world);
+  if (rs.range_sensor.enabled) {
+    p.range_sensor =
+        std::make_unique<robot::RangeSensor>(rs.range_sensor, split_mix::Stream(scenario.seed, 4));
+  }
+  return p;
+}
+
+}  // namespace trackbed::runner
