@@ -70,9 +70,9 @@ struct DynamicWindowOptions {
   /// Throws OptionError naming the first invalid field.
   void Validate() const;
 
-  /// The scenario file's keys for these fields (docs/scenario_format.md, `navigation.dwa`),
-  /// read and written by the config archive (trackbed/common/archive.h).
-  /// robot_radius_m is set by the run (above).
+  /// The scenario file's keys for these fields (docs/scenario_format.md,
+  /// `navigation.dwa`), read and written by the config archive
+  /// (trackbed/common/archive.h); robot_radius_m is set by the run (above).
   template <class Archive>
   void Serialize(Archive* a) {
     a->Visit("max_speed_mps", &max_speed_mps);

@@ -21,8 +21,8 @@ struct KinematicSimulationOptions {
   /// Control period Δt [s], > 0 (the paper's 100 ms). Not a key of this struct: a run
   /// takes the navigators' (`navigation.control_period_s`).
   double control_period_s = 0.1;
-  /// Success tolerances (fixed: 0.1 m and 2°) and the time limit [s] after which the run
-  /// ends (a run's `duration_s`). Not keys.
+  /// Success tolerances and the time limit [s] after which the run ends. Not keys: a run
+  /// keeps the tolerances' defaults (0.1 m and 2°) and takes its `duration_s`.
   SuccessCriteria criteria;
   /// Footprint radius for collisions and clearance [m], >= 0. Not a key of this struct:
   /// a run sets it from `navigation.footprint_radius_m`.
@@ -36,9 +36,9 @@ struct KinematicSimulationOptions {
   /// Throws OptionError naming the first invalid field.
   void Validate() const;
 
-  /// The scenario file's keys for these fields (docs/scenario_format.md, `navigation.kinematic`),
-  /// read and written by the config archive (trackbed/common/archive.h).
-  /// The other fields are set by the run (above).
+  /// The scenario file's keys for these fields (docs/scenario_format.md,
+  /// `navigation.kinematic`), read and written by the config archive
+  /// (trackbed/common/archive.h); the other fields are set by the run (above).
   template <class Archive>
   void Serialize(Archive* a) {
     a->Visit("substeps", &substeps);

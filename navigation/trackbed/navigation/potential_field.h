@@ -83,7 +83,7 @@ struct PotentialFieldOptions {
 
   /// The scenario file's keys for these fields (docs/scenario_format.md,
   /// `navigation.potential_field`), read and written by the config archive
-  /// (trackbed/common/archive.h). robot_radius_m is set by the run (above).
+  /// (trackbed/common/archive.h); robot_radius_m is set by the run (above).
   template <class Archive>
   void Serialize(Archive* a) {
     a->Visit("attractive_gain_per_s", &attractive_gain_per_s);

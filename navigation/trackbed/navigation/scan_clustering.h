@@ -59,8 +59,9 @@ struct ScanClusteringOptions {
   /// Throws OptionError naming the first invalid field.
   void Validate() const;
 
-  /// The scenario file's keys for these fields (docs/scenario_format.md, `navigation.clustering`),
-  /// read and written by the config archive (trackbed/common/archive.h).
+  /// The scenario file's keys for these fields (docs/scenario_format.md,
+  /// `navigation.clustering`), read and written by the config archive
+  /// (trackbed/common/archive.h).
   template <class Archive>
   void Serialize(Archive* a) {
     a->Visit("jump_threshold_m", &jump_threshold_m);

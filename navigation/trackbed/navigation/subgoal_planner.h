@@ -171,9 +171,10 @@ struct SubgoalOptions {
   /// Throws OptionError naming the first invalid field.
   void Validate() const;
 
-  /// The scenario file's keys for these fields (docs/scenario_format.md, `navigation.subgoal`),
-  /// read and written by the config archive (trackbed/common/archive.h).
-  /// safety_radius_m and robot_radius_m are set by the run (above).
+  /// The scenario file's keys for these fields (docs/scenario_format.md,
+  /// `navigation.subgoal`), read and written by the config archive
+  /// (trackbed/common/archive.h); safety_radius_m and robot_radius_m are set by the
+  /// run (above).
   template <class Archive>
   void Serialize(Archive* a) {
     a->Visit("subgoal_scale", &subgoal_scale);

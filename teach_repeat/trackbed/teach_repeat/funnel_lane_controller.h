@@ -158,7 +158,8 @@ struct FunnelLaneOptions {
 
   /// The scenario file's keys for these fields (docs/scenario_format.md,
   /// `teach_repeat.funnel_lane`), read and written by the config archive
-  /// (trackbed/common/archive.h). The speeds and max_milestone_overrun are keys elsewhere (above).
+  /// (trackbed/common/archive.h); the speeds and max_milestone_overrun are keys
+  /// elsewhere (above).
   template <class Archive>
   void Serialize(Archive* a) {
     a->Visit("min_net_vote", &min_net_vote);

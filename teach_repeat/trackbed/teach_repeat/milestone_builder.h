@@ -104,7 +104,7 @@ struct MilestoneBuilderOptions {
 
   /// The scenario file's keys for these fields (docs/scenario_format.md,
   /// `teach_repeat.milestones`), read and written by the config archive
-  /// (trackbed/common/archive.h). mode is set by the run (above).
+  /// (trackbed/common/archive.h); mode is set by the run (above).
   template <class Archive>
   void Serialize(Archive* a) {
     a->VisitEnum("interval_unit", &interval_unit,

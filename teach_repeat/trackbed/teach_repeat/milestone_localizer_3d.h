@@ -133,7 +133,7 @@ struct Localizer3dOptions {
 
   /// The scenario file's keys for these fields (docs/scenario_format.md,
   /// `teach_repeat.localizer_3d`), read and written by the config archive
-  /// (trackbed/common/archive.h). The speeds are keys elsewhere (above).
+  /// (trackbed/common/archive.h); the speeds are keys elsewhere (above).
   template <class Archive>
   void Serialize(Archive* a) {
     a->Visit("convergence_distance_m", &convergence_distance_m);

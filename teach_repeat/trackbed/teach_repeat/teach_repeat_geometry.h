@@ -58,8 +58,8 @@ struct TwoViewOptions {
   void Validate() const;
 
   /// The scenario file's keys for these fields (docs/scenario_format.md,
-  /// `teach_repeat.milestones.two_view`, `teach_repeat.localizer_3d.two_view`), read and written by
-  /// the config archive (trackbed/common/archive.h).
+  /// `teach_repeat.milestones.two_view`, `teach_repeat.localizer_3d.two_view`), read
+  /// and written by the config archive (trackbed/common/archive.h).
   template <class Archive>
   void Serialize(Archive* a) {
     a->Visit("ransac_threshold_px", &ransac_threshold_px);
