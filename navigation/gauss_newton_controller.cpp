@@ -24,8 +24,8 @@ GaussNewtonStep ComputeGaussNewtonStep(const NavigationSetup& setup,
   step.position_error_m = delta.norm();
 
   const GoalError own = GoalErrorOf(pose, target);
-  step.at_goal = own.position_m <= setup.goal_position_tolerance_m &&
-                 std::abs(own.heading_rad) <= setup.goal_heading_tolerance_rad;
+  step.at_goal = own.position_m <= setup.stop_position_tolerance_m &&
+                 std::abs(own.heading_rad) <= units::Radians(setup.stop_heading_tolerance_deg);
   if (step.at_goal) {
     step.phase = GaussNewtonPhase::kFinal;
     step.target_heading_rad = target.yaw;

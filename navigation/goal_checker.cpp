@@ -6,7 +6,7 @@
 namespace trackbed::navigation {
 
 void GoalCheckerOptions::Validate() const {
-  // The same bounds as NavigationSetup's goal tolerances, so options taken from a valid
+  // The bounds of NavigationSetup's stop tolerances, so options taken from a valid
   // setup are always valid.
   option_check::Positive("position_tolerance_m", position_tolerance_m);
   option_check::InRange("heading_tolerance_rad", heading_tolerance_rad, 1e-9, M_PI);
@@ -14,8 +14,8 @@ void GoalCheckerOptions::Validate() const {
 
 GoalCheckerOptions GoalCheckerOptionsOf(const NavigationSetup& setup) {
   GoalCheckerOptions options;
-  options.position_tolerance_m = setup.goal_position_tolerance_m;
-  options.heading_tolerance_rad = setup.goal_heading_tolerance_rad;
+  options.position_tolerance_m = setup.stop_position_tolerance_m;
+  options.heading_tolerance_rad = units::Radians(setup.stop_heading_tolerance_deg);
   return options;
 }
 

@@ -6,10 +6,10 @@
 namespace trackbed::navigation {
 
 void NavigationSetup::Validate() const {
-  option_check::Nested("drive", drive);
+  drive.Validate();
   option_check::Positive("control_period_s", control_period_s);
-  option_check::Positive("goal_position_tolerance_m", goal_position_tolerance_m);
-  option_check::InRange("goal_heading_tolerance_rad", goal_heading_tolerance_rad, 1e-9, M_PI);
+  option_check::Positive("stop_position_tolerance_m", stop_position_tolerance_m);
+  option_check::InRange("stop_heading_tolerance_deg", stop_heading_tolerance_deg, 1e-3, 180.0);
 }
 
 GoalError GoalErrorOf(const Pose2& pose, const Pose2& goal) {
@@ -18,8 +18,8 @@ GoalError GoalErrorOf(const Pose2& pose, const Pose2& goal) {
 
 bool AtGoal(const NavigationSetup& setup, const Pose2& pose, const Pose2& goal) {
   const GoalError e = GoalErrorOf(pose, goal);
-  return e.position_m <= setup.goal_position_tolerance_m &&
-         std::abs(e.heading_rad) <= setup.goal_heading_tolerance_rad;
+  return e.position_m <= setup.stop_position_tolerance_m &&
+         std::abs(e.heading_rad) <= units::Radians(setup.stop_heading_tolerance_deg);
 }
 
 }  // namespace trackbed::navigation

@@ -1,7 +1,6 @@
 // Closed-loop navigation on the tracked robot (see closed_loop_navigation.h).
 #include "trackbed/runner/closed_loop_navigation.h"
 
-#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
@@ -13,31 +12,6 @@
 #include "trackbed/runner/run_metrics.h"
 
 namespace trackbed::runner {
-namespace {
-
-navigation::NavigatorOptions OptionsFor(const scenario::Scenario& s) {
-  const scenario::NavigationSpec& n = s.navigation;
-  navigation::NavigatorOptions o = NavigatorOptionsOf(s);
-  // The tracked robot as the navigators' "differential drive": sprocket radius, the
-  // effective gauge χ·B (a skid-steer turns as if its tracks were that far apart), and
-  // the wheel-speed limit of the top speed.
-  const double r = s.robot.vehicle.sprocket_radius_m;
-  o.setup.drive.wheel_radius_m = r;
-  o.setup.drive.wheel_separation_m = s.estimation.icr_expansion * s.robot.vehicle.track_gauge_m;
-  o.setup.drive.max_wheel_speed_radps = n.max_speed_mps / r;
-  o.setup.goal_position_tolerance_m = n.stop_position_tolerance_m;
-  o.setup.goal_heading_tolerance_rad = units::Radians(n.stop_heading_tolerance_deg);
-  // The footprint the avoiders keep clear: the hull's half diagonal at least.
-  const double half_diagonal = 0.5 * s.robot.vehicle.hull_size_m.head<2>().norm();
-  const double footprint = std::max(n.footprint_radius_m, half_diagonal);
-  o.subgoal.robot_radius_m = footprint;
-  o.potential_field.robot_radius_m = footprint;
-  o.dwa.robot_radius_m = footprint;
-  return o;
-}
-
-}  // namespace
-
 ClosedLoopNavigation::ClosedLoopNavigation(const scenario::Scenario& s,
                                            std::vector<sim::StaticObject> objects,
                                            StepObserver on_step)
@@ -47,24 +21,28 @@ ClosedLoopNavigation::ClosedLoopNavigation(const scenario::Scenario& s,
       on_step_(std::move(on_step)),
       goal_{s.navigation.goal.x_m, s.navigation.goal.y_m,
             units::Radians(s.navigation.goal.yaw_deg)},
-      period_s_(s.navigation.control_period_s),
+      period_s_(s.navigation.navigator.setup.control_period_s),
       time_limit_s_(s.duration_s),
       gauge_eff_m_(s.estimation.icr_expansion * s.robot.vehicle.track_gauge_m),
       max_yaw_rate_radps_(s.navigation.max_yaw_rate_radps),
       mount_xy_m_(s.robot.range_sensor.mount_m.head<2>()),
-      hull_xy_m_(s.robot.vehicle.hull_size_m.head<2>()) {
-  navigator_ = navigation::MakeNavigator(s.navigation.method, OptionsFor(s), goal_);
-  clustering_.wall_spacing_m = std::min(clustering_.wall_spacing_m, s.navigation.safety_radius_m);
+      hull_xy_m_(s.robot.vehicle.hull_size_m.head<2>()),
+      clustering_(ClusteringOptionsOf(s)) {
+  navigator_ = navigation::MakeNavigator(s.navigation.method, NavigatorOptionsOf(s), goal_);
 }
 
 ControlOutput ClosedLoopNavigation::Update(const ControlInput& input) {
+  using PoseSource = scenario::NavigationSpec::PoseSource;
   const auto believed = [&] {
-    if (pose_source_ == "ground_truth") return geometry::PlanarPose(input.T_world_body);
+    if (pose_source_ == PoseSource::kGroundTruth) return geometry::PlanarPose(input.T_world_body);
     // The scenario's validation makes estimation on for the other pose sources.
-    if (!input.estimates)
-      throw std::logic_error("navigation: " + pose_source_ + " has no estimate");
-    return geometry::PlanarPose(pose_source_ == "fused" ? input.estimates->fused()
-                                                        : input.estimates->wheel_odometry());
+    if (!input.estimates) {
+      throw std::logic_error(std::string("navigation: ") +
+                             scenario::NavigationSpec::ToString(pose_source_) + " has no estimate");
+    }
+    return geometry::PlanarPose(pose_source_ == PoseSource::kFused
+                                    ? input.estimates->fused()
+                                    : input.estimates->wheel_odometry());
   };
   ControlOutput out;
   out.tracks = Command(input.t_s, believed(), input.T_world_body);
@@ -74,7 +52,7 @@ ControlOutput ClosedLoopNavigation::Update(const ControlInput& input) {
 }
 
 void ClosedLoopNavigation::AddMetrics(bool time_ran_out, RunMetrics* metrics) const {
-  metrics->navigation_method = method_;
+  metrics->navigation_method = navigation::ToString(method_);
   metrics->navigation = Metrics(time_ran_out);
   metrics->navigation_subgoals = subgoals();
 }

@@ -41,17 +41,17 @@ RunMetrics RunKinematicNavigation(const scenario::Scenario& scenario,
   truth.Close();
   csv.Close();
 
-  WriteNavigationMap(
-      dir / "navigation.png",
-      scenario.scene.name + ": " + scenario.navigation.method + " (" + run.metrics.status + ")",
-      run.log, scene.obstacles, scenario.navigation.safety_radius_m, scene.start, scene.goal,
-      run.subgoals);
+  WriteNavigationMap(dir / "navigation.png",
+                     scenario.scene.name + ": " + navigation::ToString(scenario.navigation.method) +
+                         " (" + run.metrics.status + ")",
+                     run.log, scene.obstacles, scenario.navigation.safety_radius_m, scene.start,
+                     scene.goal, run.subgoals);
 
   m.completed = true;
   m.stop_reason = "navigation " + run.metrics.status;
   m.sim_time_s = run.metrics.duration_s;
   m.distance_m = run.metrics.path_length_m;
-  m.navigation_method = scenario.navigation.method;
+  m.navigation_method = navigation::ToString(scenario.navigation.method);
   m.navigation = run.metrics;
   m.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

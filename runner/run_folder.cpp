@@ -457,12 +457,12 @@ void RunFolderWriter::Close(const scenario::Scenario& scenario, const RunMetrics
   if (f.navigation_csv) {
     f.navigation_csv->Close();
     const navigation::NavigationScene scene = NavigationSceneOf(scenario);
-    WriteNavigationMap(dir_ / "navigation.png",
-                       scenario.scene.name + ": " + scenario.navigation.method + " (" +
-                           metrics.navigation->status + ")",
-                       f.navigation_log, ObjectCircles(scenario::SceneObjects(scenario)),
-                       scenario.navigation.safety_radius_m, scene.start, scene.goal,
-                       metrics.navigation_subgoals);
+    WriteNavigationMap(
+        dir_ / "navigation.png",
+        scenario.scene.name + ": " + navigation::ToString(scenario.navigation.method) + " (" +
+            metrics.navigation->status + ")",
+        f.navigation_log, ObjectCircles(scenario::SceneObjects(scenario)),
+        scenario.navigation.safety_radius_m, scene.start, scene.goal, metrics.navigation_subgoals);
   }
   f.logs.Close();
   if (f.kitti) f.kitti->Close();

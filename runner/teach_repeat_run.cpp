@@ -58,10 +58,7 @@ teach_repeat::TeachMap Teach(const scenario::Scenario& scenario, const RobotBuil
   // milestones are taught on undistorted images (the map has no lens).
   const perception::LensUndistorter undistorter(robot.given.stereo->LeftCamera());
   const geometry::PinholeCamera camera = undistorter.camera();
-  teach_repeat::MilestoneBuilderOptions options;
-  options.mode = scenario.teach_repeat.method == "3d" ? teach_repeat::TeachMode::k3d
-                                                      : teach_repeat::TeachMode::k2d;
-  teach_repeat::MilestoneBuilder builder(camera, options);
+  teach_repeat::MilestoneBuilder builder(camera, MilestoneBuilderOptionsOf(scenario.teach_repeat));
   estimation::WheelOdometryOptions wo;
   wo.sprocket_radius_m = robot.given.vehicle.sprocket_radius_left_m;
   wo.right_sprocket_radius_m = robot.given.vehicle.sprocket_radius_right_m;
@@ -231,7 +228,7 @@ void WriteRecoveryPlot(const scenario::Scenario& scenario, const TeachRepeatMetr
   }
   char title[160];
   std::snprintf(title, sizeof(title), "%s: features recovered per crossing (%s; mean %.1f %%)",
-                scenario.scene.name.c_str(), tr.method.c_str(),
+                scenario.scene.name.c_str(), teach_repeat::ToString(tr.method),
                 std::isfinite(t.recovery_rate) ? 100.0 * t.recovery_rate : 0.0);
   plot::WriteBarPlot(dir / "teach_repeat_recovery.png", title, "recovered of lost [%]", bars,
                      100.0);
@@ -251,25 +248,18 @@ void WriteRepeatTimePlot(const scenario::Scenario& scenario, const plot::PlotSer
       block.clear();
     }
   }
-  plot::WriteTimePlot(
-      dir / "teach_repeat_timing.png",
-      scenario.scene.name + ": repeater time per frame (" + scenario.teach_repeat.method + ")",
-      {{"repeater [ms]", {frames, medians}}, {"milestone", {milestone}}});
+  plot::WriteTimePlot(dir / "teach_repeat_timing.png",
+                      scenario.scene.name + ": repeater time per frame (" +
+                          teach_repeat::ToString(scenario.teach_repeat.method) + ")",
+                      {{"repeater [ms]", {frames, medians}}, {"milestone", {milestone}}});
 }
 
 /// The repeater the scenario asks for over `map`, held still through each crossing's
 /// window when teach_repeat.stop_for_crossings.
 std::unique_ptr<teach_repeat::Repeater> MakeRunRepeater(const scenario::TeachRepeatSpec& tr,
                                                         teach_repeat::TeachMap map) {
-  teach_repeat::FunnelLaneOptions o2;
-  o2.forward_speed_mps = tr.repeat_speed_mps;
-  o2.turn_rate_radps = units::Radians(tr.repeat_turn_rate_deg_s);
-  o2.max_milestone_overrun = tr.max_milestone_overrun;
-  teach_repeat::Localizer3dOptions o3;
-  o3.forward_speed_mps = tr.repeat_speed_mps;
-  o3.max_yaw_rate_radps = units::Radians(tr.repeat_turn_rate_deg_s);
-  std::unique_ptr<teach_repeat::Repeater> repeater =
-      teach_repeat::MakeRepeater(tr.method, std::move(map), o2, o3);
+  std::unique_ptr<teach_repeat::Repeater> repeater = teach_repeat::MakeRepeater(
+      tr.method, std::move(map), FunnelLaneOptionsOf(tr), Localizer3dOptionsOf(tr));
   if (tr.stop_for_crossings && !tr.occluders.empty()) {
     std::vector<std::pair<double, double>> windows;
     for (const sim::OccluderSpec& o : tr.occluders) {
@@ -281,6 +271,27 @@ std::unique_ptr<teach_repeat::Repeater> MakeRunRepeater(const scenario::TeachRep
 }
 
 }  // namespace
+
+teach_repeat::MilestoneBuilderOptions MilestoneBuilderOptionsOf(
+    const scenario::TeachRepeatSpec& tr) {
+  teach_repeat::MilestoneBuilderOptions o = tr.milestones;
+  o.mode = tr.method;
+  return o;
+}
+
+teach_repeat::FunnelLaneOptions FunnelLaneOptionsOf(const scenario::TeachRepeatSpec& tr) {
+  teach_repeat::FunnelLaneOptions o = tr.funnel_lane;
+  o.forward_speed_mps = tr.repeat_speed_mps;
+  o.turn_rate_radps = units::Radians(tr.repeat_turn_rate_deg_s);
+  return o;
+}
+
+teach_repeat::Localizer3dOptions Localizer3dOptionsOf(const scenario::TeachRepeatSpec& tr) {
+  teach_repeat::Localizer3dOptions o = tr.localizer_3d;
+  o.forward_speed_mps = tr.repeat_speed_mps;
+  o.max_yaw_rate_radps = units::Radians(tr.repeat_turn_rate_deg_s);
+  return o;
+}
 
 RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& dir) {
   scenario.Validate();
@@ -363,7 +374,7 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
   WriteRepeatTimePlot(scenario, frame_ms, milestone, dir);
 
   TeachRepeatMetrics t;
-  t.method = tr.method;
+  t.method = teach_repeat::ToString(tr.method);
   t.status = m.stop_reason.rfind("repeat ", 0) == 0 ? m.stop_reason.substr(7) : m.stop_reason;
   t.milestones = milestones;
   t.teach_images = teach_images;
@@ -374,8 +385,8 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
   ScorePlaces(tr, counts, &t);
   if (!t.places.empty()) WriteRecoveryPlot(scenario, t, dir);
   if (!taught.empty() && !repeated.empty()) {
-    const teach_repeat::RepeatPathMetrics p =
-        teach_repeat::EvaluateRepeatPath(taught, repeated, t.status == "finished");
+    const teach_repeat::RepeatPathMetrics p = teach_repeat::EvaluateRepeatPath(
+        taught, repeated, t.status == "finished", tr.path_projection);
     t.completed = p.completed;
     t.autonomy = p.autonomy;
     t.end_point_error_m = p.end_point_error_m;
@@ -388,7 +399,8 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
                                                 : std::numeric_limits<double>::quiet_NaN();
     plot::WriteTrajectoryPlot(
         dir / "teach_repeat.png",
-        scenario.scene.name + ": teach & repeat (" + tr.method + ", " + t.status + ")",
+        scenario.scene.name + ": teach & repeat (" + teach_repeat::ToString(tr.method) + ", " +
+            t.status + ")",
         {{"taught (ground truth)", taught}, {"repeated (ground truth)", repeated}});
   }
   m.teach_repeat = t;

@@ -9,7 +9,6 @@
 
 #include "trackbed/common/option_error.h"
 #include "trackbed/common/split_mix.h"
-#include "trackbed/navigation/navigator_factory.h"
 #include "trackbed/render/terrain_detail.h"
 #include "trackbed/sim/terrain_material.h"
 
@@ -88,15 +87,6 @@ void CheckCommandedSpeeds(const Scenario& s) {
                       std::abs(c.v_mps) + std::abs(c.yaw_rate_radps) * v.track_gauge_m / 2.0, top);
     }
   }
-}
-
-// Throws unless `value` is one of `accepted`, listing them.
-void OneOf(const std::string& field, const std::string& value,
-           const std::vector<std::string>& accepted) {
-  if (std::find(accepted.begin(), accepted.end(), value) != accepted.end()) return;
-  std::string names;
-  for (const std::string& a : accepted) names += (names.empty() ? "" : ", ") + a;
-  throw OptionError(field, "must be one of " + names + " (got '" + value + "')");
 }
 
 // Throws unless `name` is a built-in material or one the terrain defines.
@@ -212,17 +202,41 @@ void EstimationSpec::Validate() const {
   localization.Validate();
 }
 
-const std::vector<std::string>& NavigationFieldNames() {
-  static const std::vector<std::string> names = {
-      "none",   "random",     "paper_left",       "paper_right",
-      "u_trap", "narrow_gap", "goal_beside_wall", "narrow_corridor"};
-  return names;
+const char* NavigationSpec::ToString(Field field) {
+  switch (field) {
+    case Field::kNone:
+      return "none";
+    case Field::kRandom:
+      return "random";
+    case Field::kPaperLeft:
+      return "paper_left";
+    case Field::kPaperRight:
+      return "paper_right";
+    case Field::kUTrap:
+      return "u_trap";
+    case Field::kNarrowGap:
+      return "narrow_gap";
+    case Field::kGoalBesideWall:
+      return "goal_beside_wall";
+    case Field::kNarrowCorridor:
+      return "narrow_corridor";
+  }
+  return "unknown";
+}
+
+const char* NavigationSpec::ToString(PoseSource source) {
+  switch (source) {
+    case PoseSource::kFused:
+      return "fused";
+    case PoseSource::kWheelOdometry:
+      return "wheel_odometry";
+    case PoseSource::kGroundTruth:
+      return "ground_truth";
+  }
+  return "unknown";
 }
 
 void NavigationSpec::Validate() const {
-  OneOf("method", method, navigation::NavigationMethodNames());
-  OneOf("pose_source", pose_source, {"fused", "wheel_odometry", "ground_truth"});
-  OneOf("field", field, NavigationFieldNames());
   Finite("goal.x_m", goal.x_m);
   Finite("goal.y_m", goal.y_m);
   Finite("goal.yaw_deg", goal.yaw_deg);
@@ -241,22 +255,17 @@ void NavigationSpec::Validate() const {
   }
   option_check::Positive("safety_radius_m", safety_radius_m);
   option_check::NonNegative("footprint_radius_m", footprint_radius_m);
-  option_check::Positive("control_period_s", control_period_s);
-  option_check::Positive("wheel_radius_m", wheel_radius_m);
-  option_check::Positive("wheel_separation_m", wheel_separation_m);
-  option_check::Positive("max_wheel_speed_radps", max_wheel_speed_radps);
-  option_check::Positive("stall_time_s", stall_time_s);
+  navigator.Validate();  // named by their keys: control_period_s, dwa.speed_samples, …
   option_check::Positive("max_speed_mps", max_speed_mps);
   option_check::Positive("max_yaw_rate_radps", max_yaw_rate_radps);
-  option_check::Positive("stop_position_tolerance_m", stop_position_tolerance_m);
-  option_check::InRange("stop_heading_tolerance_deg", stop_heading_tolerance_deg, 1e-3, 180.0);
+  option_check::Nested("kinematic", kinematic);
+  option_check::Nested("clustering", clustering);
 }
 
 void TeachRepeatSpec::Validate() const {
-  OneOf("method", method, {"2d", "3d"});
   option_check::Positive("repeat_speed_mps", repeat_speed_mps);
   option_check::Positive("repeat_turn_rate_deg_s", repeat_turn_rate_deg_s);
-  option_check::OffOrAtLeast("max_milestone_overrun", max_milestone_overrun, 1.0);
+  option_check::OffOrAtLeast("max_milestone_overrun", funnel_lane.max_milestone_overrun, 1.0);
   Finite("start_offset.x_m", start_offset.x_m);
   Finite("start_offset.y_m", start_offset.y_m);
   Finite("start_offset.yaw_deg", start_offset.yaw_deg);
@@ -268,6 +277,10 @@ void TeachRepeatSpec::Validate() const {
     }
   }
   option_check::NonNegative("recovery_window_s", recovery_window_s);
+  option_check::Nested("milestones", milestones);
+  option_check::Nested("funnel_lane", funnel_lane);
+  option_check::Nested("localizer_3d", localizer_3d);
+  option_check::Nested("path_projection", path_projection);
 }
 
 void OutputsSpec::Validate() const {
@@ -321,14 +334,17 @@ void Scenario::Validate(DriveSource drive_source) const {
       throw OptionError("robot.range_sensor.enabled",
                         "navigation.mode closed_loop needs the range sensor (set it true)");
     }
-    if (navigation.pose_source != "ground_truth" && !estimation.enabled) {
+    using PoseSource = NavigationSpec::PoseSource;
+    if (navigation.pose_source != PoseSource::kGroundTruth && !estimation.enabled) {
       throw OptionError("navigation.pose_source",
-                        navigation.pose_source + " needs estimation.enabled: true");
+                        std::string(NavigationSpec::ToString(navigation.pose_source)) +
+                            " needs estimation.enabled: true");
     }
-    if (navigation.pose_source == "fused" && !robot.stereo.enabled) {
+    if (navigation.pose_source == PoseSource::kFused && !robot.stereo.enabled) {
       throw OptionError("navigation.pose_source", "fused needs robot.stereo.enabled: true");
     }
-    if (navigation.field != "none" || !navigation.obstacles.empty() || !navigation.walls.empty()) {
+    if (navigation.field != NavigationSpec::Field::kNone || !navigation.obstacles.empty() ||
+        !navigation.walls.empty()) {
       throw OptionError("navigation.mode",
                         "closed_loop senses the scene's objects; navigation.field, obstacles "
                         "and walls are for kinematic mode");

@@ -39,8 +39,8 @@ TEST(GoalCheckerTest, TolerancesComeFromTheOptions) {
 
 TEST(GoalCheckerTest, OptionsOfASetupAreItsGoalTolerances) {
   NavigationSetup setup;
-  setup.goal_position_tolerance_m = 0.25;
-  setup.goal_heading_tolerance_rad = 5.0 * kDeg;
+  setup.stop_position_tolerance_m = 0.25;
+  setup.stop_heading_tolerance_deg = 5.0;
   const GoalCheckerOptions options = GoalCheckerOptionsOf(setup);
   EXPECT_EQ(options.position_tolerance_m, 0.25);
   EXPECT_EQ(options.heading_tolerance_rad, 5.0 * kDeg);

@@ -579,7 +579,8 @@ TEST(ScenarioYamlTest, APosePathIsCarriedAtCarSpeedsAndCheckedOnTheTerrain) {
 }
 
 TEST(ScenarioYamlTest, TheDistanceBoundIsOffOrAtLeastOneBaseline) {
-  EXPECT_EQ(ParseScenario(kMinimal, "test.yaml").teach_repeat.max_milestone_overrun, 2.0);
+  EXPECT_EQ(ParseScenario(kMinimal, "test.yaml").teach_repeat.funnel_lane.max_milestone_overrun,
+            2.0);
   EXPECT_EQ(ErrorOf(kMinimal, {{"teach_repeat.max_milestone_overrun", "0"}}), "");
   EXPECT_EQ(ErrorOf(kMinimal, {{"teach_repeat.max_milestone_overrun", "1.5"}}), "");
   EXPECT_NE(ErrorOf(kMinimal, {{"teach_repeat.max_milestone_overrun", "0.5"}})

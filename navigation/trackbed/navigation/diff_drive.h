@@ -27,6 +27,15 @@ struct DiffDriveParams {
 
   /// Throws OptionError naming the first invalid field.
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md, `navigation`),
+  /// read and written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("wheel_radius_m", &wheel_radius_m);
+    a->Visit("wheel_separation_m", &wheel_separation_m);
+    a->Visit("max_wheel_speed_radps", &max_wheel_speed_radps);
+  }
 };
 
 /// Wheel angular speeds [rad/s]; positive drives the robot forward.

@@ -57,15 +57,38 @@ struct DynamicWindowOptions {
   double clearance_cap_m = 1.5;
   /// Arcs are checked for collisions every this many metres, > 0.
   double arc_step_m = 0.05;
-  /// Footprint radius [m], >= 0, and the clearance below which an arc counts as blocked
-  /// [m], >= 0 (0.65 = d_max − footprint, the sub-goal method's clearance).
+  /// Footprint radius [m], >= 0. Not a key of this struct: a run sets it from the
+  /// scenario's footprint (`navigation.footprint_radius_m`; closed loop: at least the
+  /// hull's half diagonal).
   double robot_radius_m = 0.35;
+  /// The clearance below which an arc counts as blocked [m], >= 0 (0.65 = d_max −
+  /// footprint, the sub-goal method's clearance).
   double safety_margin_m = 0.65;
   /// Within this distance of the goal [m], > 0, brake and turn to the goal heading.
   double final_distance_m = 0.05;
 
   /// Throws OptionError naming the first invalid field.
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md,
+  /// `navigation.dwa`), read and written by the config archive
+  /// (trackbed/common/archive.h); robot_radius_m is set by the run (above).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("max_speed_mps", &max_speed_mps);
+    a->Visit("max_yaw_rate_radps", &max_yaw_rate_radps);
+    a->Visit("max_accel_mps2", &max_accel_mps2);
+    a->Visit("max_yaw_accel_radps2", &max_yaw_accel_radps2);
+    a->Visit("speed_samples", &speed_samples);
+    a->Visit("yaw_rate_samples", &yaw_rate_samples);
+    a->Visit("heading_weight", &heading_weight);
+    a->Visit("clearance_weight", &clearance_weight);
+    a->Visit("velocity_weight", &velocity_weight);
+    a->Visit("clearance_cap_m", &clearance_cap_m);
+    a->Visit("arc_step_m", &arc_step_m);
+    a->Visit("safety_margin_m", &safety_margin_m);
+    a->Visit("final_distance_m", &final_distance_m);
+  }
 };
 
 /// The chosen velocity and why.

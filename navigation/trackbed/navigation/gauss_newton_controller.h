@@ -64,6 +64,17 @@ struct GaussNewtonOptions {
 
   /// Throws OptionError naming the first invalid field.
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md,
+  /// `navigation.gauss_newton`), read and written by the config archive
+  /// (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("epsilon_m", &epsilon_m);
+    a->Visit("heading_band_rad", &heading_band_rad);
+    a->Visit("damping", &damping);
+    a->Visit("turn_position_weight", &turn_position_weight);
+  }
 };
 
 /// Which weight phase a step was in (see the file comment).

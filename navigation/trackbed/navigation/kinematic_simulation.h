@@ -15,13 +15,17 @@
 namespace trackbed::navigation {
 
 struct KinematicSimulationOptions {
-  /// The simulated robot (the paper's r = 0.2 m, W = 0.5 m, |φ̇| ≤ 25 rad/s).
+  /// The simulated robot (the paper's r = 0.2 m, W = 0.5 m, |φ̇| ≤ 25 rad/s). Not a key
+  /// of this struct: a run takes the navigators' (`navigation.wheel_radius_m`, …).
   DiffDriveParams drive;
-  /// Control period Δt [s], > 0 (the paper's 100 ms).
+  /// Control period Δt [s], > 0 (the paper's 100 ms). Not a key of this struct: a run
+  /// takes the navigators' (`navigation.control_period_s`).
   double control_period_s = 0.1;
-  /// Success tolerances and the time limit [s] after which the run ends.
+  /// Success tolerances and the time limit [s] after which the run ends. Not keys: a run
+  /// keeps the tolerances' defaults (0.1 m and 2°) and takes its `duration_s`.
   SuccessCriteria criteria;
-  /// Footprint radius for collisions and clearance [m], >= 0.
+  /// Footprint radius for collisions and clearance [m], >= 0. Not a key of this struct:
+  /// a run sets it from `navigation.footprint_radius_m`.
   double footprint_radius_m = 0.35;
   /// Collision checks per control period along the exact arc, >= 1 (0.05 m apart at
   /// 5 m/s with the default).
@@ -31,6 +35,15 @@ struct KinematicSimulationOptions {
 
   /// Throws OptionError naming the first invalid field.
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md,
+  /// `navigation.kinematic`), read and written by the config archive
+  /// (trackbed/common/archive.h); the other fields are set by the run (above).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("substeps", &substeps);
+    a->Visit("stop_on_collision", &stop_on_collision);
+  }
 };
 
 struct KinematicRun {

@@ -55,7 +55,9 @@ struct PotentialFieldOptions {
   /// n, >= 0: exponent of the goal distance in Ge & Cui's repulsion; 0 is the plain,
   /// uncorrected field (Khatib 1986), kept for comparison.
   double goal_exponent = 1.0;
-  /// Footprint radius [m], >= 0: distances ρ are measured from the footprint's edge.
+  /// Footprint radius [m], >= 0: distances ρ are measured from the footprint's edge. Not
+  /// a key of this struct: a run sets it from the scenario's footprint
+  /// (`navigation.footprint_radius_m`; closed loop: at least the hull's half diagonal).
   double robot_radius_m = 0.35;
   /// ρ is clamped below at this [m], > 0, so the force stays finite on contact.
   double min_distance_m = 0.02;
@@ -78,6 +80,24 @@ struct PotentialFieldOptions {
 
   /// Throws OptionError naming the first invalid field.
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md,
+  /// `navigation.potential_field`), read and written by the config archive
+  /// (trackbed/common/archive.h); robot_radius_m is set by the run (above).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("attractive_gain_per_s", &attractive_gain_per_s);
+    a->Visit("repulsive_gain", &repulsive_gain);
+    a->Visit("influence_range_m", &influence_range_m);
+    a->Visit("goal_exponent", &goal_exponent);
+    a->Visit("min_distance_m", &min_distance_m);
+    a->Visit("max_speed_mps", &max_speed_mps);
+    a->Visit("clearance_step_fraction", &clearance_step_fraction);
+    a->Visit("heading_gain_per_s", &heading_gain_per_s);
+    a->Visit("max_yaw_rate_radps", &max_yaw_rate_radps);
+    a->Visit("turn_in_place_rad", &turn_in_place_rad);
+    a->Visit("final_distance_m", &final_distance_m);
+  }
 };
 
 /// The field's force at one position, read as a velocity [m/s] in the world frame.

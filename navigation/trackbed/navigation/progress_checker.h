@@ -15,6 +15,14 @@ struct ProgressCheckerOptions {
 
   /// Throws OptionError naming the first invalid field.
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md, `navigation`),
+  /// read and written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("stall_time_s", &stall_time_s);
+    a->Visit("min_progress_m", &min_progress_m);
+  }
 };
 
 /// Detects lack of progress toward the goal. The clock runs only while the robot is

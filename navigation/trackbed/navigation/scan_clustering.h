@@ -43,7 +43,8 @@ struct ScanClusteringOptions {
   double jump_threshold_m = 0.3;
   /// Clusters up to this extent [m] are fitted as one circle, > 0.
   double max_fit_extent_m = 1.5;
-  /// Longer clusters become chains of circles at most this far apart [m], > 0 (≤ d_max).
+  /// Longer clusters become chains of circles at most this far apart [m], > 0 (≤ d_max;
+  /// a closed-loop run uses the smaller of this and `navigation.safety_radius_m`).
   double wall_spacing_m = 1.0;
   /// Least-squares fits need at least this many hits, >= 3.
   int min_fit_points = 5;
@@ -57,6 +58,21 @@ struct ScanClusteringOptions {
 
   /// Throws OptionError naming the first invalid field.
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md,
+  /// `navigation.clustering`), read and written by the config archive
+  /// (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("jump_threshold_m", &jump_threshold_m);
+    a->Visit("max_fit_extent_m", &max_fit_extent_m);
+    a->Visit("wall_spacing_m", &wall_spacing_m);
+    a->Visit("min_fit_points", &min_fit_points);
+    a->Visit("min_radius_m", &min_radius_m);
+    a->Visit("max_radius_m", &max_radius_m);
+    a->Visit("min_cluster_points", &min_cluster_points);
+    a->Visit("wrap_around", &wrap_around);
+  }
 };
 
 /// Obstacle circles in the world frame seen by a scan taken at `sensor_pose_world`.

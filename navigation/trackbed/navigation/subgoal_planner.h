@@ -142,7 +142,9 @@ std::vector<int> ClusterLabels(const std::vector<Circle>& obstacles,
                                const std::vector<double>& margins_m);
 
 struct SubgoalOptions {
-  /// d_max [m], > 0: the safety radius of the robot's and the obstacles' circles.
+  /// d_max [m], > 0: the safety radius of the robot's and the obstacles' circles. Not a
+  /// key of this struct: a run sets it from the scenario's `navigation.safety_radius_m`,
+  /// which also spaces the walls' circles and the scan clustering's.
   double safety_radius_m = 1.0;
   /// Sub-goal placement factor along the tangent/intersection line, >= 1 (paper: 1.2);
   /// the sub-goal is at scale·max(ℓ, d_max) (rule 7).
@@ -155,7 +157,9 @@ struct SubgoalOptions {
   /// Plan around whole clusters of overlapping safety circles (rule 2); false applies
   /// the paper's single-circle rule to the nearest blocking circle.
   bool cluster_obstacles = true;
-  /// Radius of the robot's footprint [m], >= 0, for sub-goal safety (rules 3, 5, 6).
+  /// Radius of the robot's footprint [m], >= 0, for sub-goal safety (rules 3, 5, 6). Not
+  /// a key of this struct: a run sets it from the scenario's footprint
+  /// (`navigation.footprint_radius_m`; closed loop: at least the hull's half diagonal).
   double robot_radius_m = 0.35;
   /// Goal-nearby correction (rule 6): the goal stays this far outside every safety
   /// circle [m], >= 0.
@@ -166,6 +170,20 @@ struct SubgoalOptions {
 
   /// Throws OptionError naming the first invalid field.
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md,
+  /// `navigation.subgoal`), read and written by the config archive
+  /// (trackbed/common/archive.h); safety_radius_m and robot_radius_m are set by the
+  /// run (above).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("subgoal_scale", &subgoal_scale);
+    a->Visit("reached_distance_m", &reached_distance_m);
+    a->Visit("alignment_band_rad", &alignment_band_rad);
+    a->Visit("cluster_obstacles", &cluster_obstacles);
+    a->Visit("goal_margin_m", &goal_margin_m);
+    a->Visit("match_distance_m", &match_distance_m);
+  }
 };
 
 /// One sub-goal, kept for plots and metrics.

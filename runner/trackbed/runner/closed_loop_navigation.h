@@ -16,6 +16,7 @@
 #include "trackbed/common/skid_steer.h"
 #include "trackbed/navigation/navigation_metrics.h"
 #include "trackbed/navigation/navigator.h"
+#include "trackbed/navigation/navigator_factory.h"
 #include "trackbed/navigation/scan_clustering.h"
 #include "trackbed/robot/range_sensor.h"
 #include "trackbed/runner/commander.h"
@@ -55,8 +56,8 @@ class ClosedLoopNavigation : public Commander {
   const std::vector<navigation::Circle>& last_obstacles() const { return obstacles_; }
 
  private:
-  std::string method_;
-  std::string pose_source_;
+  navigation::NavigationMethod method_;
+  scenario::NavigationSpec::PoseSource pose_source_;
   std::vector<sim::StaticObject> objects_;
   StepObserver on_step_;
   std::unique_ptr<navigation::Navigator> navigator_;

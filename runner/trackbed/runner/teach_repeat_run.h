@@ -9,6 +9,9 @@
 
 #include "trackbed/runner/run_metrics.h"
 #include "trackbed/scenario/scenario.h"
+#include "trackbed/teach_repeat/funnel_lane_controller.h"
+#include "trackbed/teach_repeat/milestone_builder.h"
+#include "trackbed/teach_repeat/milestone_localizer_3d.h"
 
 namespace trackbed::runner {
 
@@ -16,5 +19,13 @@ namespace trackbed::runner {
 /// `dir`. A map loaded this way is scored against the taught ground truth in the
 /// teach/ folder beside it when there is one.
 RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const std::filesystem::path& dir);
+
+/// The options a run of `tr` builds, from the section's structs: the teach pass's
+/// milestones (mode: `method`) …
+teach_repeat::MilestoneBuilderOptions MilestoneBuilderOptionsOf(
+    const scenario::TeachRepeatSpec& tr);
+/// … and the repeaters', whose speeds are `repeat_speed_mps` and `repeat_turn_rate_deg_s`.
+teach_repeat::FunnelLaneOptions FunnelLaneOptionsOf(const scenario::TeachRepeatSpec& tr);
+teach_repeat::Localizer3dOptions Localizer3dOptionsOf(const scenario::TeachRepeatSpec& tr);
 
 }  // namespace trackbed::runner

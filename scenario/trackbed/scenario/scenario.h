@@ -1,9 +1,10 @@
 // A scenario: everything one closed-loop run needs, as plain values.
 //
 // The YAML file format mirrors these structs key for key: each struct's Serialize
-// (here, and beside the sim/robot/estimation options structs it holds) lists its keys
-// for the config archive (trackbed/common/archive.h), which reads and writes them
-// (scenario_yaml.h). docs/scenario_format.md lists every key with its unit and default.
+// (here, and beside the sim/robot/estimation/navigation/teach_repeat options structs
+// it holds) lists its keys for the config archive (trackbed/common/archive.h), which
+// reads and writes them (scenario_yaml.h). docs/scenario_format.md lists every key with
+// its unit and default.
 #pragma once
 
 #include <cstdint>
@@ -16,6 +17,9 @@
 #include "trackbed/common/archive.h"
 #include "trackbed/common/archive_eigen.h"
 #include "trackbed/estimation/localization.h"
+#include "trackbed/navigation/kinematic_simulation.h"
+#include "trackbed/navigation/navigator_factory.h"
+#include "trackbed/navigation/scan_clustering.h"
 #include "trackbed/render/renderer.h"
 #include "trackbed/robot/as_built.h"
 #include "trackbed/robot/encoder.h"
@@ -28,6 +32,11 @@
 #include "trackbed/sim/static_object.h"
 #include "trackbed/sim/terrain.h"
 #include "trackbed/sim/world.h"
+#include "trackbed/teach_repeat/funnel_lane_controller.h"
+#include "trackbed/teach_repeat/milestone_builder.h"
+#include "trackbed/teach_repeat/milestone_localizer_3d.h"
+#include "trackbed/teach_repeat/teach_map.h"
+#include "trackbed/teach_repeat/teach_repeat_metrics.h"
 
 namespace trackbed::archive {
 
@@ -271,46 +280,58 @@ struct NavigationWallSpec {
   }
 };
 
-/// The accepted values of `navigation.field`, "none" first.
-const std::vector<std::string>& NavigationFieldNames();
-
 /// Point-to-point navigation (Jung & Kim 2014; docs/navigation.md). With `enabled`, the
 /// robot drives from `robot.start` to `goal` under `method` instead of following `drive`.
 struct NavigationSpec {
-  bool enabled = false;
-  /// gauss_newton_subgoal, potential_field or dwa.
-  std::string method = "gauss_newton_subgoal";
   /// kinematic: the paper's differential-drive simulation (no physics, no camera; the
   /// navigator sees the true pose and the exact circles). closed_loop: the tracked
   /// vehicle in the scene, the navigator seeing `pose_source` and the obstacle circles
   /// clustered from the range sensor's scans (robot.range_sensor).
   enum class Mode { kKinematic, kClosedLoop };
+  /// A generated scene (navigation/obstacle_fields.h): none, or a seeded random field
+  /// (`field_seed`), the paper's two scenes, or one of the traps.
+  enum class Field {
+    kNone,
+    kRandom,
+    kPaperLeft,
+    kPaperRight,
+    kUTrap,
+    kNarrowGap,
+    kGoalBesideWall,
+    kNarrowCorridor
+  };
+  /// closed_loop: the pose the navigator sees.
+  enum class PoseSource { kFused, kWheelOdometry, kGroundTruth };
+
+  bool enabled = false;
+  navigation::NavigationMethod method = navigation::NavigationMethod::kGaussNewtonSubgoal;
   Mode mode = Mode::kKinematic;
   /// Goal pose (x_m, y_m, yaw_deg).
   StartPose goal;
   std::vector<NavigationObstacleSpec> obstacles;
   std::vector<NavigationWallSpec> walls;
-  /// A generated scene: none, random (the seeded field, `field_seed`), paper_left,
-  /// paper_right, u_trap, narrow_gap, goal_beside_wall, narrow_corridor. A generated
-  /// scene sets the start, the goal and its obstacles; `obstacles` and `walls` add to it.
-  std::string field = "none";
-  /// Seed of the random field (docs/navigation.md uses 0–99).
+  /// A generated scene sets the start, the goal and its obstacles; `obstacles` and
+  /// `walls` add to it.
+  Field field = Field::kNone;
+  /// Seed of the random field (0–99 in docs/navigation.md's study).
   std::uint64_t field_seed = 0;
-  /// Safety radius d_max [m], > 0 (the paper's 1 m).
+  /// Safety radius d_max [m], > 0 (the paper's 1 m): the sub-goal method's
+  /// (SubgoalOptions::safety_radius_m), the walls' circle spacing and, in closed loop, an
+  /// upper bound of the scan clustering's (clustering.wall_spacing_m).
   double safety_radius_m = 1.0;
-  /// Footprint radius for collisions and clearance in kinematic mode [m], >= 0.
+  /// The robot's footprint radius [m], >= 0: the kinematic simulation's disk for
+  /// collisions and clearance, and the footprint every method keeps clear (each
+  /// method's robot_radius_m; in closed loop at least the hull's half diagonal).
   double footprint_radius_m = 0.35;
-  /// Control period [s], > 0 (the paper's 100 ms).
-  double control_period_s = 0.1;
-  /// The kinematic robot (the paper's: r = 0.2 m, W = 0.5 m, |wheel speed| <= 25 rad/s).
-  double wheel_radius_m = 0.2;
-  double wheel_separation_m = 0.5;
-  double max_wheel_speed_radps = 25.0;
-  /// A run without progress toward the goal for this long ends as "stalled" [s], > 0.
-  double stall_time_s = 30.0;
+  /// The navigators' options (navigation/navigator_factory.h): the control period, the
+  /// kinematic robot (closed loop: replaced by the tracked robot, runner/
+  /// navigation_scenario.h), the stop tolerances and the stall time at this level, each
+  /// method's gains in its own section (`gauss_newton`, `subgoal`, `potential_field`,
+  /// `dwa`).
+  navigation::NavigatorOptions navigator;
   /// closed_loop: the pose the navigator sees: fused (needs the stereo camera),
   /// wheel_odometry, or ground_truth.
-  std::string pose_source = "fused";
+  PoseSource pose_source = PoseSource::kFused;
   /// closed_loop: top speed of the tracked robot under navigation [m/s], > 0 (the
   /// navigator's wheel-speed limit is this over the sprocket radius).
   double max_speed_mps = 0.4;
@@ -318,10 +339,10 @@ struct NavigationSpec {
   /// forward speed (same curvature). Turning in place at full track speed (1.4 rad/s)
   /// sweeps 8° between camera frames, more than visual odometry tracks reliably.
   double max_yaw_rate_radps = 0.5;
-  /// The navigator stops when its pose is this close to the goal [m], [deg]; success is
-  /// judged by ground truth at 0.1 m and 2° (docs/navigation.md): a closed-loop run aims tighter.
-  double stop_position_tolerance_m = 0.1;
-  double stop_heading_tolerance_deg = 2.0;
+  /// kinematic: the simulation's own knobs (collision substeps, stop on collision).
+  navigation::KinematicSimulationOptions kinematic;
+  /// closed_loop: range scans into obstacle circles (navigation/scan_clustering.h).
+  navigation::ScanClusteringOptions clustering;
 
   void Validate() const;
 
@@ -329,28 +350,45 @@ struct NavigationSpec {
   /// written by the config archive (trackbed/common/archive.h).
   template <class Archive>
   void Serialize(Archive* a) {
+    using navigation::NavigationMethod;
     a->Visit("enabled", &enabled);
-    a->Visit("method", &method);
+    a->VisitEnum("method", &method,
+                 {{navigation::ToString(NavigationMethod::kGaussNewtonSubgoal),
+                   NavigationMethod::kGaussNewtonSubgoal},
+                  {navigation::ToString(NavigationMethod::kPotentialField),
+                   NavigationMethod::kPotentialField},
+                  {navigation::ToString(NavigationMethod::kDwa), NavigationMethod::kDwa}});
     a->VisitEnum("mode", &mode,
                  {{"kinematic", Mode::kKinematic}, {"closed_loop", Mode::kClosedLoop}});
     a->Visit("goal", &goal);
     a->Visit("obstacles", &obstacles);
     a->Visit("walls", &walls);
-    a->Visit("field", &field);
+    a->VisitEnum("field", &field,
+                 {{ToString(Field::kNone), Field::kNone},
+                  {ToString(Field::kRandom), Field::kRandom},
+                  {ToString(Field::kPaperLeft), Field::kPaperLeft},
+                  {ToString(Field::kPaperRight), Field::kPaperRight},
+                  {ToString(Field::kUTrap), Field::kUTrap},
+                  {ToString(Field::kNarrowGap), Field::kNarrowGap},
+                  {ToString(Field::kGoalBesideWall), Field::kGoalBesideWall},
+                  {ToString(Field::kNarrowCorridor), Field::kNarrowCorridor}});
     a->Visit("field_seed", &field_seed);
     a->Visit("safety_radius_m", &safety_radius_m);
     a->Visit("footprint_radius_m", &footprint_radius_m);
-    a->Visit("control_period_s", &control_period_s);
-    a->Visit("wheel_radius_m", &wheel_radius_m);
-    a->Visit("wheel_separation_m", &wheel_separation_m);
-    a->Visit("max_wheel_speed_radps", &max_wheel_speed_radps);
-    a->Visit("stall_time_s", &stall_time_s);
-    a->Visit("pose_source", &pose_source);
+    navigator.Serialize(a);  // its common keys at this level, the methods' sections
+    a->VisitEnum("pose_source", &pose_source,
+                 {{ToString(PoseSource::kFused), PoseSource::kFused},
+                  {ToString(PoseSource::kWheelOdometry), PoseSource::kWheelOdometry},
+                  {ToString(PoseSource::kGroundTruth), PoseSource::kGroundTruth}});
     a->Visit("max_speed_mps", &max_speed_mps);
     a->Visit("max_yaw_rate_radps", &max_yaw_rate_radps);
-    a->Visit("stop_position_tolerance_m", &stop_position_tolerance_m);
-    a->Visit("stop_heading_tolerance_deg", &stop_heading_tolerance_deg);
+    a->Visit("kinematic", &kinematic);
+    a->Visit("clustering", &clustering);
   }
+
+  /// The names of `navigation.field` and `navigation.pose_source` in scenario files.
+  static const char* ToString(Field field);
+  static const char* ToString(PoseSource source);
 };
 
 /// Visual teach & repeat (Choi & Ha 2011; docs/teach_repeat.md). With `enabled`, one run
@@ -358,18 +396,17 @@ struct NavigationSpec {
 /// teach map) and then repeats the route from the images alone.
 struct TeachRepeatSpec {
   bool enabled = false;
-  /// 2d (Chen & Birchfield 2006, funnel lane) or 3d (Diosi et al. 2007).
-  std::string method = "2d";
+  /// 2d (Chen & Birchfield 2006, funnel lane) or 3d (Diosi et al. 2007): how the teach
+  /// pass cuts milestones (milestones.mode) and which repeater follows them.
+  teach_repeat::TeachMode method = teach_repeat::TeachMode::k2d;
   /// A teach map folder (a run folder's teach_map/) to repeat instead of teaching,
   /// relative to the scenario file; empty: teach first.
   std::string map;
   /// Repeat: constant forward speed [m/s] and turn rate [deg/s], > 0 (paper's lab:
-  /// 0.05 m/s, 4°/s).
+  /// 0.05 m/s, 4°/s); either repeater's (forward_speed_mps, and turn_rate_radps or
+  /// max_yaw_rate_radps).
   double repeat_speed_mps = 0.05;
   double repeat_turn_rate_deg_s = 4.0;
-  /// 2D: a milestone is passed at the latest after this many times its taught baseline
-  /// driven in it; 0: off, else >= 1 (FunnelLaneOptions::max_milestone_overrun).
-  double max_milestone_overrun = 2.0;
   /// The repeat starts at robot.start moved by this offset (in the start's frame) …
   StartPose start_offset;
   /// … and by a seeded perturbation of up to 5 cm and 2° (false: none).
@@ -384,6 +421,16 @@ struct TeachRepeatSpec {
   /// The robot stands still through each crossing's window, as in the paper's
   /// experiment 1 (its vision runs on); false: it drives on while people cross.
   bool stop_for_crossings = true;
+  /// The teach pass's milestones (teach_repeat/milestone_builder.h).
+  teach_repeat::MilestoneBuilderOptions milestones;
+  /// The 2D repeater (teach_repeat/funnel_lane_controller.h); its max_milestone_overrun
+  /// is the key `max_milestone_overrun` at this level.
+  teach_repeat::FunnelLaneOptions funnel_lane;
+  /// The 3D repeater (teach_repeat/milestone_localizer_3d.h).
+  teach_repeat::Localizer3dOptions localizer_3d;
+  /// The score's projection of the repeated path onto the taught one
+  /// (teach_repeat/teach_repeat_metrics.h).
+  teach_repeat::PathProjectionOptions path_projection;
 
   void Validate() const;
 
@@ -391,17 +438,25 @@ struct TeachRepeatSpec {
   /// written by the config archive (trackbed/common/archive.h).
   template <class Archive>
   void Serialize(Archive* a) {
+    using teach_repeat::TeachMode;
     a->Visit("enabled", &enabled);
-    a->Visit("method", &method);
+    a->VisitEnum("method", &method,
+                 {{teach_repeat::ToString(TeachMode::k2d), TeachMode::k2d},
+                  {teach_repeat::ToString(TeachMode::k3d), TeachMode::k3d}});
     a->Visit("map", &map);
     a->Visit("repeat_speed_mps", &repeat_speed_mps);
     a->Visit("repeat_turn_rate_deg_s", &repeat_turn_rate_deg_s);
-    a->Visit("max_milestone_overrun", &max_milestone_overrun);
+    // FunnelLaneOptions::max_milestone_overrun: 2D only, but a key of this level.
+    a->Visit("max_milestone_overrun", &funnel_lane.max_milestone_overrun);
     a->Visit("start_offset", &start_offset);
     a->Visit("start_perturbation", &start_perturbation);
     a->Visit("occluders", &occluders);
     a->Visit("recovery_window_s", &recovery_window_s);
     a->Visit("stop_for_crossings", &stop_for_crossings);
+    a->Visit("milestones", &milestones);
+    a->Visit("funnel_lane", &funnel_lane);
+    a->Visit("localizer_3d", &localizer_3d);
+    a->Visit("path_projection", &path_projection);
   }
 };
 

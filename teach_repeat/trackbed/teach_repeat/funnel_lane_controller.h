@@ -110,9 +110,12 @@ namespace trackbed::teach_repeat {
 
 /// Options of FunnelLaneRepeater.
 struct FunnelLaneOptions {
-  /// Constant forward speed [m/s], > 0 (Choi & Ha's lab repeat: 0.05 m/s).
+  /// Constant forward speed [m/s], > 0 (Choi & Ha's lab repeat: 0.05 m/s). Not a key of
+  /// this struct: a run sets it from `teach_repeat.repeat_speed_mps`, which both
+  /// repeaters share.
   double forward_speed_mps = 0.05;
-  /// Bang-bang turn rate [rad/s], > 0 (Choi & Ha's lab repeat: 4°/s).
+  /// Bang-bang turn rate [rad/s], > 0 (Choi & Ha's lab repeat: 4°/s). Not a key of this
+  /// struct: a run sets it from `teach_repeat.repeat_turn_rate_deg_s`.
   double turn_rate_radps = units::Radians(4.0);
   /// Net vote fraction needed to turn, in [0, 1) (see the file comment).
   double min_net_vote = 0.1;
@@ -136,7 +139,8 @@ struct FunnelLaneOptions {
   bool remove_rotation = true;
   /// Distance bound (file comment, "Distance bound"): a milestone is passed at the latest
   /// once the repeat has driven this many times its taught baseline in it (its commands'
-  /// forward speed as executed); 0 turns the bound off, else >= 1.
+  /// forward speed as executed); 0 turns the bound off, else >= 1. Its key is
+  /// `teach_repeat.max_milestone_overrun`, beside the section of this struct's others.
   double max_milestone_overrun = 2.0;
   /// Frames a milestone stays active at least before it may be switched, >= 1.
   int min_frames_per_milestone = 3;
@@ -146,11 +150,35 @@ struct FunnelLaneOptions {
   int lost_patience_frames = 20;
   /// Milestone the repeat starts at (the robot stands near its key image), >= 0.
   int start_milestone = 0;
-  /// KLT tracking of the milestone features.
+  /// KLT tracking of the milestone features (`tracker.*`, perception/feature_tracker.h).
   perception::FeatureTrackerOptions tracker = DefaultRepeatTrackerOptions();
 
   /// Throws OptionError naming the first invalid field.
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md,
+  /// `teach_repeat.funnel_lane`), read and written by the config archive
+  /// (trackbed/common/archive.h); the speeds and max_milestone_overrun are keys
+  /// elsewhere (above).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("min_net_vote", &min_net_vote);
+    a->Visit("switch_hysteresis_px", &switch_hysteresis_px);
+    a->VisitEnum("switch_error", &switch_error,
+                 {{"mean_absolute", SwitchError::kMeanAbsolute},
+                  {"mean_outward", SwitchError::kMeanOutward}});
+    a->Visit("switch_by_progress", &switch_by_progress);
+    a->Visit("switch_progress", &switch_progress);
+    a->Visit("heading_correction", &heading_correction);
+    a->Visit("heading_deadband_px", &heading_deadband_px);
+    a->Visit("progress", &progress);
+    a->Visit("remove_rotation", &remove_rotation);
+    a->Visit("min_frames_per_milestone", &min_frames_per_milestone);
+    a->Visit("min_features", &min_features);
+    a->Visit("lost_patience_frames", &lost_patience_frames);
+    a->Visit("start_milestone", &start_milestone);
+    a->Visit("tracker", &tracker);
+  }
 };
 
 /// The 2D repeat (see the file comment). Stateful; not copyable.

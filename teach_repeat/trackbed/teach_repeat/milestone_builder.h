@@ -65,7 +65,8 @@ perception::HarrisOptions DefaultMilestoneHarrisOptions();
 
 /// Options of MilestoneBuilder.
 struct MilestoneBuilderOptions {
-  /// How milestones are cut (and whether they are reconstructed).
+  /// How milestones are cut (and whether they are reconstructed). Not a key of this
+  /// struct: a run sets it from `teach_repeat.method`.
   TeachMode mode = TeachMode::k2d;
   /// 2D: what the interval counts.
   IntervalUnit interval_unit = IntervalUnit::kImages;
@@ -84,13 +85,13 @@ struct MilestoneBuilderOptions {
   int min_features = 20;
   /// Both: a milestone ends after this many images at most (last − first), >= 1.
   int max_milestone_images = 100;
-  /// Feature detector.
+  /// Feature detector (`harris.*`, perception/harris_corners.h).
   perception::HarrisOptions harris = DefaultMilestoneHarrisOptions();
   /// Bucketing grid of the detector: cols × rows cells, per_cell corners each, >= 1.
   int grid_cols = 8;
   int grid_rows = 6;
   int features_per_cell = 6;
-  /// KLT tracking from image to image (forward–backward checked).
+  /// KLT tracking from image to image, forward–backward checked (`tracker.*`).
   perception::FeatureTrackerOptions tracker;
   /// Essential matrix and triangulation (3D).
   TwoViewOptions two_view;
@@ -100,6 +101,28 @@ struct MilestoneBuilderOptions {
 
   /// Throws OptionError naming the first invalid field (dotted for nested structs).
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md,
+  /// `teach_repeat.milestones`), read and written by the config archive
+  /// (trackbed/common/archive.h); mode is set by the run (above).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->VisitEnum("interval_unit", &interval_unit,
+                 {{"images", IntervalUnit::kImages}, {"distance", IntervalUnit::kDistance}});
+    a->Visit("interval_images", &interval_images);
+    a->Visit("interval_m", &interval_m);
+    a->Visit("max_reprojection_error_px", &max_reprojection_error_px);
+    a->Visit("min_baseline_m", &min_baseline_m);
+    a->Visit("min_features", &min_features);
+    a->Visit("max_milestone_images", &max_milestone_images);
+    a->Visit("harris", &harris);
+    a->Visit("grid_cols", &grid_cols);
+    a->Visit("grid_rows", &grid_rows);
+    a->Visit("features_per_cell", &features_per_cell);
+    a->Visit("tracker", &tracker);
+    a->Visit("two_view", &two_view);
+    a->Visit("patch_size_px", &patch_size_px);
+  }
 };
 
 /// What MilestoneBuilder::AddImage did with one image.

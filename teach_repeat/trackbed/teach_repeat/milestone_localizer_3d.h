@@ -76,9 +76,12 @@ double PathFollowingYawRate(double lateral_m, double heading_rad, double v_mps,
 
 /// Options of MilestoneLocalizer3d.
 struct Localizer3dOptions {
-  /// Constant forward speed [m/s], > 0 (Choi & Ha's lab repeat: 0.05 m/s).
+  /// Constant forward speed [m/s], > 0 (Choi & Ha's lab repeat: 0.05 m/s). Not a key of
+  /// this struct: a run sets it from `teach_repeat.repeat_speed_mps`, which both
+  /// repeaters share.
   double forward_speed_mps = 0.05;
-  /// Largest |yaw rate| [rad/s], > 0 (Choi & Ha's lab repeat: 4°/s).
+  /// Largest |yaw rate| [rad/s], > 0 (Choi & Ha's lab repeat: 4°/s). Not a key of this
+  /// struct: a run sets it from `teach_repeat.repeat_turn_rate_deg_s`.
   double max_yaw_rate_radps = units::Radians(4.0);
   /// Distance scale L of the steering law [m], > 0 (see the file comment).
   double convergence_distance_m = 1.0;
@@ -98,7 +101,7 @@ struct Localizer3dOptions {
   int lost_patience_frames = 20;
   /// Milestone the repeat starts at (the robot stands near its key image), >= 0.
   int start_milestone = 0;
-  /// KLT tracking of the milestone features.
+  /// KLT tracking of the milestone features (`tracker.*`, perception/feature_tracker.h).
   perception::FeatureTrackerOptions tracker = DefaultRepeatTrackerOptions();
   /// Essential matrix between the milestone's first image and the current one.
   TwoViewOptions two_view;
@@ -127,6 +130,32 @@ struct Localizer3dOptions {
 
   /// Throws OptionError naming the first invalid field.
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md,
+  /// `teach_repeat.localizer_3d`), read and written by the config archive
+  /// (trackbed/common/archive.h); the speeds are keys elsewhere (above).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("convergence_distance_m", &convergence_distance_m);
+    a->Visit("curvature_feed_forward", &curvature_feed_forward);
+    a->Visit("switch_progress", &switch_progress);
+    a->Visit("max_switches_per_frame", &max_switches_per_frame);
+    a->Visit("min_features", &min_features);
+    a->Visit("lost_patience_frames", &lost_patience_frames);
+    a->Visit("start_milestone", &start_milestone);
+    a->Visit("tracker", &tracker);
+    a->Visit("two_view", &two_view);
+    a->Visit("min_parallax_px", &min_parallax_px);
+    a->Visit("gate_px", &gate_px);
+    a->Visit("max_reprojection_px", &max_reprojection_px);
+    a->Visit("min_pose_features", &min_pose_features);
+    a->Visit("search_radius_px", &search_radius_px);
+    a->Visit("min_zncc", &min_zncc);
+    a->Visit("min_patch_stddev", &min_patch_stddev);
+    a->Visit("fallback_min_net_vote", &fallback_min_net_vote);
+    a->Visit("fallback_switch_hysteresis_px", &fallback_switch_hysteresis_px);
+    a->Visit("fallback_min_frames_per_milestone", &fallback_min_frames_per_milestone);
+  }
 };
 
 /// The 3D repeat (see the file comment). Stateful; not copyable.

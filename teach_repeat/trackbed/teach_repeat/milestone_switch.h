@@ -47,6 +47,16 @@ struct MilestoneProgressOptions {
 
   /// Throws OptionError naming the first invalid field.
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md,
+  /// `teach_repeat.funnel_lane.progress`), read and written by the config archive
+  /// (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("min_flow_spread_px", &min_flow_spread_px);
+    a->Visit("outlier_px", &outlier_px);
+    a->Visit("min_features", &min_features);
+  }
 };
 
 /// Where the current image lies within a milestone (funnel_lane_controller.h,

@@ -12,9 +12,15 @@
 
 namespace trackbed::teach_repeat {
 
-/// A repeater for `method` "2d" (FunnelLaneRepeater) or "3d" (MilestoneLocalizer3d) with
-/// the given options. Throws std::invalid_argument for an unknown method, an empty map
-/// or invalid options (OptionError).
+/// A repeater for `method` k2d (FunnelLaneRepeater) or k3d (MilestoneLocalizer3d) with
+/// the given options. Throws std::invalid_argument for an empty map or invalid options
+/// (OptionError).
+std::unique_ptr<Repeater> MakeRepeater(TeachMode method, TeachMap map,
+                                       const FunnelLaneOptions& options_2d,
+                                       const Localizer3dOptions& options_3d);
+
+/// As above, for the method named "2d" or "3d" (ToString(TeachMode)); throws
+/// std::invalid_argument for another name.
 std::unique_ptr<Repeater> MakeRepeater(const std::string& method, TeachMap map,
                                        const FunnelLaneOptions& options_2d,
                                        const Localizer3dOptions& options_3d);

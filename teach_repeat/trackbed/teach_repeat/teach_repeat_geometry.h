@@ -56,6 +56,18 @@ struct TwoViewOptions {
 
   /// Throws OptionError naming the first invalid field.
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md,
+  /// `teach_repeat.milestones.two_view`, `teach_repeat.localizer_3d.two_view`), read
+  /// and written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("ransac_threshold_px", &ransac_threshold_px);
+    a->Visit("confidence", &confidence);
+    a->Visit("max_iterations", &max_iterations);
+    a->Visit("min_inliers", &min_inliers);
+    a->Visit("refine", &refine);
+  }
 };
 
 /// Result of ReconstructTwoView.

@@ -30,6 +30,14 @@ struct PathProjectionOptions {
   double window_m = 2.0;
   /// Throws OptionError naming the first invalid field.
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md,
+  /// `teach_repeat.path_projection`), read and written by the config archive
+  /// (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("window_m", &window_m);
+  }
 };
 
 /// A position relative to the taught path.
