@@ -23,8 +23,6 @@ const std::vector<KeyAlias>& ScenarioKeyAliases() {
        "estimation.vo.max_angular_acceleration_dps2"},
       {"estimation.vo_max_gyro_rotation_error_deg", "estimation.vo.max_rotation_prior_error_deg"},
       {"estimation.vo_estimate_disparity_offset", "estimation.vo.estimate_disparity_offset"},
-
-      // The navigation and teach & repeat sections.
   };
   return aliases;
 }
