@@ -3,7 +3,6 @@
 // documented, and no key is documented under a section whose map no longer has it.
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -21,33 +20,59 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The backquoted names in `text`, in order.
+std::vector<std::string> Backquoted(const std::string& text) {
+  std::vector<std::string> names;
+  for (std::size_t open = text.find('`'); open != std::string::npos;) {
+    const std::size_t close = text.find('`', open + 1);
+    if (close == std::string::npos) break;
+    names.push_back(text.substr(open + 1, close - open - 1));
+    open = text.find('`', close + 1);
+  }
+  return names;
+}
+
+// The table row's cells (`| a | b |` gives a, b), trimmed.
+std::vector<std::string> Cells(const std::string& row) {
+  std::vector<std::string> cells;
+  std::stringstream in(row.substr(1));
+  for (std::string cell; std::getline(in, cell, '|');) {
+    const std::size_t begin = cell.find_first_not_of(' '), end = cell.find_last_not_of(' ');
+    cells.push_back(begin == std::string::npos ? "" : cell.substr(begin, end - begin + 1));
+  }
+  return cells;
+}
+
 // Every documented key: in a table whose header is `| Key |`, a row's backquoted names
-// in its first column, joined to the `### `section`` heading above the table
+// in its first column (and a table of one key's values, headed `| `type` |`, that key),
+// joined to the `### `section`` heading above the table
 // (`| `max_wheel_speed_radps` |` under `### `navigation`` is
 // navigation.max_wheel_speed_radps).
 std::set<std::string> DocumentedKeys(const fs::path& md) {
   std::ifstream in(md);
-  const std::regex heading(R"(^#{3,4} `([^`]+)`)"), other_heading(R"(^#{1,4} )");
-  const std::regex name("`([^`]+)`");
   std::set<std::string> keys;
   std::string section, line;
-  bool in_section = false, key_table = false;
+  bool in_section = false, in_table = false, key_table = false;
   while (std::getline(in, line)) {
-    std::smatch m;
-    if (std::regex_search(line, m, heading)) {
-      section = m[1];
+    if (line.rfind("### `", 0) == 0 || line.rfind("#### `", 0) == 0) {
+      section = Backquoted(line).front();
       in_section = true;
-    } else if (std::regex_search(line, other_heading)) {
+    } else if (line.rfind("#", 0) == 0) {
       section.clear();
       in_section = line.rfind("### Top level", 0) == 0;
-    } else if (line.rfind("| Key |", 0) == 0) {
-      key_table = true;
     } else if (line.rfind("|", 0) != 0) {
       key_table = false;
+      in_table = false;
+    } else if (!in_table) {  // a table's header: `| Key |`, or a key's values (`| `type` |`)
+      in_table = true;
+      key_table = line.rfind("| Key |", 0) == 0;
+      const std::vector<std::string> named = Backquoted(Cells(line).front());
+      if (in_section && !key_table && named.size() == 1) {
+        keys.insert(section.empty() ? named[0] : section + "." + named[0]);
+      }
     } else if (in_section && key_table && line.rfind("| `", 0) == 0) {
-      const std::string first = line.substr(1, line.find('|', 1) - 1);
-      for (std::sregex_iterator it(first.begin(), first.end(), name), end; it != end; ++it) {
-        keys.insert(section.empty() ? (*it)[1].str() : section + "." + (*it)[1].str());
+      for (const std::string& name : Backquoted(Cells(line).front())) {
+        keys.insert(section.empty() ? name : section + "." + name);
       }
     }
   }
@@ -65,12 +90,24 @@ void WrittenKeys(const archive::Node& node, const std::string& path, std::set<st
   if (!path.empty()) out->insert(path);
 }
 
-// Whether `key` or a map on its way is documented (a map documented as one value).
+// Whether `key` is documented: as a row, as a section with rows of its own, inside a map
+// documented as one value (a row such as `goal` with its keys in the row), or under a
+// placeholder row of its map.
 bool Documented(const std::string& key, const std::set<std::string>& documented) {
-  for (std::size_t dot = 0; dot != std::string::npos; dot = key.find('.', dot + 1)) {
-    if (dot > 0 && documented.count(key.substr(0, dot))) return true;
+  // Whether some documented key lies inside `map` (`map.x`): a section of its own.
+  const auto has_section = [&documented](const std::string& map) {
+    const auto inside = documented.lower_bound(map + ".");
+    return inside != documented.end() && inside->rfind(map + ".", 0) == 0;
+  };
+  if (documented.count(key) || has_section(key)) return true;
+  for (std::size_t dot = key.find('.'); dot != std::string::npos; dot = key.find('.', dot + 1)) {
+    const std::string map = key.substr(0, dot);
+    if (documented.count(map) && !has_section(map)) return true;
+    // A placeholder row (`robot.imperfections.<effect>`) stands for every key of its map.
+    const auto placeholder = documented.lower_bound(map + ".<");
+    if (placeholder != documented.end() && placeholder->rfind(map + ".<", 0) == 0) return true;
   }
-  return documented.count(key) > 0;
+  return false;
 }
 
 std::set<std::string> KeysOfEveryShippedScenario() {
@@ -122,14 +159,15 @@ TEST(ScenarioFormatDocTest, NoDocumentedKeyIsGoneFromItsMap) {
 // The rows `| `old` | `new` |` of the page's "Keys that moved" table.
 std::set<std::pair<std::string, std::string>> DocumentedAliases(const fs::path& md) {
   std::ifstream in(md);
-  const std::regex row(R"(^\| `([^`]+)` \| `([^`]+)` \|)");
   std::set<std::pair<std::string, std::string>> aliases;
   std::string line;
   bool in_section = false;
   while (std::getline(in, line)) {
     if (line.rfind("#", 0) == 0) in_section = line == "### Keys that moved";
-    std::smatch m;
-    if (in_section && std::regex_search(line, m, row)) aliases.emplace(m[1], m[2]);
+    if (!in_section || line.rfind("| `", 0) != 0) continue;
+    const std::vector<std::string> cells = Cells(line);
+    const std::vector<std::string> old_key = Backquoted(cells[0]), new_key = Backquoted(cells[1]);
+    if (old_key.size() == 1 && new_key.size() == 1) aliases.emplace(old_key[0], new_key[0]);
   }
   return aliases;
 }
