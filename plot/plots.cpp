@@ -1,4 +1,4 @@
-// PNG plots (see run_plots.h). A small plotting canvas on cv::Mat: data bounds
+// PNG plots (see plots.h). A small plotting canvas on cv::Mat: data bounds
 // to pixels, "nice" ticks, axes, lines, bars, legend.
 #include "trackbed/plot/plots.h"
 

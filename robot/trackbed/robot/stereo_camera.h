@@ -1,6 +1,6 @@
 // The robot's stereo camera as a device: the rig as built, one renderer for both
 // cameras, each camera's exposure (lens, rolling shutter, motion blur:
-// sim/camera_exposure.h), the image sensors (robot/image_sensor.h, or the grey-level
+// render/camera_exposure.h), the image sensors (robot/image_sensor.h, or the grey-level
 // model of stereo_rig.h), the auto-exposure (robot/auto_exposure.h) and the blackout
 // fault: from the body's motion at a frame's time to the pair of images the robot's
 // software receives (docs/camera_model.md).
