@@ -9,11 +9,7 @@ PathDriver::PathDriver(const scenario::DriveSpec& spec, double nominal_gauge_m,
                        double pose_path_end_s)
     : spec_(spec), gauge_(nominal_gauge_m), pose_path_end_s_(pose_path_end_s) {
   if (spec_.mode == scenario::DriveSpec::Mode::kPath) {
-    navigation::PurePursuitOptions o;
-    o.speed_mps = spec_.speed_mps;
-    o.lookahead_m = spec_.lookahead_m;
-    o.goal_tolerance_m = spec_.goal_tolerance_m;
-    follower_.emplace(o, spec_.waypoints, spec_.closed, spec_.laps);
+    follower_.emplace(spec_.pursuit, spec_.waypoints, spec_.closed, spec_.laps);
   }
 }
 

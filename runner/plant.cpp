@@ -18,7 +18,7 @@ robot::PosePathOptions PosePathOf(const scenario::Scenario& scenario) {
   o.waypoints = scenario.drive.waypoints;
   o.closed = scenario.drive.closed;
   o.laps = scenario.drive.laps;
-  o.speed_mps = scenario.drive.speed_mps;
+  o.speed_mps = scenario.drive.pursuit.speed_mps;
   o.body_height_m = v.com_height_m;
   o.footprint_length_m = v.track_contact_length_m;
   o.footprint_width_m = v.track_gauge_m;

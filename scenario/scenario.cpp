@@ -72,7 +72,7 @@ void CheckCommandedSpeeds(const Scenario& s) {
     return;
   }
   if (s.drive.mode == DriveSpec::Mode::kPath) {
-    CheckTrackSpeed("drive.speed_mps", s.drive.speed_mps, top);
+    CheckTrackSpeed("drive.speed_mps", s.drive.pursuit.speed_mps, top);
     return;
   }
   if (s.drive.mode == DriveSpec::Mode::kPosePath) return;  // carried, not driven
@@ -151,10 +151,8 @@ std::uint64_t RobotSpec::AsBuiltSeed(std::uint64_t run_seed) const {
 
 void DriveSpec::Validate() const {
   if (laps < 1) throw OptionError("laps", "must be >= 1 (got " + std::to_string(laps) + ")");
-  option_check::Positive("speed_mps", speed_mps);
-  option_check::Positive("lookahead_m", lookahead_m);
+  pursuit.Validate();  // its keys are this map's
   option_check::Positive("rate_hz", rate_hz);
-  option_check::Positive("goal_tolerance_m", goal_tolerance_m);
   if (mode == Mode::kPath || mode == Mode::kPosePath) {
     const char* name = mode == Mode::kPath ? "path" : "pose_path";
     if (waypoints.size() < 2) {
@@ -175,7 +173,7 @@ void DriveSpec::Validate() const {
       }
     }
     if (mode == Mode::kPosePath) {
-      option_check::InRange("speed_mps", speed_mps, 0.0, kMaxPosePathSpeedMps);
+      option_check::InRange("speed_mps", pursuit.speed_mps, 0.0, kMaxPosePathSpeedMps);
     }
   } else {
     if (script.empty()) throw OptionError("script", "mode script needs at least 1 command");

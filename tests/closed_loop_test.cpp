@@ -182,7 +182,7 @@ TEST(ClosedLoopTest, APosePathCarriesTheRobotAlongItsCurveAndEndsTheRunAtItsEnd)
   s.drive = scenario::DriveSpec();
   s.drive.mode = scenario::DriveSpec::Mode::kPosePath;
   s.drive.waypoints = {{0, 0}, {20, 0}, {30, 5}, {40, 5}};
-  s.drive.speed_mps = 15.0;
+  s.drive.pursuit.speed_mps = 15.0;
   s.duration_s = 10.0;
   s.estimation.icr_expansion = 1.0;  // the carrier's virtual tracks turn without skidding
   const fs::path dir = FreshDir("pose_path");

@@ -50,7 +50,7 @@ TEST(ScenarioYamlTest, MinimalFileTakesStructDefaults) {
   ASSERT_EQ(s.drive.waypoints.size(), 2u);
   EXPECT_EQ(s.drive.waypoints[1], Eigen::Vector2d(5.0, 0.0));
   EXPECT_EQ(s.drive.laps, 1);
-  EXPECT_EQ(s.drive.speed_mps, 0.4);
+  EXPECT_EQ(s.drive.pursuit.speed_mps, 0.4);
   EXPECT_EQ(s.outputs.save_images, "none");
 }
 

@@ -17,6 +17,7 @@
 #include "trackbed/common/archive.h"
 #include "trackbed/common/units.h"
 #include "trackbed/navigation/navigator_factory.h"
+#include "trackbed/navigation/pure_pursuit.h"
 #include "trackbed/runner/navigation_scenario.h"
 #include "trackbed/runner/teach_repeat_run.h"
 #include "trackbed/scenario/scenario_yaml.h"
@@ -267,6 +268,28 @@ TEST(StackKeysTest, DerivedFieldsAreNotKeys) {
   EXPECT_EQ(
       runner::ClusteringOptionsOf(Parse({{"navigation.safety_radius_m", "0.7"}})).wall_spacing_m,
       0.7);
+}
+
+// The drive's path follower takes the `drive` section's pursuit keys as they are: each,
+// set alone to a valid other value, is the follower's option (PathDriver builds its
+// PurePursuit from DriveSpec::pursuit).
+TEST(StackKeysTest, DriveKeysReachThePathFollower) {
+  const Node defaults = archive::Write(navigation::PurePursuitOptions{});
+  ASSERT_EQ(defaults.size(), 5u);
+  for (const auto& [name, now] : defaults.entries()) {
+    const std::string key = "drive." + name;
+    SCOPED_TRACE(key);
+    const std::optional<std::pair<Scenario, std::string>> set =
+        WithOtherValue(key, key_walk::OtherValues(now));
+    ASSERT_TRUE(set.has_value());
+    const Node built = archive::Write(set->first.drive.pursuit);
+    EXPECT_EQ(built.Find(name)->text(), set->second);
+    for (const auto& [other, value] : built.entries()) {
+      if (other != name) {
+        EXPECT_EQ(value.text(), defaults.Find(other)->text()) << other;
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -25,6 +25,17 @@ struct PurePursuitOptions {
   double turn_in_place_rad = 1.2;
 
   void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md, `drive`), read
+  /// and written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("speed_mps", &speed_mps);
+    a->Visit("lookahead_m", &lookahead_m);
+    a->Visit("goal_tolerance_m", &goal_tolerance_m);
+    a->Visit("max_yaw_rate_radps", &max_yaw_rate_radps);
+    a->Visit("turn_in_place_rad", &turn_in_place_rad);
+  }
 };
 
 /// Planar pose of the robot: position [m] and heading [rad].

@@ -19,6 +19,7 @@
 #include "trackbed/estimation/localization.h"
 #include "trackbed/navigation/kinematic_simulation.h"
 #include "trackbed/navigation/navigator_factory.h"
+#include "trackbed/navigation/pure_pursuit.h"
 #include "trackbed/navigation/scan_clustering.h"
 #include "trackbed/render/renderer.h"
 #include "trackbed/robot/as_built.h"
@@ -179,7 +180,7 @@ inline constexpr double kMaxPosePathSpeedMps = 100.0;
 struct DriveSpec {
   /// kPath: pure pursuit of `waypoints` on ground truth; kScript: `script` replayed;
   /// kPosePath: no driving — the body is carried along a smooth curve through
-  /// `waypoints` at `speed_mps`, without physics (robot/pose_path_carrier.h).
+  /// `waypoints` at `pursuit.speed_mps`, without physics (robot/pose_path_carrier.h).
   enum class Mode { kScript, kPath, kPosePath };
   Mode mode = Mode::kPath;
   std::vector<DriveCommand> script;
@@ -189,15 +190,13 @@ struct DriveSpec {
   bool closed = false;
   /// Laps of a closed path to drive, >= 1.
   int laps = 1;
-  /// Cruise speed [m/s], > 0 (pose_path: the carrier's speed over the ground, at most
-  /// kMaxPosePathSpeedMps).
-  double speed_mps = 0.4;
-  /// Pure-pursuit look-ahead distance [m], > 0.
-  double lookahead_m = 0.8;
+  /// The path's follower (navigation/pure_pursuit.h), its keys in this same map:
+  /// `speed_mps` (pose_path: the carrier's speed over the ground, at most
+  /// kMaxPosePathSpeedMps), `lookahead_m`, `goal_tolerance_m`, `max_yaw_rate_radps`,
+  /// `turn_in_place_rad`.
+  navigation::PurePursuitOptions pursuit;
   /// Rate of the driver [Hz], > 0.
   double rate_hz = 20.0;
-  /// Distance to the path's end at which the driver stops [m], > 0.
-  double goal_tolerance_m = 0.1;
 
   void Validate() const;
 
@@ -211,10 +210,8 @@ struct DriveSpec {
     a->Visit("waypoints", &waypoints);
     a->Visit("closed", &closed);
     a->Visit("laps", &laps);
-    a->Visit("speed_mps", &speed_mps);
-    a->Visit("lookahead_m", &lookahead_m);
+    pursuit.Serialize(a);
     a->Visit("rate_hz", &rate_hz);
-    a->Visit("goal_tolerance_m", &goal_tolerance_m);
     a->Visit("script", &script);
   }
 };
