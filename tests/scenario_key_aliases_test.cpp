@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "scenario_key_walk.h"
 #include "trackbed/common/archive.h"
 #include "trackbed/scenario/scenario_yaml.h"
 
@@ -50,34 +51,42 @@ TEST(KeyAliasesTest, NothingMovesWithoutOldKeys) {
   EXPECT_EQ(archive::ToJson(root, -1), R"({"a":{"b":{"leaf":4}}})");
 }
 
-// The value the default scenario writes at a dotted key of map keys.
-const archive::Node* DefaultAt(const archive::Node& root, const std::string& dotted) {
-  const archive::Node* node = &root;
-  const std::optional<archive::Path> path = archive::ParsePath(dotted);
-  for (const archive::PathStep& step : *path) {
-    node = node->Find(step.key);
-    if (node == nullptr) return nullptr;
-  }
-  return node;
-}
-
+// Each alias, in a file and through --set, with a value other than the default (the
+// first of the walk's values the new key takes), reads as its new key; the old key is
+// not written; both names at once are an error at the old key.
 TEST(KeyAliasesTest, EveryAliasReadsAsItsNewKeyInFilesAndOverrides) {
   constexpr char kMinimal[] = "drive:\n  waypoints: [[0, 0], [5, 0]]\n";
   const archive::Node defaults = archive::Write(ParseScenario(kMinimal, "test.yaml"));
   for (const KeyAlias& alias : ScenarioKeyAliases()) {
     SCOPED_TRACE(alias.old_key);
-    EXPECT_EQ(DefaultAt(defaults, alias.old_key), nullptr) << "the old key is still written";
-    const archive::Node* value = DefaultAt(defaults, alias.new_key);
-    ASSERT_NE(value, nullptr) << "the new key is not a key of the format";
-    const std::string text = archive::ToJson(*value, -1);
-    const std::string by_new =
-        ScenarioToYaml(ParseScenario(kMinimal, "t", {{alias.new_key, text}}));
-    EXPECT_EQ(ScenarioToYaml(ParseScenario(kMinimal, "t", {{alias.old_key, text}})), by_new);
-    // In a file: the old key's value where the old key was.
+    EXPECT_EQ(key_walk::NodeAt(defaults, alias.old_key), nullptr) << "the old key is written";
+    const archive::Node* now = key_walk::NodeAt(defaults, alias.new_key);
+    ASSERT_NE(now, nullptr) << "the new key is not a key of the format";
+    std::optional<std::string> by_new;
+    std::string value;
+    for (const std::string& v : key_walk::OtherValues(*now, "walk_rules.fll")) {
+      try {
+        by_new = ScenarioToYaml(ParseScenario(kMinimal, "t", {{alias.new_key, v}}));
+        value = v;
+        break;
+      } catch (const ScenarioError&) {
+      }
+    }
+    ASSERT_TRUE(by_new.has_value()) << "no other value tried is valid";
+    EXPECT_NE(*by_new, ScenarioToYaml(ParseScenario(kMinimal, "t")));
+    EXPECT_EQ(ScenarioToYaml(ParseScenario(kMinimal, "t", {{alias.old_key, value}})), *by_new);
+    // In a file: the old key's value where the old key was; then both names.
     archive::Node file = archive::ParseYaml(kMinimal);
     std::string where;
-    archive::Reach(file, *archive::ParsePath(alias.old_key), &where) = *value;
-    EXPECT_EQ(ScenarioToYaml(ParseScenario(archive::ToYaml(file), "t")), by_new);
+    archive::Reach(file, *archive::ParsePath(alias.old_key), &where) = archive::ParseYaml(value);
+    EXPECT_EQ(ScenarioToYaml(ParseScenario(archive::ToYaml(file), "old.yaml")), *by_new);
+    archive::Reach(file, *archive::ParsePath(alias.new_key), &where) = archive::ParseYaml(value);
+    try {
+      ParseScenario(archive::ToYaml(file), "both.yaml");
+      ADD_FAILURE() << "old and new key together read";
+    } catch (const ScenarioError& e) {
+      EXPECT_EQ(e.key(), alias.old_key);
+    }
   }
 }
 

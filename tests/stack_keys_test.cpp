@@ -45,20 +45,6 @@ std::string ErrorOf(const std::string& key, const std::string& value) {
   return "";
 }
 
-// Every scalar under `node`, with its dotted path.
-void Leaves(const Node& node, const std::string& path,
-            std::vector<std::pair<std::string, Node>>* out) {
-  if (node.IsScalar()) {
-    out->emplace_back(path, node);
-  } else if (node.IsMap()) {
-    for (const auto& [key, child] : node.entries()) Leaves(child, archive::JoinKey(path, key), out);
-  } else if (node.IsList()) {
-    for (std::size_t k = 0; k < node.size(); ++k) {
-      Leaves(node.items()[k], archive::JoinIndex(path, k), out);
-    }
-  }
-}
-
 // The sections as a run sees them: the scenario's own, with every part the runner
 // builds options from replaced by the options it builds, written through their key
 // lists. A key the runner drops, or builds from elsewhere, shows its default there.
@@ -101,17 +87,6 @@ Node RunView(const Scenario& s) {
   EXPECT_EQ(localizer.max_yaw_rate_radps, units::Radians(tr.repeat_turn_rate_deg_s));
   root.Set("teach_repeat", teach);
   return root;
-}
-
-const Node* At(const Node& root, const std::string& dotted) {
-  const Node* node = &root;
-  const std::optional<archive::Path> path = archive::ParsePath(dotted);
-  for (const archive::PathStep& step : *path) {
-    node = step.key.empty() ? (step.index < node->size() ? &node->items()[step.index] : nullptr)
-                            : node->Find(step.key);
-    if (!node) return nullptr;
-  }
-  return node;
 }
 
 // The names an enumeration key accepts, from the message for a name it does not (empty
@@ -181,10 +156,10 @@ bool DependsOn(const std::string& other, const std::string& key) {
 
 TEST(StackKeysTest, EveryKeyReachesWhatTheRunBuilds) {
   const Scenario base = Parse({});
-  std::vector<std::pair<std::string, Node>> leaves;
+  std::vector<key_walk::ScalarKey> leaves;
   const Node written = archive::Write(base);
   for (const char* section : {"navigation", "teach_repeat"}) {
-    Leaves(*written.Find(section), section, &leaves);
+    key_walk::CollectScalarKeys(*written.Find(section), section, &leaves);
   }
   ASSERT_GT(leaves.size(), 120u);  // the sections' structs are all visited
   for (const auto& [key, now] : leaves) {
@@ -198,18 +173,18 @@ TEST(StackKeysTest, EveryKeyReachesWhatTheRunBuilds) {
     const auto& [s_value, value] = *set;
     const Scenario* s = &s_value;
     const Node view = RunView(*s);
-    const Node* got = At(view, key);
+    const Node* got = key_walk::NodeAt(view, key);
     ASSERT_NE(got, nullptr);
     EXPECT_EQ(got->text(), value);
     // Nothing else moved: the run's view of the default scenario with this key set.
     const Node before = RunView(base);
-    std::vector<std::pair<std::string, Node>> all, all_before;
-    Leaves(view, "", &all);
-    Leaves(before, "", &all_before);
+    std::vector<key_walk::ScalarKey> all, all_before;
+    key_walk::CollectScalarKeys(view, "", &all);
+    key_walk::CollectScalarKeys(before, "", &all_before);
     ASSERT_EQ(all.size(), all_before.size());
     for (std::size_t m = 0; m < all.size(); ++m) {
-      if (all[m].first == key || DependsOn(all[m].first, key)) continue;
-      EXPECT_EQ(all[m].second.text(), all_before[m].second.text()) << all[m].first;
+      if (all[m].path == key || DependsOn(all[m].path, key)) continue;
+      EXPECT_EQ(all[m].value.text(), all_before[m].value.text()) << all[m].path;
     }
   }
 }
@@ -254,7 +229,7 @@ TEST(StackKeysTest, DerivedFieldsAreNotKeys) {
         "teach_repeat.funnel_lane.max_milestone_overrun",
         "teach_repeat.localizer_3d.forward_speed_mps",
         "teach_repeat.localizer_3d.max_yaw_rate_radps"}) {
-    EXPECT_EQ(At(written, key), nullptr) << key;
+    EXPECT_EQ(key_walk::NodeAt(written, key), nullptr) << key;
   }
   // In closed loop the drive is the tracked robot's and the footprint covers the hull.
   const Scenario s = Parse({{"navigation.mode", "closed_loop"},
