@@ -120,8 +120,9 @@ std::set<std::string> KeysOfEveryShippedScenario() {
   WrittenKeys(archive::Write(every_optional), "", &keys);
   const fs::path scenes = fs::path(TRACKBED_SOURCE_DIR) / "scenes";
   for (const auto& entry : fs::recursive_directory_iterator(scenes)) {
-    if (entry.path().extension() != ".yaml" || entry.path().parent_path().filename() == "sweeps") {
-      continue;
+    const fs::path folder = entry.path().parent_path().filename();
+    if (entry.path().extension() != ".yaml" || folder == "sweeps" || folder == "studies") {
+      continue;  // sweep files and study files are not scenarios
     }
     const Scenario s =
         WithRealismResolved(WithBuiltinMaterialsResolved(LoadScenario(entry.path().string())));
