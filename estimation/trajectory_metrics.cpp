@@ -233,19 +233,33 @@ RpeResult RelativePoseError(const Trajectory& gt, const Trajectory& est,
   return out;
 }
 
-FrameMotionError FrameToFrameError(const Trajectory& gt, const Trajectory& est,
-                                   double min_motion_m) {
+std::vector<FrameMotionSample> FrameToFrameErrors(const Trajectory& gt, const Trajectory& est,
+                                                  double min_motion_m) {
   CheckAssociated("FrameToFrameError", gt, est);
-  std::vector<double> trans, rot, ratio;
+  std::vector<FrameMotionSample> samples;
   for (std::size_t i = 0; i + 1 < gt.size(); ++i) {
     const double truth =
         Relative(gt[i].T_world_body, gt[i + 1].T_world_body).block<3, 1>(0, 3).norm();
     if (truth < min_motion_m) continue;
     const Eigen::Matrix4d E = RelativeError(gt, est, i, i + 1);
-    trans.push_back(100.0 * E.block<3, 1>(0, 3).norm() / truth);
-    rot.push_back(Angle(E) * 180.0 / kPi);
-    ratio.push_back(
-        Relative(est[i].T_world_body, est[i + 1].T_world_body).block<3, 1>(0, 3).norm() / truth);
+    FrameMotionSample s;
+    s.frame = i;
+    s.trans_pct = 100.0 * E.block<3, 1>(0, 3).norm() / truth;
+    s.rot_deg = Angle(E) * 180.0 / kPi;
+    s.length_ratio =
+        Relative(est[i].T_world_body, est[i + 1].T_world_body).block<3, 1>(0, 3).norm() / truth;
+    samples.push_back(s);
+  }
+  return samples;
+}
+
+FrameMotionError FrameToFrameError(const Trajectory& gt, const Trajectory& est,
+                                   double min_motion_m) {
+  std::vector<double> trans, rot, ratio;
+  for (const FrameMotionSample& s : FrameToFrameErrors(gt, est, min_motion_m)) {
+    trans.push_back(s.trans_pct);
+    rot.push_back(s.rot_deg);
+    ratio.push_back(s.length_ratio);
   }
   FrameMotionError out;
   out.trans_pct = ComputeStats(std::move(trans));

@@ -160,6 +160,42 @@ TEST(VoRealDataTest, Kitti06WritesItsFilesAndEndsWithinItsErrorBeforeTheDisparit
   EXPECT_EQ(lines(out / "vo" / "visual_odometry.tum"), 51);
   EXPECT_EQ(lines(out / "vo" / "visual_odometry.kitti.txt"), 51);
   EXPECT_EQ(lines(out / "vo" / "vo_frames.csv"), 52);  // and the header
+  // The figures for tools: vo_metrics.json, and one row per frame pair of the 50 in
+  // vo_frame_errors.csv whose median is the median printed.
+  std::ifstream metrics_file(out / "vo" / "vo_metrics.json");
+  const json metrics = json::parse(metrics_file);
+  EXPECT_EQ(metrics["frames"], 51);
+  EXPECT_EQ(metrics["settings"]["set"], json::array());
+  EXPECT_EQ(metrics["options"]["estimate_disparity_offset"], true);
+  EXPECT_EQ(metrics["ground_truth"]["frame_to_frame"]["frames"], 50);
+  EXPECT_EQ(lines(out / "vo" / "vo_frame_errors.csv"), 51);  // and the header
+}
+
+TEST(VoRealDataTest, SetChangesTheOptionsAndIsRecorded) {
+  const fs::path kitti = trackbed::testing_data::RealData("kitti06");
+  TRACKBED_NEEDS_REAL_DATA(kitti);
+  const fs::path out = TestDir("vo_set");
+  const auto median = [&](const std::string& sets) {
+    const auto r =
+        RunTrackbed("vo " + Quoted(kitti) + " --out " + Quoted(out / "vo") + sets, out / "io");
+    EXPECT_EQ(r.exit_code, 0) << r.stderr_text;
+    std::ifstream in(out / "vo" / "vo_metrics.json");
+    const json m = json::parse(in);
+    return std::make_pair(
+        m["ground_truth"]["frame_to_frame"]["translation_error_pct"]["median"].get<double>(), m);
+  };
+  const auto [plain, plain_json] = median("");
+  const auto [set, set_json] =
+      median(" --set ransac.threshold_px=0.5 --set estimate_disparity_offset=false");
+  EXPECT_NE(plain, set);
+  EXPECT_EQ(set_json["options"]["ransac"]["threshold_px"], 0.5);
+  EXPECT_EQ(set_json["options"]["estimate_disparity_offset"], false);
+  EXPECT_EQ(set_json["settings"]["set"],
+            json::array({"ransac.threshold_px=0.5", "estimate_disparity_offset=false"}));
+  // --no-disparity-offset and its key say the same.
+  const auto [flag, flag_json] = median(" --no-disparity-offset --set ransac.threshold_px=0.5");
+  EXPECT_EQ(flag, set);
+  EXPECT_EQ(flag_json["options"], set_json["options"]);
 }
 
 }  // namespace

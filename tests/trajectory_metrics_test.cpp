@@ -312,6 +312,17 @@ TEST(TrajectoryMetricsTest, FrameToFrameErrorMeasuresEachFramesScaleAndTurn) {
   EXPECT_NEAR(e.rot_deg.median, 0.0, 1e-9);
   EXPECT_NEAR(e.rot_deg.max, 0.1, 1e-9);
   EXPECT_NEAR(e.rot_deg.mean, 0.1 * 5.0 / 50.0, 1e-9);
+  // The per-frame values it summarises: the standing pair (0, 1) left out, the turns on
+  // the pairs that end at every tenth frame.
+  const std::vector<FrameMotionSample> frames = FrameToFrameErrors(gt, est);
+  ASSERT_EQ(frames.size(), 50u);
+  EXPECT_EQ(frames.front().frame, 1u);
+  EXPECT_EQ(frames.back().frame, 50u);
+  for (const FrameMotionSample& s : frames) {
+    EXPECT_NEAR(s.trans_pct, 3.0, 0.01) << s.frame;
+    EXPECT_NEAR(s.length_ratio, 1.03, 1e-9) << s.frame;
+    EXPECT_NEAR(s.rot_deg, (s.frame + 1) % 10 == 0 ? 0.1 : 0.0, 1e-9) << s.frame;
+  }
 }
 
 TEST(TrajectoryMetricsTest, ConstantHeadingDriftGivesKnownRotationalDrift) {

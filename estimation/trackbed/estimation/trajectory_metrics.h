@@ -135,6 +135,19 @@ struct FrameMotionError {
 FrameMotionError FrameToFrameError(const Trajectory& gt, const Trajectory& est,
                                    double min_motion_m = 0.01);
 
+/// One pair of consecutive poses of FrameToFrameError: `frame` is the index i of the
+/// pair (i, i + 1).
+struct FrameMotionSample {
+  std::size_t frame = 0;
+  double trans_pct = 0.0;     ///< |t(E)| over the true motion [%]
+  double rot_deg = 0.0;       ///< angle of R(E) [deg]
+  double length_ratio = 0.0;  ///< estimated over true motion
+};
+/// The per-pair values FrameToFrameError summarises, in frame order (pairs whose true
+/// motion is under min_motion_m left out).
+std::vector<FrameMotionSample> FrameToFrameErrors(const Trajectory& gt, const Trajectory& est,
+                                                  double min_motion_m = 0.01);
+
 // ---------------------------------------------------------------------------------------
 // Drift over path segments (KITTI odometry devkit, evaluate_odometry.cpp)
 
