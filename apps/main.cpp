@@ -18,6 +18,7 @@
 #include "sweep_command.h"
 #include "trackbed/runner/run_scenario.h"
 #include "trackbed/scenario/scenario_yaml.h"
+#include "transfer_command.h"
 #include "vo_command.h"
 
 namespace {
@@ -109,6 +110,7 @@ int main(int argc, char** argv) {
   trackbed::apps::AddSweepCommand(app);
   trackbed::apps::AddReportCommand(app);
   trackbed::apps::AddVoCommand(app);
+  trackbed::apps::AddTransferCommand(app);
   trackbed::apps::AddExportMcapCommand(app);
 
   try {

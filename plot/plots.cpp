@@ -383,4 +383,43 @@ void WriteBarPlot(const std::filesystem::path& png, const std::string& title,
   Save(png, img);
 }
 
+void WriteScatterPlot(const std::filesystem::path& png, const std::string& title,
+                      const std::string& x_label, const std::string& y_label,
+                      const std::vector<ScatterPoint>& points,
+                      const std::vector<std::string>& group_names, bool diagonal) {
+  double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+  for (const ScatterPoint& p : points) {
+    if (!p.position.allFinite()) continue;
+    x0 = std::min(x0, p.position.x());
+    x1 = std::max(x1, p.position.x());
+    y0 = std::min(y0, p.position.y());
+    y1 = std::max(y1, p.position.y());
+  }
+  if (x0 > x1) x0 = y0 = 0.0, x1 = y1 = 1.0;
+  if (diagonal) x0 = y0 = std::min(x0, y0), x1 = y1 = std::max(x1, y1);
+  const double px = std::max(0.08 * (x1 - x0), 1e-9), py = std::max(0.08 * (y1 - y0), 1e-9);
+  const Axes axes{cv::Rect(80, 50, 760, 620), x0 - px, x1 + px, y0 - py, y1 + py};
+  cv::Mat img(740, 1080, CV_8UC3, cv::Scalar(255, 255, 255));
+  Title(img, title);
+  axes.Draw(img, x_label, y_label);
+  if (diagonal) {
+    const double lo = std::max(axes.x0, axes.y0), hi = std::min(axes.x1, axes.y1);
+    cv::line(img, axes.Map(lo, lo), axes.Map(hi, hi), kGrid * 0.8, 1, cv::LINE_AA);
+  }
+  for (const ScatterPoint& p : points) {
+    if (!p.position.allFinite()) continue;
+    const cv::Point at = axes.Map(p.position.x(), p.position.y());
+    cv::circle(img, at, 4, Color(p.group + 1), cv::FILLED, cv::LINE_AA);
+    cv::putText(img, p.label, {at.x + 6, at.y - 4}, cv::FONT_HERSHEY_SIMPLEX, 0.33,
+                Color(p.group + 1), 1, cv::LINE_AA);
+  }
+  for (std::size_t k = 0; k < group_names.size(); ++k) {
+    const cv::Point p(860, 70 + static_cast<int>(k) * 18);
+    cv::circle(img, p, 4, Color(k + 1), cv::FILLED, cv::LINE_AA);
+    cv::putText(img, group_names[k], {p.x + 10, p.y + 4}, cv::FONT_HERSHEY_SIMPLEX, 0.42, kAxis, 1,
+                cv::LINE_AA);
+  }
+  Save(png, img);
+}
+
 }  // namespace trackbed::plot

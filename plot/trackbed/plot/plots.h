@@ -1,8 +1,10 @@
 // PNG plots of a run (Ham et al. 2012, figs. 8–11): estimated trajectories over
 // the true path, histograms of each estimator's distance to the true path, and
-// the fusion weight and slip (true vs estimated) over time. Drawn with OpenCV.
+// the fusion weight and slip (true vs estimated) over time; box plots, bar charts and
+// labelled scatter plots of many runs. Drawn with OpenCV.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -83,5 +85,19 @@ struct BarValue {
 /// rate of each scenario group); rows stay readable with many or long labels.
 void WriteBarPlot(const std::filesystem::path& png, const std::string& title,
                   const std::string& x_label, const std::vector<BarValue>& bars, double x_max);
+
+/// One labelled point of a scatter plot.
+struct ScatterPoint {
+  Eigen::Vector2d position = Eigen::Vector2d::Zero();  ///< data units; non-finite: left out
+  std::string label;                                   ///< written beside the point
+  std::size_t group = 0;                               ///< index into the group names
+};
+/// Points in data units, coloured by group (a legend names the groups), each labelled;
+/// with `diagonal` the line y = x (where x and y share a unit, e.g. an outcome measured
+/// in simulation against the same outcome measured on real data).
+void WriteScatterPlot(const std::filesystem::path& png, const std::string& title,
+                      const std::string& x_label, const std::string& y_label,
+                      const std::vector<ScatterPoint>& points,
+                      const std::vector<std::string>& group_names, bool diagonal = false);
 
 }  // namespace trackbed::plot
