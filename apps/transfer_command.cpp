@@ -31,7 +31,8 @@ void RunTransfer(const TransferArguments& args) {
   experiments::WriteOutcomeTable(out / "real_outcomes.csv", real.table, args.metric);
   experiments::WriteOutcomeTable(out / "sim_outcomes.csv", sim.table, args.metric);
   std::cout << experiments::FormatTransferFigures(figures, args.metric)
-            << "outputs: " << out.string() << " (transfer.json, outcomes.csv, transfer.png)\n";
+            << "outputs: " << out.string()
+            << " (transfer.json, outcomes.csv, transfer.png, transfer_values.png)\n";
 }
 
 }  // namespace

@@ -8,8 +8,8 @@
 // REAL and SIM: each an outcome table (CSV: config[,sequence][,frame],<metric>) or a
 // folder with one subfolder per configuration holding `trackbed vo` outputs
 // (experiments/trackbed/experiments/transfer_files.h). Prints the figures and writes in
-// DIR transfer.json, outcomes.csv, transfer.png and both sides as outcome tables
-// (real_outcomes.csv, sim_outcomes.csv).
+// DIR transfer.json, outcomes.csv, transfer.png, transfer_values.png and both sides as
+// outcome tables (real_outcomes.csv, sim_outcomes.csv).
 #pragma once
 
 #include <CLI/CLI.hpp>

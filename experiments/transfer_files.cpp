@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "trackbed/common/archive.h"
+#include "trackbed/experiments/rank_correlation.h"
 #include "trackbed/plot/plots.h"
 
 namespace trackbed::experiments {
@@ -220,6 +221,50 @@ std::string AgreementLines(const Agreement& a, const char* indent) {
   return s.str();
 }
 
+// Ranks with 1 the best.
+std::vector<double> BestFirstRanks(std::vector<double> x, bool higher_is_better) {
+  if (higher_is_better) {
+    for (double& v : x) v = -v;
+  }
+  return AverageRanks(x);
+}
+
+// outcomes.csv, transfer.png (ranks) and transfer_values.png (outcomes).
+void WriteOutcomesAndPlots(const fs::path& out_dir, const TransferFigures& f,
+                           const std::string& metric) {
+  const std::vector<double> real_rank = BestFirstRanks(f.real, f.options.higher_is_better);
+  const std::vector<double> sim_rank = BestFirstRanks(f.sim, f.options.higher_is_better);
+  const fs::path csv_path = out_dir / "outcomes.csv";
+  std::ofstream csv(csv_path, std::ios::trunc);
+  csv << "config,real,sim,real_rank,sim_rank,near_best\n";
+  std::vector<plot::ScatterPoint> ranks, values;
+  for (std::size_t i = 0; i < f.configurations.size(); ++i) {
+    const std::string& name = f.configurations[i];
+    const bool near =
+        std::find(f.near_best.configurations.begin(), f.near_best.configurations.end(), name) !=
+        f.near_best.configurations.end();
+    csv << name << "," << archive::FormatDouble(f.real[i]) << "," << archive::FormatDouble(f.sim[i])
+        << "," << archive::FormatDouble(real_rank[i]) << "," << archive::FormatDouble(sim_rank[i])
+        << "," << (near ? 1 : 0) << "\n";
+    ranks.push_back({{real_rank[i], sim_rank[i]}, name, near ? 0u : 1u});
+    values.push_back({{f.real[i], f.sim[i]}, name, near ? 0u : 1u});
+  }
+  csv.close();
+  if (!csv) throw std::runtime_error(csv_path.string() + ": write failed");
+  char title[160];
+  std::snprintf(title, sizeof(title), "%s, ranks (1 = best): rho %.2f, r %.2f, MMRV %.3f",
+                metric.c_str(), f.all.spearman.value, f.all.pearson.value, f.all.mmrv.value);
+  char near_name[96];
+  std::snprintf(near_name, sizeof(near_name), "within %gx of the best on real",
+                f.options.near_best_factor);
+  plot::WriteScatterPlot(out_dir / "transfer.png", title, "rank on real data", "rank in simulation",
+                         ranks, {near_name, "the others"}, true);
+  plot::WriteScatterPlot(out_dir / "transfer_values.png",
+                         metric + ": each configuration's median, simulated against real",
+                         "real " + metric, "simulated " + metric, values,
+                         {near_name, "the others"});
+}
+
 }  // namespace
 
 OutcomeInput ReadOutcomes(const fs::path& path, const std::string& metric) {
@@ -287,28 +332,7 @@ void WriteTransferFiles(const fs::path& out_dir, const TransferFigures& f,
   json.close();
   if (!json) throw std::runtime_error(json_path.string() + ": write failed");
 
-  const fs::path csv_path = out_dir / "outcomes.csv";
-  std::ofstream csv(csv_path, std::ios::trunc);
-  csv << "config,real,sim,near_best\n";
-  std::vector<plot::ScatterPoint> points;
-  for (std::size_t i = 0; i < f.configurations.size(); ++i) {
-    const std::string& name = f.configurations[i];
-    const bool near =
-        std::find(f.near_best.configurations.begin(), f.near_best.configurations.end(), name) !=
-        f.near_best.configurations.end();
-    csv << name << "," << archive::FormatDouble(f.real[i]) << "," << archive::FormatDouble(f.sim[i])
-        << "," << (near ? 1 : 0) << "\n";
-    points.push_back({{f.real[i], f.sim[i]}, name, near ? 0u : 1u});
-  }
-  csv.close();
-  if (!csv) throw std::runtime_error(csv_path.string() + ": write failed");
-  char title[160];
-  std::snprintf(title, sizeof(title), "%s: simulated against real (rho %.2f, r %.2f, MMRV %.3f)",
-                metric.c_str(), f.all.spearman.value, f.all.pearson.value, f.all.mmrv.value);
-  char near_name[96];
-  std::snprintf(near_name, sizeof(near_name), "within %gx of the best on real", o.near_best_factor);
-  plot::WriteScatterPlot(out_dir / "transfer.png", title, "real " + metric, "simulated " + metric,
-                         points, {near_name, "the others"});
+  WriteOutcomesAndPlots(out_dir, f, metric);
 }
 
 std::string FormatTransferFigures(const TransferFigures& f, const std::string& metric) {

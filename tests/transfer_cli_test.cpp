@@ -59,7 +59,15 @@ TEST(TransferCliTest, IdenticalReversedAndOneSwapGiveTheirKnownFigures) {
   EXPECT_DOUBLE_EQ(same["all"]["pearson_r"]["value"].get<double>(), 1.0);
   EXPECT_DOUBLE_EQ(same["all"]["mmrv"]["value"].get<double>(), 0.0);
   EXPECT_TRUE(fs::exists(d / "same" / "out" / "transfer.png"));
-  EXPECT_TRUE(fs::exists(d / "same" / "out" / "outcomes.csv"));
+  EXPECT_TRUE(fs::exists(d / "same" / "out" / "transfer_values.png"));
+  // Each configuration's outcomes and ranks (1 = the lowest error), by name.
+  std::ifstream outcomes(d / "same" / "out" / "outcomes.csv");
+  std::string header, first;
+  std::getline(outcomes, header);
+  std::getline(outcomes, first);
+  EXPECT_EQ(header, "config,real,sim,real_rank,sim_rank,near_best");
+  // The median of 1 + 0.01 · (0, 2, 4, 1, 3) four times over.
+  EXPECT_EQ(first, "budget_4,1.02,1.02,1,1,1");
   EXPECT_TRUE(fs::exists(d / "same" / "out" / "real_outcomes.csv"));
 
   const json reversed =

@@ -42,8 +42,9 @@ void WriteOutcomeTable(const std::filesystem::path& csv, const OutcomeTable& tab
                        const std::string& metric);
 
 /// Writes in `out_dir`: transfer.json (every figure), outcomes.csv (each configuration's
-/// real and simulated outcome, and whether it is near the best) and transfer.png (the
-/// simulated outcome against the real one, each configuration labelled).
+/// real and simulated outcome, their ranks with 1 the best, and whether it is near the
+/// best), transfer.png (the rank in simulation against the rank on real data, each
+/// configuration labelled) and transfer_values.png (the outcomes, likewise).
 void WriteTransferFiles(const std::filesystem::path& out_dir, const TransferFigures& figures,
                         const std::string& metric);
 
