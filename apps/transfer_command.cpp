@@ -45,8 +45,8 @@ void AddTransferCommand(CLI::App& app) {
       "rho, Pearson r, MMRV, bootstrap intervals, the split-half ceiling; writes "
       "transfer.json, outcomes.csv and transfer.png");
   cmd->add_option("--real", args->real,
-                  "Real outcomes: a table (CSV: config[,sequence][,frame],METRIC) or a folder "
-                  "of configuration folders with `trackbed vo` outputs")
+                  "Real outcomes: a table (CSV: config[,sequence][,frame],METRIC), a folder "
+                  "of configuration folders with `trackbed vo` outputs, or a sweep folder")
       ->required();
   cmd->add_option("--sim", args->sim, "Simulated outcomes, as --real")->required();
   cmd->add_option("--out", args->out_dir, "Folder to write")->required();

@@ -5,9 +5,9 @@
 // ceiling (the real outcomes' split-half correlation) and the same on the
 // configurations near the best (docs/transfer.md).
 //
-// REAL and SIM: each an outcome table (CSV: config[,sequence][,frame],<metric>) or a
-// folder with one subfolder per configuration holding `trackbed vo` outputs
-// (experiments/trackbed/experiments/transfer_files.h). Prints the figures and writes in
+// REAL and SIM: each an outcome table (CSV: config[,sequence][,frame],<metric>), a
+// folder with one subfolder per configuration holding `trackbed vo` outputs, or a sweep
+// folder (experiments/trackbed/experiments/transfer_files.h). Prints the figures and writes in
 // DIR transfer.json, outcomes.csv, transfer.png, transfer_values.png and both sides as
 // outcome tables (real_outcomes.csv, sim_outcomes.csv).
 #pragma once

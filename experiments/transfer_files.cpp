@@ -23,20 +23,44 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// One CSV line's fields: a field in double quotes may hold commas, and "" for a quote
+// (summary.csv's reasons); spaces around unquoted fields are dropped.
 std::vector<std::string> SplitCsvLine(const std::string& line) {
-  std::vector<std::string> fields;
-  std::size_t begin = 0;
-  while (true) {
-    const std::size_t comma = line.find(',', begin);
-    std::string field =
-        line.substr(begin, comma == std::string::npos ? std::string::npos : comma - begin);
-    while (!field.empty() && (field.back() == ' ' || field.back() == '\r')) field.pop_back();
-    while (!field.empty() && field.front() == ' ') field.erase(field.begin());
-    fields.push_back(std::move(field));
-    if (comma == std::string::npos) return fields;
-    begin = comma + 1;
+  std::vector<std::string> fields(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+        fields.back() += '"';
+        ++i;
+      } else if (c == '"') {
+        quoted = false;
+      } else {
+        fields.back() += c;
+      }
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      fields.emplace_back();
+    } else if (c != '\r') {
+      fields.back() += c;
+    }
   }
+  for (std::string& f : fields) {
+    while (!f.empty() && f.back() == ' ') f.pop_back();
+    while (!f.empty() && f.front() == ' ') f.erase(f.begin());
+  }
+  return fields;
 }
+
+// The columns a table is read by: a plain outcome table's, or a sweep's summary.csv's.
+struct TableColumns {
+  const char* config = "config";
+  const char* sequence = "sequence";
+  const char* frame = "frame";
+  const char* status = nullptr;  // rows whose status is not "ok" are an error
+};
 
 std::optional<std::size_t> Column(const std::vector<std::string>& header, const std::string& name) {
   const auto it = std::find(header.begin(), header.end(), name);
@@ -47,20 +71,26 @@ std::optional<std::size_t> Column(const std::vector<std::string>& header, const 
 // The rows of one table added to `table`; `config_name` (non-empty) stands for a missing
 // config column, `sequence_name` for a missing sequence column.
 void ReadTable(const fs::path& csv, const std::string& metric, const std::string& config_name,
-               const std::string& sequence_name, OutcomeTable* table) {
+               const std::string& sequence_name, OutcomeTable* table,
+               const TableColumns& columns = {}) {
   std::ifstream in(csv);
   if (!in) throw std::runtime_error(csv.string() + ": cannot be read");
   std::string line;
   if (!std::getline(in, line)) throw std::runtime_error(csv.string() + ": empty (no header)");
   const std::vector<std::string> header = SplitCsvLine(line);
-  const std::optional<std::size_t> config = Column(header, "config");
-  const std::optional<std::size_t> sequence = Column(header, "sequence");
-  const std::optional<std::size_t> frame = Column(header, "frame");
+  const std::optional<std::size_t> config = Column(header, columns.config);
+  const std::optional<std::size_t> sequence = Column(header, columns.sequence);
+  const std::optional<std::size_t> frame = Column(header, columns.frame);
+  constexpr std::size_t kAbsent = std::string::npos;
+  const std::size_t status =
+      columns.status ? Column(header, columns.status).value_or(kAbsent) : kAbsent;
   const std::optional<std::size_t> value = Column(header, metric);
   const auto fail = [&csv](int line_no, const std::string& reason) {
     return std::runtime_error(csv.string() + ":" + std::to_string(line_no) + ": " + reason);
   };
-  if (!config && config_name.empty()) throw fail(1, "no 'config' column");
+  if (!config && config_name.empty()) {
+    throw fail(1, "no '" + std::string(columns.config) + "' column");
+  }
   if (!value) throw fail(1, "no '" + metric + "' column (the metric)");
   std::map<std::pair<std::string, std::string>, std::size_t> index;  // → the sequence's
   int line_no = 1;
@@ -73,7 +103,11 @@ void ReadTable(const fs::path& csv, const std::string& metric, const std::string
                               std::to_string(header.size()));
     }
     const std::string name = config ? f[*config] : config_name;
-    if (name.empty()) throw fail(line_no, "empty config");
+    if (name.empty()) throw fail(line_no, "empty " + std::string(columns.config));
+    if (status != kAbsent && f[status] != "ok") {
+      throw fail(line_no, "a cell of '" + name + "' did not finish (" + f[status] +
+                              "): resume the sweep, or leave its configuration out");
+    }
     const std::string seq = sequence ? f[*sequence] : sequence_name;
     const std::optional<double> x = archive::ParseDouble(f[*value]);
     if (!x || !std::isfinite(*x)) {
@@ -268,6 +302,18 @@ void WriteOutcomesAndPlots(const fs::path& out_dir, const TransferFigures& f,
 }  // namespace
 
 OutcomeInput ReadOutcomes(const fs::path& path, const std::string& metric) {
+  if (fs::is_directory(path) && fs::exists(path / "summary.csv") &&
+      fs::exists(path / "cells.json")) {
+    // A sweep folder: a configuration is a group (a cell without its seed), a sequence
+    // a seed, one value per cell.
+    OutcomeInput input;
+    TableColumns sweep;
+    sweep.config = "group";
+    sweep.sequence = "seed";
+    sweep.status = "cell_status";
+    ReadTable(path / "summary.csv", metric, "", "", &input.table, sweep);
+    return input;
+  }
   if (fs::is_directory(path)) return ReadFolder(path, metric);
   if (!fs::exists(path)) throw std::runtime_error(path.string() + ": no such file or folder");
   OutcomeInput input;

@@ -133,6 +133,51 @@ TEST(TransferCliTest, AFolderWithoutVoOutputsIsNamed) {
       << r.stderr_text;
 }
 
+TEST(TransferCliTest, ASweepFolderReadsItsGroupsAsConfigurations) {
+  // A sweep folder's summary.csv (only the columns read here, a quoted reason with a
+  // comma as `trackbed sweep` writes one): groups a–d, seeds 1–2, the sweep's ATE.
+  const fs::path d = TestDir("sweep");
+  fs::create_directories(d / "sweep");
+  std::ofstream(d / "sweep" / "cells.json") << "{}\n";
+  {
+    std::ofstream summary(d / "sweep" / "summary.csv");
+    summary << "index,cell,group,seed,cell_status,cell_reason,estimators_vo_ate_rmse_m\n";
+    const double ate[4][2] = {{0.1, 0.12}, {0.2, 0.22}, {0.3, 0.28}, {0.4, 0.44}};
+    for (int g = 0; g < 4; ++g) {
+      for (int seed = 1; seed <= 2; ++seed) {
+        summary << 2 * g + seed - 1 << ",g" << g << "__seed-" << seed << ",g" << g << "," << seed
+                << ",ok,\"a reason, quoted\"," << ate[g][seed - 1] << "\n";
+      }
+    }
+  }
+  {
+    std::ofstream real(d / "real.csv");
+    real << "config,estimators_vo_ate_rmse_m\ng0,0.5\ng1,0.7\ng2,0.6\ng3,0.9\n";
+  }
+  const auto r = RunTrackbed("transfer --real " + Quoted(d / "real.csv") + " --sim " +
+                                 Quoted(d / "sweep") + " --metric estimators_vo_ate_rmse_m" +
+                                 " --out " + Quoted(d / "out") + " --resamples 200",
+                             d / "io");
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  std::ifstream in(d / "out" / "transfer.json");
+  const json j = json::parse(in);
+  // Simulated means 0.11, 0.21, 0.29, 0.42 against real 0.5, 0.7, 0.6, 0.9: g1 and g2
+  // swapped, rho 0.8; MMRV (0.1/0.4 + 0.1/0.4) / 4 = 0.125.
+  EXPECT_NEAR(j["all"]["spearman_rho"]["value"].get<double>(), 0.8, 1e-12);
+  EXPECT_NEAR(j["all"]["mmrv"]["value"].get<double>(), 0.125, 1e-12);
+  EXPECT_FALSE(j["ceiling"]["sim_split_half"]["available"].get<bool>());  // no frames
+  // A cell that did not finish is named, with its group.
+  std::ofstream(d / "sweep" / "summary.csv", std::ios::app) << "8,g4__seed-1,g4,1,timed_out,,\n";
+  const auto bad =
+      RunTrackbed("transfer --real " + Quoted(d / "real.csv") + " --sim " + Quoted(d / "sweep") +
+                      " --metric estimators_vo_ate_rmse_m" + " --out " + Quoted(d / "out"),
+                  d / "io");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_EQ(bad.stderr_text, "trackbed transfer: " + (d / "sweep" / "summary.csv").string() +
+                                 ":10: a cell of 'g4' did not finish (timed_out): resume the "
+                                 "sweep, or leave its configuration out\n");
+}
+
 TEST(VoSetCliTest, AnUnknownKeyIsRejectedWithTheKeyNamed) {
   const fs::path d = TestDir("vo");
   // The options are checked before any image is read: an empty folder will do.

@@ -8,7 +8,11 @@
 // `vo_frame_errors.csv` (a `trackbed vo` output with ground truth) is one sequence of it,
 // named by its path inside the configuration's folder. Such outputs also carry the VO's
 // options (vo_metrics.json), which must be the same for every sequence of a
-// configuration, and on both sides (CheckSameSettings).
+// configuration, and on both sides (CheckSameSettings). A sweep folder (`trackbed
+// sweep`'s, with summary.csv and cells.json) reads as a table whose configurations are
+// the groups (a cell's name without its seed), whose sequences are the seeds and whose
+// metric is a summary.csv column (`estimators_visual_odometry_ate_rmse_m`): one value
+// per cell, no frames; a cell that did not finish is an error.
 #pragma once
 
 #include <filesystem>
@@ -26,7 +30,7 @@ struct OutcomeInput {
   std::map<std::string, std::string> settings;
 };
 
-/// Reads a CSV table or a folder (see the file comment), the values of `metric`
+/// Reads a CSV table, a folder or a sweep folder (see the file comment), the values of `metric`
 /// (a column name: translation_error_pct, rotation_error_deg or length_ratio for
 /// `trackbed vo`'s outputs). Throws std::runtime_error naming the file, the line or the
 /// folder and the reason.
