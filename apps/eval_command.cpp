@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "trackbed/estimation/per_distance.h"
 #include "trackbed/estimation/trajectory_io.h"
 #include "trackbed/estimation/trajectory_metrics.h"
 
@@ -315,7 +316,9 @@ void WriteTable(const EvalArgs& args, const Evaluation& r, std::ostream& out) {
     Row(out, "drift over 10 m (rpe_trans_pct)", "n/a", "(path < 10 m)");
   }
   Row(out, "final error (x-y, unaligned)", Format("%.4f", e.final_error.horizontal_m),
-      "m (" + Format("%.3f", e.final_error.pct) + " % of the path)");
+      std::isfinite(e.final_error.pct)
+          ? "m (" + Format("%.3f", e.final_error.pct) + " % of the path)"
+          : "m (% of the path n/a: path < " + Format("%g", kMinPathForPerDistanceM) + " m)");
   if (align != AlignmentMode::kNone) {
     Row(out, "final error (3-D, " + align_name + "-aligned)",
         Format("%.4f", e.final_error_aligned_m), "m");
