@@ -20,6 +20,7 @@
 #include "trackbed/estimation/per_distance.h"
 #include "trackbed/runner/run_scenario.h"
 #include "trackbed/scenario/scenario_yaml.h"
+#include "unknown_arguments.h"
 #include "vo_command.h"
 
 namespace {
@@ -136,6 +137,10 @@ int main(int argc, char** argv) {
   trackbed::apps::AddVoCommand(app);
   trackbed::apps::AddExportMcapCommand(app);
 
+  if (const std::optional<std::string> unknown = trackbed::apps::UnknownArgument(app, argc, argv)) {
+    std::cerr << *unknown << "\nRun with --help for more information.\n";
+    return static_cast<int>(CLI::ExitCodes::ExtrasError);
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

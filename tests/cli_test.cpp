@@ -409,6 +409,29 @@ TEST(CliTest, HelpAndMissingArgumentsFollowTheExitContract) {
   EXPECT_NE(Trackbed("run scenes/corridor.yaml", "no_out").exit_code, 0);
 }
 
+TEST(CliTest, AMisspeltSubcommandOrOptionIsAnsweredWithTheClosestValidOne) {
+  const Result runn = Trackbed("runn scenes/corridor.yaml", "runn");
+  EXPECT_NE(runn.exit_code, 0);
+  EXPECT_EQ(runn.stderr_text,
+            "trackbed: unknown subcommand 'runn'; did you mean 'run'?\n"
+            "Run with --help for more information.\n");
+  const Result seed = Trackbed("run scenes/corridor.yaml --out x --seeed 3", "seeed");
+  EXPECT_NE(seed.exit_code, 0);
+  EXPECT_EQ(seed.stderr_text.substr(0, seed.stderr_text.find('\n')),
+            "trackbed run: unknown option '--seeed'; did you mean '--seed'?");
+  const Result jobs = Trackbed("sweep x.yaml --out y --jbos=2", "jbos");
+  EXPECT_EQ(jobs.stderr_text.substr(0, jobs.stderr_text.find('\n')),
+            "trackbed sweep: unknown option '--jbos'; did you mean '--jobs'?");
+  // Nothing close: the valid ones.
+  const Result far = Trackbed("xyz", "xyz");
+  EXPECT_EQ(far.stderr_text.substr(0, far.stderr_text.find('\n')),
+            "trackbed: unknown subcommand 'xyz' (one of: run eval sweep sweep-cell report vo "
+            "export-mcap)");
+  // A negative value is a value, not an option.
+  const Result offset = Trackbed("eval a.tum b.tum --t-offset -0.5", "offset");
+  EXPECT_EQ(offset.stderr_text.find("unknown"), std::string::npos) << offset.stderr_text;
+}
+
 TEST(CliTest, AStationaryRunGivesNoPercentageOfItsZeroPath) {
   // The robot stands still for the corridor's 130 s: the path is jitter (~10⁻¹¹ m), so
   // every figure per distance is n/a, in the summary and in metrics.json.
