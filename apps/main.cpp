@@ -105,10 +105,11 @@ int Run(const std::string& scenario_path, const std::string& out_dir,
     const trackbed::navigation::NavigationMetrics& n = *m.navigation;
     std::printf(
         "navigation (%s): %s%s; path %.2f m in %.1f s; final error %.3f m, %.2f deg; min "
-        "clearance %.2f m; %d collision(s); %d sub-goal(s); outputs in %s\n",
+        "clearance %s; %d collision(s); %d sub-goal(s); outputs in %s\n",
         m.navigation_method.c_str(), n.status.c_str(), n.success ? " (success)" : " (no success)",
         n.path_length_m, n.duration_s, n.final_position_error_m, n.final_heading_error_deg,
-        n.min_clearance_m, n.collisions, n.subgoals, out_dir.c_str());
+        FigureOr(n.min_clearance_m, "%.2f m", "no obstacles").c_str(), n.collisions, n.subgoals,
+        out_dir.c_str());
     return 0;
   }
   PrintRunSummary(m, out_dir);

@@ -29,6 +29,8 @@
 namespace trackbed::runner {
 namespace {
 
+using Json = nlohmann::ordered_json;
+
 // A figure, or null where it is n/a (NaN).
 nlohmann::ordered_json FiniteOrNull(double v) {
   return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json();
@@ -36,11 +38,13 @@ nlohmann::ordered_json FiniteOrNull(double v) {
 
 namespace fs = std::filesystem;
 
+// The means are null over no sample (a run that never moved, kinematic navigation).
 nlohmann::ordered_json SlipJson(const SlipStats& s) {
+  const auto mean = [&s](double v) { return s.samples ? nlohmann::ordered_json(v) : nullptr; };
   nlohmann::ordered_json j;
-  j["mean_abs_slip_ratio"] = s.mean_abs_ratio();
-  j["mean_slip_ratio"] = s.mean_ratio();
-  j["mean_abs_slip_velocity_mps"] = s.mean_abs_velocity_mps();
+  j["mean_abs_slip_ratio"] = mean(s.mean_abs_ratio());
+  j["mean_slip_ratio"] = mean(s.mean_ratio());
+  j["mean_abs_slip_velocity_mps"] = mean(s.mean_abs_velocity_mps());
   j["samples"] = s.samples;
   return j;
 }
@@ -277,14 +281,17 @@ std::string MetricsJson(const RunMetrics& m) {
   }
   j["estimators"] = estimators;
   const LocalizationSummary& loc = m.localization;
-  j["localization"] = {{"vo_frames", loc.vo_frames},
-                       {"camera_blackout_frames", loc.camera_blackout_frames},
-                       {"vo_failures", loc.vo_failures},
-                       {"vo_dynamics_constrained", loc.vo_dynamics_constrained},
-                       {"vo_coasted", loc.vo_coasted},
-                       {"mean_inliers", loc.mean_inliers},
-                       {"mean_fusion_w", loc.mean_fusion_w},
-                       {"slip_estimate_rmse_mps", loc.slip_estimate_rmse_mps}};
+  j["localization"] = {
+      {"vo_frames", loc.vo_frames},
+      {"camera_blackout_frames", loc.camera_blackout_frames},
+      {"vo_failures", loc.vo_failures},
+      {"vo_dynamics_constrained", loc.vo_dynamics_constrained},
+      {"vo_coasted", loc.vo_coasted},
+      // Means over no frame, or no wheel-odometry sample, are null.
+      {"mean_inliers", loc.vo_frames ? Json(loc.mean_inliers) : nullptr},
+      {"mean_fusion_w", loc.vo_frames ? Json(loc.mean_fusion_w) : nullptr},
+      {"slip_estimate_rmse_mps",
+       m.estimators.count("wheel_odometry") ? Json(loc.slip_estimate_rmse_mps) : nullptr}};
   j["timing"] = {{"render_s", m.render_wall_s},
                  {"sensor_model_s", m.sensor_model_wall_s},
                  {"estimation_s", m.estimation_wall_s},

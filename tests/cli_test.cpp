@@ -462,6 +462,13 @@ TEST(CliTest, AStationaryRunGivesNoPercentageOfItsZeroPath) {
     EXPECT_TRUE(e["rpe_trans_pct"].is_null()) << name;
     EXPECT_LT(e["final_error_m"].get<double>(), 0.01) << name;
   }
+  // Means over nothing: no track moved, no camera frame.
+  EXPECT_EQ(m["slip"]["left"]["samples"], 0);
+  EXPECT_TRUE(m["slip"]["left"]["mean_slip_ratio"].is_null());
+  EXPECT_EQ(m["localization"]["vo_frames"], 0);
+  EXPECT_TRUE(m["localization"]["mean_inliers"].is_null());
+  EXPECT_TRUE(m["localization"]["mean_fusion_w"].is_null());
+  EXPECT_GE(m["localization"]["slip_estimate_rmse_mps"].get<double>(), 0.0);  // wheels scored
   EXPECT_TRUE(m["icr_expansion"]["chi"].is_null());
   EXPECT_FALSE(m["icr_expansion"]["identified"].get<bool>());
   EXPECT_EQ(m["icr_expansion"]["reason"],

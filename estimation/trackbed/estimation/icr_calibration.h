@@ -44,8 +44,8 @@ struct IcrFit {
   /// The rules of IcrIdentification hold.
   bool identified = false;
   /// Why not identified ("" when it is), e.g. "turning too gentle: RMS encoder yaw
-  /// rate 0.108 rad/s < 0.20 rad/s".
-  std::string reason;
+  /// rate 0.108 rad/s < 0.20 rad/s"; "not fitted" where nothing was (kinematic runs).
+  std::string reason = "not fitted";
 };
 
 /// χ on windows of `window_samples` consecutive samples (1 s at the encoders' 100 Hz):
