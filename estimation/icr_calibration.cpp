@@ -89,7 +89,6 @@ IcrFit FitIcrExpansion(const std::vector<IcrSample>& samples, int window_samples
   }
   fit.windows_used = static_cast<int>(windows.size());
   fit.samples_used = fit.windows_used * window_samples;
-  fit.chi_stderr = std::numeric_limits<double>::quiet_NaN();
   if (!windows.empty()) {
     fit.chi = Chi(yy, yx);
     fit.turn_rms_radps = std::sqrt(yy / static_cast<double>(windows.size()));

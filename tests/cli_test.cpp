@@ -433,7 +433,7 @@ TEST(CliTest, AMisspeltSubcommandOrOptionIsAnsweredWithTheClosestValidOne) {
 }
 
 TEST(CliTest, AStationaryRunGivesNoPercentageOfItsZeroPath) {
-  // The robot stands still for the corridor's 130 s: the path is jitter (~10⁻¹¹ m), so
+  // The robot stands still for the corridor's 130 s: the path is jitter (~10⁻¹⁶ m), so
   // every figure per distance is n/a, in the summary and in metrics.json.
   const fs::path out = TempDir("stationary");
   const Result r = Trackbed(

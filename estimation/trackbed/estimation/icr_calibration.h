@@ -8,6 +8,7 @@
 // and whether the run identifies it (docs/physics.md, "ICR calibration"); B_eff = χ·B.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -38,8 +39,8 @@ struct IcrFit {
   int windows_used = 0;             ///< Windows whose mean encoder yaw rate exceeds the threshold.
   double rms_residual_radps = 0.0;  ///< RMS over those windows of y − χ·x (window means).
   /// Standard error of χ: delete-a-group jackknife over up to 20 groups of consecutive
-  /// windows; NaN with fewer than two windows.
-  double chi_stderr = 0.0;
+  /// windows; NaN with fewer than two windows (or none fitted).
+  double chi_stderr = std::numeric_limits<double>::quiet_NaN();
   double turn_rms_radps = 0.0;  ///< RMS of the windows' mean encoder yaw rate.
   /// The rules of IcrIdentification hold.
   bool identified = false;
