@@ -42,14 +42,14 @@ void PrintRunSummary(const trackbed::runner::RunMetrics& m, const std::string& o
   std::snprintf(too_short, sizeof(too_short), "< %g m",
                 trackbed::estimation::kMinPathForPerDistanceM);
   const double encoder_pct = PercentOfPath(m.encoder_distance_m - m.distance_m, m.distance_m);
+  const std::string encoder_error = std::isfinite(encoder_pct)
+                                        ? FigureOr(encoder_pct, "%+.2f %%", "")
+                                        : std::string("error n/a: path ") + too_short;
   std::printf(
       "%s: %.1f s simulated in %.2f s wall (%.3gx real time); distance %.2f m, encoder "
       "distance %.2f m (%s); outputs in %s\n",
       m.stop_reason.c_str(), m.sim_time_s, m.wall_time_s, m.real_time_factor(), m.distance_m,
-      m.encoder_distance_m,
-      std::isfinite(encoder_pct) ? FigureOr(encoder_pct, "%+.2f %%", "").c_str()
-                                 : (std::string("error n/a: path ") + too_short).c_str(),
-      out_dir.c_str());
+      m.encoder_distance_m, encoder_error.c_str(), out_dir.c_str());
   if (!m.estimators.empty()) {
     // The run's report: every estimator against ground truth (README.md, "Run folder").
     std::printf("%-22s %10s %12s %12s %14s\n", "estimator", "ATE [m]", "final [m]", "final [%]",

@@ -52,9 +52,10 @@ std::string Figure(const char* format, double value) {
 std::string WhyNotIdentified(const IcrFit& fit, double min_yaw_rate_radps) {
   using I = IcrIdentification;
   if (fit.windows_used < I::kMinWindows) {
+    // No comma: the reason is a field of a sweep's summary.csv that scripts split.
     return "too little turning: " + std::to_string(fit.windows_used) + " window(s) above " +
-           Figure("%g", min_yaw_rate_radps) + " rad/s, fewer than " +
-           std::to_string(I::kMinWindows);
+           Figure("%g", min_yaw_rate_radps) + " rad/s (fewer than " +
+           std::to_string(I::kMinWindows) + ")";
   }
   if (fit.turn_rms_radps < I::kMinTurnRmsRadps) {
     return "turning too gentle: RMS encoder yaw rate " + Figure("%.3f", fit.turn_rms_radps) +

@@ -472,7 +472,7 @@ TEST(CliTest, AStationaryRunGivesNoPercentageOfItsZeroPath) {
   EXPECT_TRUE(m["icr_expansion"]["chi"].is_null());
   EXPECT_FALSE(m["icr_expansion"]["identified"].get<bool>());
   EXPECT_EQ(m["icr_expansion"]["reason"],
-            "too little turning: 0 window(s) above 0.05 rad/s, fewer than 10");
+            "too little turning: 0 window(s) above 0.05 rad/s (fewer than 10)");
 }
 
 }  // namespace

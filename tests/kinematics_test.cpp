@@ -151,14 +151,14 @@ TEST(IcrCalibrationTest, NoTurningLeavesChiAtOneWithTheReason) {
   EXPECT_EQ(none.chi, 1.0);
   EXPECT_TRUE(std::isnan(none.chi_stderr));
   EXPECT_FALSE(none.identified);
-  EXPECT_EQ(none.reason, "too little turning: 0 window(s) above 0.05 rad/s, fewer than 10");
+  EXPECT_EQ(none.reason, "too little turning: 0 window(s) above 0.05 rad/s (fewer than 10)");
   // 950 samples: nine whole windows, the rest left over.
   const estimation::IcrFit few =
       estimation::FitIcrExpansion(std::vector<estimation::IcrSample>(950, {0.5, 0.4}));
   EXPECT_EQ(few.windows_used, 9);
   EXPECT_EQ(few.samples_used, 900);
   EXPECT_DOUBLE_EQ(few.chi, 1.25);
-  EXPECT_EQ(few.reason, "too little turning: 9 window(s) above 0.05 rad/s, fewer than 10");
+  EXPECT_EQ(few.reason, "too little turning: 9 window(s) above 0.05 rad/s (fewer than 10)");
   EXPECT_THROW(estimation::FitIcrExpansion({}, 0), std::invalid_argument);
 }
 
