@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "trackbed/estimation/per_distance.h"
 #include "trackbed/estimation/trajectory_io.h"
 #include "trackbed/estimation/trajectory_metrics.h"
 
@@ -98,9 +99,11 @@ void WriteDocument(std::ostream& out, const Json& doc) {
   out << "\n}\n";
 }
 
+// Statistics over no value are null, not 0.
 Json StatsJson(const ErrorStats& s) {
-  return {{"count", s.count}, {"rmse", s.rmse}, {"mean", s.mean}, {"median", s.median},
-          {"std", s.std},     {"min", s.min},   {"max", s.max}};
+  const auto v = [&s](double x) { return s.count ? Json(x) : Json(nullptr); };
+  return {{"count", s.count}, {"rmse", v(s.rmse)}, {"mean", v(s.mean)}, {"median", v(s.median)},
+          {"std", v(s.std)},  {"min", v(s.min)},   {"max", v(s.max)}};
 }
 
 struct Input {
@@ -298,9 +301,13 @@ void WriteTable(const EvalArgs& args, const Evaluation& r, std::ostream& out) {
       << Format("%.4f", e.ate.error_m.median) << ", max " << Format("%.4f", e.ate.error_m.max)
       << " m)\n";
   Row(out, "ATE RMSE (x-y, unaligned)", Format("%.4f", e.ate_rmse_m), "m");
-  Row(out, "RPE trans RMSE (delta " + delta_text + ")", Format("%.4f", e.rpe.trans_m.rmse),
-      "m (" + std::to_string(e.rpe.trans_m.count) + " pairs)");
-  Row(out, "RPE rot RMSE (delta " + delta_text + ")", Format("%.4f", e.rpe.rot_deg.rmse), "deg");
+  if (e.rpe.trans_m.count > 0) {
+    Row(out, "RPE trans RMSE (delta " + delta_text + ")", Format("%.4f", e.rpe.trans_m.rmse),
+        "m (" + std::to_string(e.rpe.trans_m.count) + " pairs)");
+    Row(out, "RPE rot RMSE (delta " + delta_text + ")", Format("%.4f", e.rpe.rot_deg.rmse), "deg");
+  } else {
+    Row(out, "RPE (delta " + delta_text + ")", "n/a", "(no pair of poses that far apart)");
+  }
   if (has_kitti) {
     Row(out, "KITTI t_rel (100..800 m)", Format("%.3f", e.kitti.t_rel_pct),
         "% (" + std::to_string(e.kitti.segments) + " segments)");
@@ -315,7 +322,9 @@ void WriteTable(const EvalArgs& args, const Evaluation& r, std::ostream& out) {
     Row(out, "drift over 10 m (rpe_trans_pct)", "n/a", "(path < 10 m)");
   }
   Row(out, "final error (x-y, unaligned)", Format("%.4f", e.final_error.horizontal_m),
-      "m (" + Format("%.3f", e.final_error.pct) + " % of the path)");
+      std::isfinite(e.final_error.pct)
+          ? "m (" + Format("%.3f", e.final_error.pct) + " % of the path)"
+          : "m (% of the path n/a: path < " + Format("%g", kMinPathForPerDistanceM) + " m)");
   if (align != AlignmentMode::kNone) {
     Row(out, "final error (3-D, " + align_name + "-aligned)",
         Format("%.4f", e.final_error_aligned_m), "m");

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <exception>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,12 +17,69 @@
 #include "export_mcap_command.h"
 #include "report_command.h"
 #include "sweep_command.h"
+#include "trackbed/estimation/per_distance.h"
 #include "trackbed/runner/run_scenario.h"
 #include "trackbed/scenario/scenario_yaml.h"
 #include "transfer_command.h"
+#include "unknown_arguments.h"
 #include "vo_command.h"
 
 namespace {
+
+// "12.34", or "n/a (<why>)" for a figure that is n/a (NaN).
+std::string FigureOr(double value, const char* format, const char* why) {
+  if (!std::isfinite(value)) return std::string("n/a (") + why + ")";
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), format, value);
+  return buf;
+}
+
+// The physics run's summary: distances, every estimator against ground truth, teach &
+// repeat, χ (README.md, "Commands"; per-distance figures and χ only where they mean
+// something: docs/run_folder.md).
+void PrintRunSummary(const trackbed::runner::RunMetrics& m, const std::string& out_dir) {
+  using trackbed::estimation::PercentOfPath;
+  char too_short[32];  // why a per-distance figure is n/a
+  std::snprintf(too_short, sizeof(too_short), "< %g m",
+                trackbed::estimation::kMinPathForPerDistanceM);
+  const double encoder_pct = PercentOfPath(m.encoder_distance_m - m.distance_m, m.distance_m);
+  const std::string encoder_error = std::isfinite(encoder_pct)
+                                        ? FigureOr(encoder_pct, "%+.2f %%", "")
+                                        : std::string("error n/a: path ") + too_short;
+  std::printf(
+      "%s: %.1f s simulated in %.2f s wall (%.3gx real time); distance %.2f m, encoder "
+      "distance %.2f m (%s); outputs in %s\n",
+      m.stop_reason.c_str(), m.sim_time_s, m.wall_time_s, m.real_time_factor(), m.distance_m,
+      m.encoder_distance_m, encoder_error.c_str(), out_dir.c_str());
+  if (!m.estimators.empty()) {
+    // The run's report: every estimator against ground truth (README.md, "Run folder").
+    std::printf("%-22s %10s %12s %12s %14s\n", "estimator", "ATE [m]", "final [m]", "final [%]",
+                "drift/10 m [%]");
+    for (const auto& [name, e] : m.estimators) {
+      std::printf("%-22s %10.3f %12.3f %12s %14s\n", name.c_str(), e.ate_rmse_m, e.final_error_m,
+                  FigureOr(e.final_error_pct, "%.2f", too_short).c_str(),
+                  FigureOr(e.rpe_trans_pct, "%.2f", "< 10 m").c_str());
+    }
+  }
+  if (m.teach_repeat) {
+    const trackbed::runner::TeachRepeatMetrics& t = *m.teach_repeat;
+    std::printf(
+        "teach & repeat (%s): %s; %d milestones from %d teach images; lateral error RMS %.3f m, "
+        "max %.3f m; end point %.3f m; autonomy %.2f; features lost %lld, recovered %lld\n",
+        t.method.c_str(), t.status.c_str(), t.milestones, t.teach_images, t.lateral_rms_m,
+        t.lateral_max_m, t.end_point_error_m, t.autonomy, static_cast<long long>(t.features_lost),
+        static_cast<long long>(t.features_recovered));
+  }
+  const trackbed::estimation::IcrFit& icr = m.icr;
+  if (icr.identified) {
+    // Turning runs (scenes/calibration/icr_turns.yaml) calibrate the effective gauge.
+    std::printf(
+        "ICR expansion chi = %.3f +- %.3f (B_eff = chi * B, fitted on %d turning samples)\n",
+        icr.chi, icr.chi_stderr, icr.samples_used);
+  } else if (icr.samples_used > 0) {
+    std::printf("ICR expansion chi: n/a, not identified by this run (%s)\n", icr.reason.c_str());
+  }
+}
 
 int Run(const std::string& scenario_path, const std::string& out_dir,
         const std::vector<std::string>& sets, const std::optional<std::uint64_t>& seed) {
@@ -48,45 +106,14 @@ int Run(const std::string& scenario_path, const std::string& out_dir,
     const trackbed::navigation::NavigationMetrics& n = *m.navigation;
     std::printf(
         "navigation (%s): %s%s; path %.2f m in %.1f s; final error %.3f m, %.2f deg; min "
-        "clearance %.2f m; %d collision(s); %d sub-goal(s); outputs in %s\n",
+        "clearance %s; %d collision(s); %d sub-goal(s); outputs in %s\n",
         m.navigation_method.c_str(), n.status.c_str(), n.success ? " (success)" : " (no success)",
         n.path_length_m, n.duration_s, n.final_position_error_m, n.final_heading_error_deg,
-        n.min_clearance_m, n.collisions, n.subgoals, out_dir.c_str());
+        FigureOr(n.min_clearance_m, "%.2f m", "no obstacles").c_str(), n.collisions, n.subgoals,
+        out_dir.c_str());
     return 0;
   }
-  std::printf(
-      "%s: %.1f s simulated in %.2f s wall (%.3gx real time); distance %.2f m, encoder "
-      "distance %.2f m (%+.2f %%); outputs in %s\n",
-      m.stop_reason.c_str(), m.sim_time_s, m.wall_time_s, m.real_time_factor(), m.distance_m,
-      m.encoder_distance_m,
-      m.distance_m > 0 ? 100.0 * (m.encoder_distance_m - m.distance_m) / m.distance_m : 0.0,
-      out_dir.c_str());
-  if (!m.estimators.empty()) {
-    // The run's report: every estimator against ground truth (README.md, "Run folder").
-    std::printf("%-22s %10s %12s %12s %14s\n", "estimator", "ATE [m]", "final [m]", "final [%]",
-                "drift/10 m [%]");
-    for (const auto& [name, e] : m.estimators) {
-      char drift[32] = "n/a (< 10 m)";
-      if (std::isfinite(e.rpe_trans_pct))
-        std::snprintf(drift, sizeof(drift), "%.2f", e.rpe_trans_pct);
-      std::printf("%-22s %10.3f %12.3f %12.2f %14s\n", name.c_str(), e.ate_rmse_m, e.final_error_m,
-                  e.final_error_pct, drift);
-    }
-  }
-  if (m.teach_repeat) {
-    const trackbed::runner::TeachRepeatMetrics& t = *m.teach_repeat;
-    std::printf(
-        "teach & repeat (%s): %s; %d milestones from %d teach images; lateral error RMS %.3f m, "
-        "max %.3f m; end point %.3f m; autonomy %.2f; features lost %lld, recovered %lld\n",
-        t.method.c_str(), t.status.c_str(), t.milestones, t.teach_images, t.lateral_rms_m,
-        t.lateral_max_m, t.end_point_error_m, t.autonomy, static_cast<long long>(t.features_lost),
-        static_cast<long long>(t.features_recovered));
-  }
-  if (m.icr.samples_used >= 100) {
-    // Turning runs (scenes/calibration/icr_turns.yaml) calibrate the effective gauge.
-    std::printf("ICR expansion chi = %.3f (B_eff = chi * B, fitted on %d turning samples)\n",
-                m.icr.chi, m.icr.samples_used);
-  }
+  PrintRunSummary(m, out_dir);
   return 0;
 }
 
@@ -113,6 +140,10 @@ int main(int argc, char** argv) {
   trackbed::apps::AddTransferCommand(app);
   trackbed::apps::AddExportMcapCommand(app);
 
+  if (const std::optional<std::string> unknown = trackbed::apps::UnknownArgument(app, argc, argv)) {
+    std::cerr << *unknown << "\nRun with --help for more information.\n";
+    return static_cast<int>(CLI::ExitCodes::ExtrasError);
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

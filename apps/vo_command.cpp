@@ -17,6 +17,7 @@
 
 #include "trackbed/common/archive.h"
 #include "trackbed/estimation/absolute_orientation.h"
+#include "trackbed/estimation/per_distance.h"
 #include "trackbed/estimation/stereo_visual_odometry.h"
 #include "trackbed/estimation/trajectory.h"
 #include "trackbed/estimation/trajectory_metrics.h"
@@ -104,12 +105,27 @@ double AteRmseSe3(const std::vector<Eigen::Vector3d>& est, const std::vector<Eig
   return std::sqrt(sum_sq / static_cast<double>(est.size()));
 }
 
+// "12.34", or "n/a (< 1 m)" for a per-distance figure that is n/a (NaN: the path is
+// under estimation::kMinPathForPerDistanceM).
+std::string Figure(const char* format, double value) {
+  char buf[64];
+  if (std::isfinite(value)) {
+    std::snprintf(buf, sizeof(buf), format, value);
+  } else {
+    std::snprintf(buf, sizeof(buf), "n/a (< %g m)", estimation::kMinPathForPerDistanceM);
+  }
+  return buf;
+}
+
 // The path-length ratio and the frame-to-frame errors (estimation::FrameToFrameError).
-void PrintFrameToFrameError(const estimation::FrameMotionError& e,
-                            const estimation::Trajectory& gt) {
-  std::printf("path length: %.2f m against %.2f m (ratio %.4f)\n",
-              e.path_length_ratio * estimation::PathLength(gt), estimation::PathLength(gt),
-              e.path_length_ratio);
+void PrintFrameToFrameError(const estimation::FrameMotionError& e, const estimation::Trajectory& gt,
+                            const estimation::Trajectory& est) {
+  std::printf("path length: %.2f m against %.2f m (ratio %s)\n", estimation::PathLength(est),
+              estimation::PathLength(gt), Figure("%.4f", e.path_length_ratio).c_str());
+  if (e.trans_pct.count == 0) {
+    std::printf("frame to frame: n/a (no frame moved 1 cm)\n");
+    return;
+  }
   std::printf(
       "frame to frame (%zu frames): translation error median %.3f %%, mean %.3f %% of the "
       "frame's motion; rotation error median %.4f deg, mean %.4f deg; length ratio median "
@@ -167,11 +183,11 @@ nlohmann::json ScoreAgainstGroundTruth(const perception::KittiSequence& sequence
   const double length = estimation::PathLength(gt);
   const double end_error = (p_est.back() - p_gt.back()).norm();
   const double ate = AteRmseSe3(p_est, p_gt);
-  std::printf("end-point error: %.3f m (%.2f %% of %.1f m)\n", end_error,
-              length > 0.0 ? 100.0 * end_error / length : 0.0, length);
+  std::printf("end-point error: %.3f m (%s of %.1f m)\n", end_error,
+              Figure("%.2f %%", estimation::PercentOfPath(end_error, length)).c_str(), length);
   std::printf("ATE RMSE (SE(3)-aligned positions): %.3f m\n", ate);
   const estimation::FrameMotionError e = estimation::FrameToFrameError(gt, trajectory);
-  PrintFrameToFrameError(e, gt);
+  PrintFrameToFrameError(e, gt, trajectory);
 
   const fs::path csv_path = out_dir / "vo_frame_errors.csv";
   std::ofstream csv = OpenForWriting(csv_path);

@@ -1,6 +1,8 @@
 // Trajectory metrics (see trajectory_metrics.h).
 #include "trackbed/estimation/trajectory_metrics.h"
 
+#include "trackbed/estimation/per_distance.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -170,7 +172,7 @@ FinalError ComputeFinalError(const Trajectory& gt, const Trajectory& est) {
   out.horizontal_m = (Position(gt.back(), true) - Position(est.back(), true)).norm();
   out.error_3d_m = (Position(gt.back(), false) - Position(est.back(), false)).norm();
   out.gt_path_length_m = PathLength(gt);
-  out.pct = out.gt_path_length_m > 0.0 ? 100.0 * out.horizontal_m / out.gt_path_length_m : 0.0;
+  out.pct = PercentOfPath(out.horizontal_m, out.gt_path_length_m);
   return out;
 }
 
@@ -266,7 +268,7 @@ FrameMotionError FrameToFrameError(const Trajectory& gt, const Trajectory& est,
   out.rot_deg = ComputeStats(std::move(rot));
   out.length_ratio = ComputeStats(std::move(ratio));
   const double gt_length = PathLength(gt);
-  out.path_length_ratio = gt_length > 0.0 ? PathLength(est) / gt_length : 0.0;
+  out.path_length_ratio = PercentOfPath(PathLength(est), gt_length) / 100.0;
   return out;
 }
 

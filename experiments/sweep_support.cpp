@@ -138,11 +138,27 @@ int BlockedSignals::TakeInterrupt() const {
 
 bool IsInterrupt(int sig) { return sig == SIGINT || sig == SIGTERM || sig == SIGHUP; }
 
+std::optional<double> SecondsLeft(std::size_t finished, std::size_t remaining, double elapsed_s) {
+  if (finished == 0) return std::nullopt;
+  return elapsed_s / static_cast<double>(finished) * static_cast<double>(remaining);
+}
+
+std::string MinutesSeconds(double seconds) {
+  if (!(seconds >= 0.0) || !std::isfinite(seconds)) return "-:--";
+  const long s = std::lround(seconds);
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%ld:%02ld", s / 60, s % 60);
+  return buf;
+}
+
 Progress::Progress(std::size_t total, std::size_t done, bool bar)
     : total_(total), done_(done), bar_(bar), start_(SweepClock::now()) {}
 
 void Progress::Finished(const SweepCell& cell, const CellOutcome& o) {
-  if (o.status != CellStatus::kInterrupted) ++done_;
+  if (o.status != CellStatus::kInterrupted) {
+    ++done_;
+    ++finished_here_;
+  }
   if (o.status == CellStatus::kOk) {
     ++ok_;
   } else if (o.status != CellStatus::kInterrupted) {
@@ -173,14 +189,15 @@ void Progress::Refresh(std::size_t running) {
   const int filled =
       total_ ? static_cast<int>(kWidth * static_cast<double>(done_) / static_cast<double>(total_))
              : kWidth;
-  const long elapsed =
-      std::chrono::duration_cast<std::chrono::seconds>(SweepClock::now() - start_).count();
+  const double elapsed = std::chrono::duration<double>(SweepClock::now() - start_).count();
+  const std::optional<double> left = SecondsLeft(finished_here_, total_ - done_, elapsed);
   char buf[256];
   std::snprintf(buf, sizeof(buf),
-                "\r\033[K[%s%s] %zu/%zu cells  %zu ok  %zu not ok  %zu running  %ld:%02ld",
+                "\r\033[K[%s%s] %zu/%zu cells  %zu ok  %zu not ok  %zu running  %s  %s left",
                 std::string(static_cast<std::size_t>(filled), '#').c_str(),
                 std::string(static_cast<std::size_t>(kWidth - filled), '.').c_str(), done_, total_,
-                ok_, bad_, running, elapsed / 60, elapsed % 60);
+                ok_, bad_, running, MinutesSeconds(std::floor(elapsed)).c_str(),
+                MinutesSeconds(left ? *left : -1.0).c_str());
   std::cerr << buf << std::flush;
   drawn_ = true;
 }

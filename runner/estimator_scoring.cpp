@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "trackbed/estimation/per_distance.h"
 #include "trackbed/estimation/trajectory_metrics.h"
 #include "trackbed/runner/run_sample.h"
 
@@ -55,7 +56,7 @@ EstimatorMetrics Score(const estimation::Trajectory& gt, const estimation::Traje
   m.ate3d_se3_rmse_m =
       estimation::AbsoluteTrajectoryError(gt, est, estimation::AlignmentMode::kSe3).error_m.rmse;
   m.final_error_m = estimation::ComputeFinalError(gt, est).horizontal_m;
-  m.final_error_pct = distance_m > 0 ? 100.0 * m.final_error_m / distance_m : 0.0;
+  m.final_error_pct = estimation::PercentOfPath(m.final_error_m, distance_m);
   m.rpe_trans_pct =
       estimation::RpeTransPct(gt, est).value_or(std::numeric_limits<double>::quiet_NaN());
   return m;

@@ -12,6 +12,7 @@
 #include <opencv2/core.hpp>
 
 #include "trackbed/common/durable_file.h"
+#include "trackbed/estimation/per_distance.h"
 #include "trackbed/estimation/trajectory.h"
 #include "trackbed/estimation/trajectory_metrics.h"
 #include "trackbed/perception/kitti_sequence.h"
@@ -28,13 +29,22 @@
 namespace trackbed::runner {
 namespace {
 
+using Json = nlohmann::ordered_json;
+
+// A figure, or null where it is n/a (NaN).
+nlohmann::ordered_json FiniteOrNull(double v) {
+  return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json();
+}
+
 namespace fs = std::filesystem;
 
+// The means are null over no sample (a run that never moved, kinematic navigation).
 nlohmann::ordered_json SlipJson(const SlipStats& s) {
+  const auto mean = [&s](double v) { return s.samples ? nlohmann::ordered_json(v) : nullptr; };
   nlohmann::ordered_json j;
-  j["mean_abs_slip_ratio"] = s.mean_abs_ratio();
-  j["mean_slip_ratio"] = s.mean_ratio();
-  j["mean_abs_slip_velocity_mps"] = s.mean_abs_velocity_mps();
+  j["mean_abs_slip_ratio"] = mean(s.mean_abs_ratio());
+  j["mean_slip_ratio"] = mean(s.mean_ratio());
+  j["mean_abs_slip_velocity_mps"] = mean(s.mean_abs_velocity_mps());
   j["samples"] = s.samples;
   return j;
 }
@@ -241,7 +251,7 @@ std::string MetricsJson(const RunMetrics& m) {
   j["distance_m"] = m.distance_m;
   j["encoder_distance_m"] = m.encoder_distance_m;
   j["encoder_distance_error_pct"] =
-      m.distance_m > 0 ? 100.0 * (m.encoder_distance_m - m.distance_m) / m.distance_m : 0.0;
+      FiniteOrNull(estimation::PercentOfPath(m.encoder_distance_m - m.distance_m, m.distance_m));
   j["min_com_height_m"] = m.min_com_height_m;
   nlohmann::ordered_json slip;
   slip["left"] = SlipJson(m.slip[robot::kLeft]);
@@ -250,27 +260,38 @@ std::string MetricsJson(const RunMetrics& m) {
   for (const auto& [name, stats] : m.slip_by_material) by_material[name] = SlipJson(stats);
   slip["by_material"] = by_material;
   j["slip"] = slip;
-  j["icr_expansion"] = {{"chi", m.icr.chi},
-                        {"samples", m.icr.samples_used},
-                        {"rms_residual_radps", m.icr.rms_residual_radps}};
+  // χ only where the run identifies it (docs/physics.md, "ICR calibration").
+  j["icr_expansion"] = {
+      {"chi", m.icr.identified ? nlohmann::ordered_json(m.icr.chi) : nlohmann::ordered_json()},
+      {"samples", m.icr.samples_used},
+      {"rms_residual_radps", m.icr.rms_residual_radps},
+      {"chi_stderr", FiniteOrNull(m.icr.chi_stderr)},
+      {"turn_rms_radps", m.icr.turn_rms_radps},
+      {"identified", m.icr.identified},
+      {"reason", m.icr.reason}};
   j["stereo_frames"] = m.stereo_frames;
   nlohmann::ordered_json estimators = nlohmann::ordered_json::object();
   for (const auto& [name, e] : m.estimators) {
-    estimators[name] = {
-        {"ate_rmse_m", e.ate_rmse_m},       {"ate3d_se3_rmse_m", e.ate3d_se3_rmse_m},
-        {"final_error_m", e.final_error_m}, {"final_error_pct", e.final_error_pct},
-        {"rpe_trans_pct", e.rpe_trans_pct}, {"samples", e.samples}};
+    estimators[name] = {{"ate_rmse_m", e.ate_rmse_m},
+                        {"ate3d_se3_rmse_m", e.ate3d_se3_rmse_m},
+                        {"final_error_m", e.final_error_m},
+                        {"final_error_pct", FiniteOrNull(e.final_error_pct)},
+                        {"rpe_trans_pct", FiniteOrNull(e.rpe_trans_pct)},
+                        {"samples", e.samples}};
   }
   j["estimators"] = estimators;
   const LocalizationSummary& loc = m.localization;
-  j["localization"] = {{"vo_frames", loc.vo_frames},
-                       {"camera_blackout_frames", loc.camera_blackout_frames},
-                       {"vo_failures", loc.vo_failures},
-                       {"vo_dynamics_constrained", loc.vo_dynamics_constrained},
-                       {"vo_coasted", loc.vo_coasted},
-                       {"mean_inliers", loc.mean_inliers},
-                       {"mean_fusion_w", loc.mean_fusion_w},
-                       {"slip_estimate_rmse_mps", loc.slip_estimate_rmse_mps}};
+  j["localization"] = {
+      {"vo_frames", loc.vo_frames},
+      {"camera_blackout_frames", loc.camera_blackout_frames},
+      {"vo_failures", loc.vo_failures},
+      {"vo_dynamics_constrained", loc.vo_dynamics_constrained},
+      {"vo_coasted", loc.vo_coasted},
+      // Means over no frame, or no wheel-odometry sample, are null.
+      {"mean_inliers", loc.vo_frames ? Json(loc.mean_inliers) : nullptr},
+      {"mean_fusion_w", loc.vo_frames ? Json(loc.mean_fusion_w) : nullptr},
+      {"slip_estimate_rmse_mps",
+       m.estimators.count("wheel_odometry") ? Json(loc.slip_estimate_rmse_mps) : nullptr}};
   j["timing"] = {{"render_s", m.render_wall_s},
                  {"sensor_model_s", m.sensor_model_wall_s},
                  {"estimation_s", m.estimation_wall_s},
@@ -282,9 +303,6 @@ std::string MetricsJson(const RunMetrics& m) {
   j["memory"] = {{"peak_rss_mb", m.peak_rss_mb}};
   if (m.teach_repeat) {
     const TeachRepeatMetrics& t = *m.teach_repeat;
-    const auto finite_or_null = [](double v) {
-      return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json();
-    };
     j["teach_repeat"] = {{"method", t.method},
                          {"status", t.status},
                          {"completed", t.completed},
@@ -297,28 +315,25 @@ std::string MetricsJson(const RunMetrics& m) {
                          {"taught_length_m", t.taught_length_m},
                          {"features_lost", t.features_lost},
                          {"features_recovered", t.features_recovered},
-                         {"recovery_rate", finite_or_null(t.recovery_rate)},
-                         {"recovery_rate_pooled", finite_or_null(t.recovery_rate_pooled)},
+                         {"recovery_rate", FiniteOrNull(t.recovery_rate)},
+                         {"recovery_rate_pooled", FiniteOrNull(t.recovery_rate_pooled)},
                          {"milestones", t.milestones},
                          {"teach_images", t.teach_images},
                          {"switches_by_distance", t.switches_by_distance},
                          {"map_size_mb", t.map_size_mb},
-                         {"map_mb_per_100m", finite_or_null(t.map_mb_per_100m)}};
+                         {"map_mb_per_100m", FiniteOrNull(t.map_mb_per_100m)}};
     nlohmann::ordered_json places = nlohmann::ordered_json::array();
     for (const TeachRepeatMetrics::Place& p : t.places) {
       places.push_back({{"start_s", p.start_s},
                         {"end_s", p.end_s},
                         {"lost", p.lost},
                         {"recovered", p.recovered},
-                        {"rate", finite_or_null(p.rate)}});
+                        {"rate", FiniteOrNull(p.rate)}});
     }
     j["teach_repeat"]["places"] = places;
   }
   if (m.navigation) {
     const navigation::NavigationMetrics& n = *m.navigation;
-    const auto finite_or_null = [](double v) {
-      return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json();
-    };
     j["navigation"] = {
         {"method", m.navigation_method},
         {"success", n.success},
@@ -329,8 +344,8 @@ std::string MetricsJson(const RunMetrics& m) {
         {"path_length_m", n.path_length_m},
         {"final_position_error_m", n.final_position_error_m},
         {"final_heading_error_deg", n.final_heading_error_deg},
-        {"min_clearance_m", finite_or_null(n.min_clearance_m)},
-        {"mean_clearance_m", finite_or_null(n.mean_clearance_m)},
+        {"min_clearance_m", FiniteOrNull(n.min_clearance_m)},
+        {"mean_clearance_m", FiniteOrNull(n.mean_clearance_m)},
         {"collisions", n.collisions},
         {"integrated_abs_jerk", n.integrated_abs_jerk},
         {"subgoals", n.subgoals}};

@@ -16,6 +16,7 @@
 #include "trackbed/common/median.h"
 #include "trackbed/common/random.h"
 #include "trackbed/common/units.h"
+#include "trackbed/estimation/per_distance.h"
 #include "trackbed/estimation/trajectory_io.h"
 #include "trackbed/estimation/wheel_odometry.h"
 #include "trackbed/perception/lens_undistorter.h"
@@ -395,8 +396,7 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
     t.lateral_start_m = p.lateral_start_m;
     t.lateral_end_rms_m = p.lateral_end_rms_m;
     t.taught_length_m = p.taught_length_m;
-    t.map_mb_per_100m = p.taught_length_m > 0.0 ? t.map_size_mb * 100.0 / p.taught_length_m
-                                                : std::numeric_limits<double>::quiet_NaN();
+    t.map_mb_per_100m = estimation::PercentOfPath(t.map_size_mb, p.taught_length_m);  // 100·MB/m
     plot::WriteTrajectoryPlot(
         dir / "teach_repeat.png",
         scenario.scene.name + ": teach & repeat (" + teach_repeat::ToString(tr.method) + ", " +

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -406,6 +407,72 @@ TEST(CliTest, HelpAndMissingArgumentsFollowTheExitContract) {
   EXPECT_EQ(Trackbed("--help", "help").exit_code, 0);
   EXPECT_EQ(Trackbed("run --help", "run_help").exit_code, 0);
   EXPECT_NE(Trackbed("run scenes/corridor.yaml", "no_out").exit_code, 0);
+}
+
+TEST(CliTest, AMisspeltSubcommandOrOptionIsAnsweredWithTheClosestValidOne) {
+  const Result runn = Trackbed("runn scenes/corridor.yaml", "runn");
+  EXPECT_NE(runn.exit_code, 0);
+  EXPECT_EQ(runn.stderr_text,
+            "trackbed: unknown subcommand 'runn'; did you mean 'run'?\n"
+            "Run with --help for more information.\n");
+  const Result seed = Trackbed("run scenes/corridor.yaml --out x --seeed 3", "seeed");
+  EXPECT_NE(seed.exit_code, 0);
+  EXPECT_EQ(seed.stderr_text.substr(0, seed.stderr_text.find('\n')),
+            "trackbed run: unknown option '--seeed'; did you mean '--seed'?");
+  const Result jobs = Trackbed("sweep x.yaml --out y --jbos=2", "jbos");
+  EXPECT_EQ(jobs.stderr_text.substr(0, jobs.stderr_text.find('\n')),
+            "trackbed sweep: unknown option '--jbos'; did you mean '--jobs'?");
+  // Nothing close: the valid ones.
+  const Result far = Trackbed("xyz", "xyz");
+  EXPECT_EQ(far.stderr_text.substr(0, far.stderr_text.find('\n')),
+            "trackbed: unknown subcommand 'xyz' (one of: run eval sweep sweep-cell report vo "
+            "export-mcap)");
+  // A negative value is a value, not an option.
+  const Result offset = Trackbed("eval a.tum b.tum --t-offset -0.5", "offset");
+  EXPECT_EQ(offset.stderr_text.find("unknown"), std::string::npos) << offset.stderr_text;
+}
+
+TEST(CliTest, AStationaryRunGivesNoPercentageOfItsZeroPath) {
+  // The robot stands still for the corridor's 130 s: the path is jitter (~10⁻¹⁶ m), so
+  // every figure per distance is n/a, in the summary and in metrics.json.
+  const fs::path out = TempDir("stationary");
+  const Result r = Trackbed(
+      "run scenes/corridor.yaml --set drive.mode=script --set \"drive.script=[{t_s: 0, "
+      "v_mps: 0}]\" --set robot.stereo.enabled=false --out " +
+          out.string(),
+      "stationary");
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  EXPECT_NE(r.stdout_text.find("distance 0.00 m, encoder distance "), std::string::npos);
+  EXPECT_NE(r.stdout_text.find(" m (error n/a: path < 1 m); outputs in"), std::string::npos)
+      << r.stdout_text;
+  for (const char* name : {"ekf", "wheel_odometry", "wheel_odometry_noslip"}) {
+    const std::string row = std::string(name) + std::string(22 - std::strlen(name), ' ');
+    const std::size_t at = r.stdout_text.find("\n" + row);
+    ASSERT_NE(at, std::string::npos) << name << " in\n" << r.stdout_text;
+    const std::string line =
+        r.stdout_text.substr(at + 1, r.stdout_text.find('\n', at + 1) - at - 1);
+    EXPECT_NE(line.find("n/a (< 1 m)   n/a (< 10 m)"), std::string::npos) << line;
+  }
+  EXPECT_EQ(r.stdout_text.find("ICR expansion"), std::string::npos);  // it never turned
+  const nlohmann::json m = Metrics(out);
+  EXPECT_LT(m["distance_m"].get<double>(), 1e-6);
+  EXPECT_TRUE(m["encoder_distance_error_pct"].is_null());
+  for (const auto& [name, e] : m["estimators"].items()) {
+    EXPECT_TRUE(e["final_error_pct"].is_null()) << name;
+    EXPECT_TRUE(e["rpe_trans_pct"].is_null()) << name;
+    EXPECT_LT(e["final_error_m"].get<double>(), 0.01) << name;
+  }
+  // Means over nothing: no track moved, no camera frame.
+  EXPECT_EQ(m["slip"]["left"]["samples"], 0);
+  EXPECT_TRUE(m["slip"]["left"]["mean_slip_ratio"].is_null());
+  EXPECT_EQ(m["localization"]["vo_frames"], 0);
+  EXPECT_TRUE(m["localization"]["mean_inliers"].is_null());
+  EXPECT_TRUE(m["localization"]["mean_fusion_w"].is_null());
+  EXPECT_GE(m["localization"]["slip_estimate_rmse_mps"].get<double>(), 0.0);  // wheels scored
+  EXPECT_TRUE(m["icr_expansion"]["chi"].is_null());
+  EXPECT_FALSE(m["icr_expansion"]["identified"].get<bool>());
+  EXPECT_EQ(m["icr_expansion"]["reason"],
+            "too little turning: 0 window(s) above 0.05 rad/s (fewer than 10)");
 }
 
 }  // namespace

@@ -1,7 +1,10 @@
 // Skid-steer kinematics, the ICR expansion fit and the pure-pursuit driver:
 // pure functions and a kinematic loop, no simulator.
 #include <cmath>
+#include <cstdint>
 #include <random>
+#include <stdexcept>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -31,20 +34,132 @@ TEST(SkidSteerTest, EncoderDistanceIsTheAbsoluteMeanTrackTravel) {
   EXPECT_DOUBLE_EQ(kinematics::EncoderDistanceIncrement(-2.0, 2.0, 0.1), 0.0);  // turn in place
 }
 
-TEST(IcrCalibrationTest, RecoversTheExpansionFactorFromNoisySamples) {
-  std::mt19937_64 rng(3);
-  std::normal_distribution<double> noise(0.0, 0.02);
-  std::uniform_real_distribution<double> rate(-1.0, 1.0);
+// A constructed calibration run at 100 Hz: the true yaw rate held for 2 s (200
+// samples) at a time, each hold at a rate drawn from ±[min_rate, max_rate]; the
+// encoders see χ times it plus white noise σ_enc, the reference sees it plus white
+// noise σ_ref (yaw the terrain causes and the tracks did not command).
+std::vector<estimation::IcrSample> ConstructedRun(double chi, double min_rate, double max_rate,
+                                                  double sigma_enc, double sigma_ref,
+                                                  std::uint64_t seed, int holds = 40) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> rate(min_rate, max_rate);
+  std::bernoulli_distribution left(0.5);
+  std::normal_distribution<double> enc_noise(0.0, sigma_enc), ref_noise(0.0, sigma_ref);
   std::vector<estimation::IcrSample> samples;
-  for (int k = 0; k < 5000; ++k) {
-    const double truth = rate(rng);
-    samples.push_back({1.37 * truth + noise(rng), truth});
+  for (int h = 0; h < holds; ++h) {
+    const double truth = (left(rng) ? 1.0 : -1.0) * rate(rng);
+    for (int k = 0; k < 200; ++k)
+      samples.push_back({chi * truth + enc_noise(rng), truth + ref_noise(rng)});
   }
-  const estimation::IcrFit fit = estimation::FitIcrExpansion(samples, 0.05);
-  EXPECT_NEAR(fit.chi, 1.37, 0.005);
-  EXPECT_NEAR(fit.rms_residual_radps, 0.02, 0.002);
-  EXPECT_LT(fit.samples_used, 5000);  // near-zero rates are left out
-  EXPECT_EQ(estimation::FitIcrExpansion({{0.01, 0.0}}).samples_used, 0);
+  return samples;
+}
+
+// The least-squares slope through the origin on the reference, per sample.
+double ReferenceLeastSquares(const std::vector<estimation::IcrSample>& samples) {
+  double sxy = 0.0, sxx = 0.0;
+  for (const estimation::IcrSample& s : samples) {
+    if (std::abs(s.reference_yaw_rate_radps) < 0.05) continue;
+    sxy += s.reference_yaw_rate_radps * s.encoder_yaw_rate_radps;
+    sxx += s.reference_yaw_rate_radps * s.reference_yaw_rate_radps;
+  }
+  return sxy / sxx;
+}
+
+TEST(IcrCalibrationTest, RecoversTheExpansionFactorWithNoiseInBothRates) {
+  // Turning like the calibration run (0.2–0.8 rad/s); σ 0.02 rad/s on the encoders,
+  // 0.2 rad/s on the reference: least squares on the reference loses 1/(1 + σ²/E[x²])
+  // ≈ 13 % of χ, the fit on 1 s windows none of it.
+  for (std::uint64_t seed : {1, 2, 3}) {
+    const auto samples = ConstructedRun(1.37, 0.2, 0.8, 0.02, 0.2, seed);
+    const estimation::IcrFit fit = estimation::FitIcrExpansion(samples);
+    EXPECT_LT(ReferenceLeastSquares(samples), 1.25) << "seed " << seed;
+    EXPECT_NEAR(fit.chi, 1.37, 0.015) << "seed " << seed;
+    EXPECT_NEAR(fit.chi, 1.37, 3.0 * fit.chi_stderr) << "seed " << seed;
+    EXPECT_GT(fit.chi_stderr, 0.0);
+    EXPECT_LT(fit.chi_stderr, 0.01);
+    EXPECT_TRUE(fit.identified) << fit.reason;
+    EXPECT_EQ(fit.reason, "");
+    EXPECT_EQ(fit.windows_used, 80);
+    EXPECT_EQ(fit.samples_used, 8000);
+    // Residuals: both noises over a window of 100 samples, the reference's times χ.
+    EXPECT_NEAR(fit.rms_residual_radps, std::hypot(0.002, 1.37 * 0.02), 0.006);
+  }
+}
+
+TEST(IcrCalibrationTest, TheStandardErrorCoversTheSpreadOverSeeds) {
+  // 30 constructed runs: the jackknife's standard error against the spread of χ.
+  double sum = 0.0, sum_sq = 0.0, stderr_sum = 0.0;
+  const int runs = 30;
+  for (int seed = 0; seed < runs; ++seed) {
+    const estimation::IcrFit fit =
+        estimation::FitIcrExpansion(ConstructedRun(1.25, 0.2, 0.8, 0.02, 0.2, 100 + seed));
+    sum += fit.chi;
+    sum_sq += fit.chi * fit.chi;
+    stderr_sum += fit.chi_stderr;
+  }
+  const double mean = sum / runs;
+  const double spread = std::sqrt((sum_sq - runs * mean * mean) / (runs - 1));
+  EXPECT_NEAR(mean, 1.25, 0.002);
+  EXPECT_GT(stderr_sum / runs, 0.6 * spread);
+  EXPECT_LT(stderr_sum / runs, 1.6 * spread);
+}
+
+TEST(IcrCalibrationTest, SteeringFasterThanTheBodyFollowsAveragesOut) {
+  // A repeater's steering: ±0.3 rad/s switched every 0.1 s on top of turns of ±0.4 rad/s
+  // held 10 s; the body follows the switching through a first-order lag of 0.3 s, so
+  // its yaw rate barely sees it. Sample by sample the encoders' rate is not χ times
+  // the true one; over 1 s windows (five periods) it is.
+  const double chi = 1.25, dt = 0.01, tau = 0.3;
+  std::vector<estimation::IcrSample> samples;
+  double followed = 0.0;
+  for (int k = 0; k < 6000; ++k) {
+    const double turn = (k / 1000) % 2 == 0 ? 0.4 : -0.4;
+    const double switching = (k / 10) % 2 == 0 ? 0.3 : -0.3;
+    followed += (switching - followed) * dt / tau;
+    samples.push_back({chi * (turn + switching), turn + followed});
+  }
+  const estimation::IcrFit fit = estimation::FitIcrExpansion(samples);
+  EXPECT_NEAR(fit.chi, chi, 0.01);
+  EXPECT_TRUE(fit.identified) << fit.reason;
+  EXPECT_GT(estimation::FitIcrExpansion(samples, 1).chi, chi + 0.2);  // sample by sample
+}
+
+TEST(IcrCalibrationTest, GentleTurningIsNotIdentified) {
+  // A path follower's turns: 0.05–0.15 rad/s, noise in the reference as on rough ground.
+  const estimation::IcrFit fit =
+      estimation::FitIcrExpansion(ConstructedRun(1.25, 0.05, 0.15, 0.02, 0.1, 4));
+  EXPECT_FALSE(fit.identified);
+  EXPECT_LT(fit.turn_rms_radps, estimation::IcrIdentification::kMinTurnRmsRadps);
+  EXPECT_EQ(fit.reason.rfind("turning too gentle: RMS encoder yaw rate 0.1", 0), 0u) << fit.reason;
+}
+
+TEST(IcrCalibrationTest, ANoisyFitIsNotIdentified) {
+  // Enough turning, but a reference so noisy (3 rad/s per sample, 0.3 rad/s over a
+  // window) over 12 windows that the standard error exceeds the bound.
+  const estimation::IcrFit fit =
+      estimation::FitIcrExpansion(ConstructedRun(1.25, 0.2, 0.8, 0.02, 3.0, 5, 6));
+  EXPECT_EQ(fit.windows_used, 12);
+  EXPECT_FALSE(fit.identified);
+  EXPECT_GT(fit.chi_stderr, estimation::IcrIdentification::kMaxStderr);
+  EXPECT_EQ(fit.reason.rfind("standard error 0.", 0), 0u) << fit.reason;
+}
+
+TEST(IcrCalibrationTest, NoTurningLeavesChiAtOneWithTheReason) {
+  const estimation::IcrFit none = estimation::FitIcrExpansion({{0.01, 0.0}, {0.0, 0.3}}, 1);
+  EXPECT_EQ(none.windows_used, 0);
+  EXPECT_EQ(none.samples_used, 0);
+  EXPECT_EQ(none.chi, 1.0);
+  EXPECT_TRUE(std::isnan(none.chi_stderr));
+  EXPECT_FALSE(none.identified);
+  EXPECT_EQ(none.reason, "too little turning: 0 window(s) above 0.05 rad/s (fewer than 10)");
+  // 950 samples: nine whole windows, the rest left over.
+  const estimation::IcrFit few =
+      estimation::FitIcrExpansion(std::vector<estimation::IcrSample>(950, {0.5, 0.4}));
+  EXPECT_EQ(few.windows_used, 9);
+  EXPECT_EQ(few.samples_used, 900);
+  EXPECT_DOUBLE_EQ(few.chi, 1.25);
+  EXPECT_EQ(few.reason, "too little turning: 9 window(s) above 0.05 rad/s (fewer than 10)");
+  EXPECT_THROW(estimation::FitIcrExpansion({}, 0), std::invalid_argument);
 }
 
 // Drives a unicycle with the follower's commands.

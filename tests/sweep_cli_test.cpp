@@ -4,12 +4,14 @@
 // cells, an interrupted sweep, and reports rebuilt from the files. Synchronisation
 // is by polling for files the sweep writes, never by sleeping for a set time.
 #include <fcntl.h>
+#include <pty.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -380,6 +382,73 @@ TEST(SweepCliTest, ASweepKilledOutrightTakesItsCellsWithItAndResumes) {
       << resumed.stderr_text;
   EXPECT_EQ(CellJson(out, "corridor__seed-1")["status"], "ok");
   EXPECT_EQ(CellJson(out, "corridor__seed-2")["status"], "ok");
+}
+
+// Runs `trackbed ARGS...` from the source folder on a pseudo-terminal (so that the
+// sweep draws its bar) and returns all it wrote there.
+std::string OnATerminal(const std::vector<std::string>& args) {
+  int master = -1;
+  const pid_t pid = forkpty(&master, nullptr, nullptr, nullptr);
+  if (pid == 0) {
+    if (chdir(TRACKBED_SOURCE_DIR) != 0) _exit(127);
+    setenv("TERM", "xterm", 1);
+    std::vector<char*> argv{const_cast<char*>(TRACKBED_BINARY)};
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv(TRACKBED_BINARY, argv.data());
+    _exit(127);
+  }
+  EXPECT_GT(pid, 0);
+  std::string out;
+  char buf[4096];
+  for (ssize_t n; (n = read(master, buf, sizeof(buf))) > 0;) out.append(buf, n);  // EIO at the end
+  close(master);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << out;
+  return out;
+}
+
+// "m:ss" at `at` in `s`: its length, or 0.
+std::size_t MinutesSecondsAt(const std::string& s, std::size_t at) {
+  std::size_t k = at;
+  while (k < s.size() && std::isdigit(static_cast<unsigned char>(s[k]))) ++k;
+  if (k == at || k + 3 > s.size() || s[k] != ':') return 0;
+  if (!std::isdigit(static_cast<unsigned char>(s[k + 1])) ||
+      !std::isdigit(static_cast<unsigned char>(s[k + 2])))
+    return 0;
+  return k + 3 - at;
+}
+
+TEST(SweepCliTest, TheBarOnATerminalShowsTheTimeLeft) {
+  const fs::path dir = TempDir("bar");
+  const fs::path file = dir / "nav3.yaml";
+  std::ofstream(file) << "name: nav3\n"
+                      << "scenarios: [" << (kSource / "scenes/nav_paper_left.yaml").string()
+                      << "]\n"
+                      << "seeds: [1]\n"
+                      << "set: [\"duration_s=30\"]\n"
+                      << "vary:\n"
+                      << "  - {key: navigation.method, values: [gauss_newton_subgoal, "
+                         "potential_field, dwa]}\n";
+  const std::string out =
+      OnATerminal({"sweep", file.string(), "--out", (dir / "sweep").string(), "--jobs", "1"});
+  // Before any cell has finished there is no pace to go by.
+  EXPECT_NE(out.find("0/3 cells  0 ok  0 not ok  1 running  "), std::string::npos) << out;
+  EXPECT_NE(out.find(" -:-- left"), std::string::npos) << out;
+  // One at a time: when the first has finished the bar is drawn again as the second
+  // starts, with the time left at the first one's pace.
+  const std::string after_first = "] 1/3 cells  1 ok  0 not ok  1 running  ";
+  const std::size_t at = out.find(after_first);
+  ASSERT_NE(at, std::string::npos) << out;
+  const std::size_t elapsed = at + after_first.size();
+  const std::size_t elapsed_length = MinutesSecondsAt(out, elapsed);
+  ASSERT_GT(elapsed_length, 0u) << out.substr(at, 80);
+  ASSERT_EQ(out.substr(elapsed + elapsed_length, 2), "  ") << out.substr(at, 80);
+  const std::size_t left = elapsed + elapsed_length + 2;
+  const std::size_t left_length = MinutesSecondsAt(out, left);
+  ASSERT_GT(left_length, 0u) << out.substr(at, 80);
+  EXPECT_EQ(out.substr(left + left_length, 5), " left") << out.substr(at, 80);
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include "trackbed/experiments/slurm_backend.h"
 #include "trackbed/experiments/sweep.h"
 #include "trackbed/experiments/sweep_report.h"
+#include "trackbed/experiments/sweep_support.h"
 
 namespace trackbed::experiments {
 
@@ -435,6 +436,19 @@ TEST(SweepCellTest, FolderJsonIsReadAsStrictlyAsSweepFiles) {
 std::vector<SlurmSubmission> TwoSubmissions() {
   return {{"4711", {0, 1, 2}, "slurm/submit-1.cells", "2024-05-01T12:00:00Z"},
           {"4712_3", {18446744073709551615u}, "slurm/dir \"q\"\\x\t/submit-2.cells", ""}};
+}
+
+TEST(SweepProgressTest, TimeLeftIsTheRemainingCellsAtTheFinishedCellsPace) {
+  using experiments::SecondsLeft;
+  EXPECT_EQ(SecondsLeft(0, 10, 42.0), std::nullopt);  // nothing finished: no pace yet
+  EXPECT_DOUBLE_EQ(*SecondsLeft(2, 8, 30.0), 120.0);  // 15 s a cell, 8 to go
+  EXPECT_DOUBLE_EQ(*SecondsLeft(5, 0, 61.0), 0.0);
+  // Two at once: four cells in 100 s, 25 s a cell, six to go.
+  EXPECT_DOUBLE_EQ(*SecondsLeft(4, 6, 100.0), 150.0);
+  EXPECT_EQ(experiments::MinutesSeconds(150.0), "2:30");
+  EXPECT_EQ(experiments::MinutesSeconds(59.6), "1:00");
+  EXPECT_EQ(experiments::MinutesSeconds(7325.0), "122:05");
+  EXPECT_EQ(experiments::MinutesSeconds(-1.0), "-:--");
 }
 
 TEST(SlurmJobsTest, JobsJsonKeepsItsLayoutAndRoundTrips) {

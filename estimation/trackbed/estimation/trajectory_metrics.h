@@ -85,8 +85,8 @@ struct FinalError {
   double horizontal_m = 0.0;      ///< |(x, y)_est − (x, y)_gt| at the end (final_error_m)
   double error_3d_m = 0.0;        ///< the same in 3-D
   double gt_path_length_m = 0.0;  ///< PathLength(gt) of the associated poses
-  /// 100 · horizontal_m / gt_path_length_m (as final_error_pct); 0 for a path of
-  /// length 0.
+  /// 100 · horizontal_m / gt_path_length_m (as final_error_pct); NaN (n/a) on a path
+  /// shorter than kMinPathForPerDistanceM (per_distance.h).
   double pct = 0.0;
 };
 FinalError ComputeFinalError(const Trajectory& gt, const Trajectory& est);
@@ -129,7 +129,8 @@ struct FrameMotionError {
   ErrorStats trans_pct;
   ErrorStats rot_deg;
   ErrorStats length_ratio;
-  /// Whole paths: the estimate's path length over the ground truth's.
+  /// Whole paths: the estimate's path length over the ground truth's; NaN (n/a) when
+  /// the ground truth's is under kMinPathForPerDistanceM (per_distance.h).
   double path_length_ratio = 0.0;
 };
 FrameMotionError FrameToFrameError(const Trajectory& gt, const Trajectory& est,

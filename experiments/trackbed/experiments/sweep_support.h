@@ -67,7 +67,17 @@ class BlockedSignals {
 /// SIGINT, SIGTERM or SIGHUP.
 bool IsInterrupt(int sig);
 
+/// The time a sweep has left [s]: the cells `remaining` at the pace of those it
+/// `finished` in `elapsed_s` (their mean wall time over the cells run at once, as the
+/// sweep measured it); nullopt before the first has finished.
+std::optional<double> SecondsLeft(std::size_t finished, std::size_t remaining, double elapsed_s);
+
+/// Minutes and seconds, "m:ss" ("12:05"); a negative or non-finite time as "-:--".
+std::string MinutesSeconds(double seconds);
+
 /// Progress on stderr: a one-line bar on a terminal, else one line per finished cell.
+/// The bar: cells done of all, ok, not ok, running, the time elapsed and the time left
+/// (SecondsLeft; "-:-- left" before the first cell has finished).
 class Progress {
  public:
   /// `total` cells, `done` of them finished before this sweep started.
@@ -86,6 +96,7 @@ class Progress {
   void Clear();
 
   std::size_t total_, done_, ok_ = 0, bad_ = 0;
+  std::size_t finished_here_ = 0;  // cells finished since this sweep started
   bool bar_;
   bool drawn_ = false;
   SweepClock::time_point start_;

@@ -23,7 +23,9 @@ struct EstimatorMetrics {
   double ate_rmse_m = 0.0;        ///< RMS horizontal error, no alignment.
   double ate3d_se3_rmse_m = 0.0;  ///< 3-D ATE after SE(3) alignment (evo-style).
   double final_error_m = 0.0;     ///< Horizontal error at the end.
-  double final_error_pct = 0.0;   ///< final_error_m / distance_m, in %.
+  /// final_error_m / distance_m, in %; NaN (null in metrics.json) when the path is
+  /// shorter than estimation::kMinPathForPerDistanceM.
+  double final_error_pct = 0.0;
   /// Mean drift over 10 m of true path, % of 10 m; NaN (null in metrics.json) when the
   /// path is shorter than 10 m.
   double rpe_trans_pct = 0.0;

@@ -80,7 +80,7 @@ struct RunMetrics {
   double encoder_distance_m = 0.0;
   SlipStats slip[2];                                  ///< Per track.
   std::map<std::string, SlipStats> slip_by_material;  ///< Both tracks pooled.
-  /// χ fitted on this run against true yaw rate (meaningful when it turns).
+  /// χ fitted on this run against the true yaw rate; meaningful where `icr.identified`.
   estimation::IcrFit icr;
   /// Lowest clearance of the centre of mass above the terrain [m].
   double min_com_height_m = 0.0;
@@ -136,6 +136,7 @@ class MetricsAccumulator {
   RunSample previous_;
   RunMetrics m_;
   std::vector<estimation::IcrSample> icr_samples_;
+  double icr_time_s_ = 0.0;  // the time icr_samples_ span
 };
 
 }  // namespace trackbed::runner
