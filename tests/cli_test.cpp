@@ -424,9 +424,10 @@ TEST(CliTest, AMisspeltSubcommandOrOptionIsAnsweredWithTheClosestValidOne) {
             "trackbed sweep: unknown option '--jbos'; did you mean '--jobs'?");
   // Nothing close: the valid ones.
   const Result far = Trackbed("xyz", "xyz");
-  EXPECT_EQ(far.stderr_text.substr(0, far.stderr_text.find('\n')),
-            "trackbed: unknown subcommand 'xyz' (one of: run eval sweep sweep-cell report vo "
-            "export-mcap)");
+  EXPECT_EQ(
+      far.stderr_text.substr(0, far.stderr_text.find('\n')),
+      "trackbed: unknown subcommand 'xyz' (one of: run eval sweep sweep-cell report vo transfer "
+      "export-mcap)");
   // A negative value is a value, not an option.
   const Result offset = Trackbed("eval a.tum b.tum --t-offset -0.5", "offset");
   EXPECT_EQ(offset.stderr_text.find("unknown"), std::string::npos) << offset.stderr_text;
