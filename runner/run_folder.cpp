@@ -22,6 +22,7 @@
 #include "trackbed/runner/log_file.h"
 #include "trackbed/runner/navigation_log.h"
 #include "trackbed/runner/navigation_scenario.h"
+#include "trackbed/runner/plot_decimation.h"
 #include "trackbed/runner/run_bag.h"
 #include "trackbed/scenario/scenario_yaml.h"
 
@@ -39,46 +40,42 @@ nlohmann::ordered_json SlipJson(const SlipStats& s) {
   return j;
 }
 
-// Intrinsics and extrinsics of the stereo rig, as used for rendering.
-// What the plots need, gathered at 10 Hz while the run goes.
+// What the plots need, gathered at 10 Hz while the run goes, decimated to a bounded size
+// (plot_decimation.h).
 struct PlotData {
-  estimation::Trajectory truth;
-  std::map<std::string, estimation::Trajectory> estimates;  // name → poses
-  std::vector<Eigen::Vector2d> w, slip_left_true, slip_left_est, slip_right_true, slip_right_est;
+  DecimatedPath truth;
+  std::map<std::string, DecimatedPath> estimates;  // name → poses
+  DecimatedSeries w, slip_left_true, slip_left_est, slip_right_true, slip_right_est;
 
   void Add(const RunSample& s) {
     if (std::lround(s.t_s * 100.0) % 10 != 0) return;  // every 0.1 s
-    truth.push_back({s.t_s, s.chassis.T_world_body});
+    truth.Add(s.t_s, s.chassis.T_world_body);
     if (!s.estimate) return;
     const EstimateSample& e = *s.estimate;
-    estimates["wheel_odometry"].push_back({s.t_s, e.wheel_odometry});
-    estimates["wheel_odometry_noslip"].push_back({s.t_s, e.wheel_odometry_noslip});
-    estimates["ekf"].push_back({s.t_s, e.ekf});
-    if (e.has_camera) estimates["fused"].push_back({s.t_s, e.fused});
-    slip_left_true.emplace_back(s.t_s, s.tracks[0].slip_velocity_mps);
-    slip_right_true.emplace_back(s.t_s, s.tracks[1].slip_velocity_mps);
-    slip_left_est.emplace_back(s.t_s, e.slip.left_mps);
-    slip_right_est.emplace_back(s.t_s, e.slip.right_mps);
+    estimates["wheel_odometry"].Add(s.t_s, e.wheel_odometry);
+    estimates["wheel_odometry_noslip"].Add(s.t_s, e.wheel_odometry_noslip);
+    estimates["ekf"].Add(s.t_s, e.ekf);
+    if (e.has_camera) estimates["fused"].Add(s.t_s, e.fused);
+    slip_left_true.Add(s.t_s, s.tracks[0].slip_velocity_mps);
+    slip_right_true.Add(s.t_s, s.tracks[1].slip_velocity_mps);
+    slip_left_est.Add(s.t_s, e.slip.left_mps);
+    slip_right_est.Add(s.t_s, e.slip.right_mps);
   }
 
   // trajectories.png, error_histogram.png and (with a camera) fusion.png.
   void Write(const fs::path& dir, const std::string& scene) const {
-    if (truth.size() < 2 || estimates.empty()) return;
-    auto xy = [](const estimation::Trajectory& t) {
-      std::vector<Eigen::Vector2d> pts;
-      for (const estimation::StampedPose& p : t)
-        pts.push_back(p.T_world_body.translation().head<2>());
-      return pts;
-    };
-    std::vector<plot::PlotSeries> paths{{"ground truth", xy(truth)}};
-    for (const auto& [name, t] : estimates) paths.push_back({name, xy(t)});
+    if (truth.Points().size() < 2 || estimates.empty()) return;
+    std::vector<plot::PlotSeries> paths{{"ground truth", truth.Points()}};
+    for (const auto& [name, t] : estimates) paths.push_back({name, t.Points()});
     plot::WriteTrajectoryPlot(dir / "trajectories.png", scene + ": trajectories over the true path",
                               paths);
     std::vector<double> edges;
     for (int k = 0; k <= 20; ++k) edges.push_back(0.05 * k);
     std::vector<plot::HistogramSeries> bars;
+    const estimation::Trajectory truth_poses = truth.Poses();
     for (const auto& [name, t] : estimates) {
-      const estimation::DistanceHistogram h = estimation::DistanceErrorHistogram(t, truth, edges);
+      const estimation::DistanceHistogram h =
+          estimation::DistanceErrorHistogram(t.Poses(), truth_poses, edges);
       plot::HistogramSeries b{name + " (>1 m: " + std::to_string(h.above) + ")", {}};
       for (std::size_t c : h.counts) b.counts.push_back(static_cast<double>(c) / h.total());
       bars.push_back(b);
@@ -89,9 +86,11 @@ struct PlotData {
     if (w.empty()) return;
     plot::WriteTimePlot(
         dir / "fusion.png", scene + ": fusion weight and track slip",
-        {{"w (wheel odometry)", {{"w", w}}},
-         {"left slip [m/s]", {{"true", slip_left_true}, {"estimated", slip_left_est}}},
-         {"right slip [m/s]", {{"true", slip_right_true}, {"estimated", slip_right_est}}}});
+        {{"w (wheel odometry)", {{"w", w.points()}}},
+         {"left slip [m/s]",
+          {{"true", slip_left_true.points()}, {"estimated", slip_left_est.points()}}},
+         {"right slip [m/s]",
+          {{"true", slip_right_true.points()}, {"estimated", slip_right_est.points()}}}});
   }
 };
 
@@ -432,14 +431,14 @@ RunObservers RunFolderWriter::observers() {
     f.logs.Sample(s);
   };
   o.on_localization_frame = [&f](const LocalizationFrame& l) {
-    f.plots.w.emplace_back(l.t_s, l.report.w);
-    f.plots.estimates["visual_odometry"].push_back({l.t_s, l.visual_odometry});
+    f.plots.w.Add(l.t_s, l.report.w);
+    f.plots.estimates["visual_odometry"].Add(l.t_s, l.visual_odometry);
     f.logs.Frame(l);
   };
   o.on_imu = [&f](const robot::ImuSample& s) { f.logs.Imu(s); };
   o.on_scan = [&f](const robot::RangeScanSample& s) { f.logs.Scan(s); };
   o.on_external_estimate = [&f, dir = dir_](const ExternalEstimate& e) {
-    f.plots.estimates[*e.name].push_back({e.t_s, e.T_world_body});
+    f.plots.estimates[*e.name].Add(e.t_s, e.T_world_body);
     f.logs.External(dir, e);
   };
   if (f.navigation_csv) {
