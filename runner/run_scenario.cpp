@@ -43,7 +43,8 @@ RunMetrics RunKinematicToFolder(const scenario::Scenario& scenario, const fs::pa
 
 }  // namespace
 
-RunMetrics RunToFolder(const scenario::Scenario& scenario, const fs::path& dir) {
+RunMetrics RunToFolder(const scenario::Scenario& scenario, const fs::path& dir,
+                       const RunObservers& observers) {
   if (scenario.teach_repeat.enabled) return RunTeachRepeat(scenario, dir);
   if (scenario.navigation.enabled &&
       scenario.navigation.mode == scenario::NavigationSpec::Mode::kKinematic) {
@@ -51,6 +52,7 @@ RunMetrics RunToFolder(const scenario::Scenario& scenario, const fs::path& dir) 
   }
   ClosedLoopOptions options;
   options.dir = dir;
+  options.observers = observers;
   return ClosedLoop(scenario, std::move(options)).Run();
 }
 
