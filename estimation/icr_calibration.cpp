@@ -28,6 +28,24 @@ IcrFit FitIcrExpansion(const std::vector<IcrSample>& samples, double min_yaw_rat
   return fit;
 }
 
+void RunningIcrFit::Add(const IcrSample& s) {
+  if (std::abs(s.reference_yaw_rate_radps) < min_yaw_rate_radps_) return;
+  sxy_ += s.reference_yaw_rate_radps * s.encoder_yaw_rate_radps;
+  sxx_ += s.reference_yaw_rate_radps * s.reference_yaw_rate_radps;
+  syy_ += s.encoder_yaw_rate_radps * s.encoder_yaw_rate_radps;
+  ++used_;
+}
+
+IcrFit RunningIcrFit::Fit() const {
+  IcrFit fit;
+  fit.samples_used = used_;
+  if (used_ == 0) return fit;
+  fit.chi = sxy_ / sxx_;
+  // Σ (y − χx)² = Σy² − 2χΣxy + χ²Σx² = Σy² − χΣxy at χ = Σxy / Σx².
+  fit.rms_residual_radps = std::sqrt(std::max(syy_ - fit.chi * sxy_, 0.0) / used_);
+  return fit;
+}
+
 double RigidPlasticIcrExpansion(const std::vector<double>& station_x_m, double half_track_m) {
   const double c = half_track_m;
   if (!(c > 0.0)) throw std::invalid_argument("RigidPlasticIcrExpansion: half_track_m must be > 0");

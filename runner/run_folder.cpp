@@ -1,6 +1,7 @@
 // Run folder writer (see run_folder.h).
 #include "trackbed/runner/run_folder.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -60,6 +61,15 @@ struct PlotData {
     slip_right_true.Add(s.t_s, s.tracks[1].slip_velocity_mps);
     slip_left_est.Add(s.t_s, e.slip.left_mps);
     slip_right_est.Add(s.t_s, e.slip.right_mps);
+  }
+
+  // The sizes of every path and series.
+  std::vector<std::size_t> Sizes() const {
+    std::vector<std::size_t> n{truth.size(),           w.size(),
+                               slip_left_true.size(),  slip_left_est.size(),
+                               slip_right_true.size(), slip_right_est.size()};
+    for (const auto& [name, t] : estimates) n.push_back(t.size());
+    return n;
   }
 
   // trajectories.png, error_histogram.png and (with a camera) fusion.png.
@@ -448,6 +458,17 @@ RunObservers RunFolderWriter::observers() {
     };
   }
   return o;
+}
+
+std::size_t RunFolderWriter::plot_points() const {
+  std::size_t n = 0;
+  for (std::size_t k : files_->plots.Sizes()) n += k;
+  return n;
+}
+
+std::size_t RunFolderWriter::largest_plot_series() const {
+  const std::vector<std::size_t> n = files_->plots.Sizes();
+  return *std::max_element(n.begin(), n.end());
 }
 
 void RunFolderWriter::Close(const scenario::Scenario& scenario, const RunMetrics& metrics) {

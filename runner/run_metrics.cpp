@@ -40,7 +40,7 @@ void MetricsAccumulator::Add(const RunSample& s, double terrain_height_m) {
     if (dt > 0) {
       // True yaw rate about the body z axis, from the world angular velocity.
       const Eigen::Vector3d z = s.chassis.T_world_body.linear().col(2);
-      icr_samples_.push_back({r_ * (dr - dl) / (gauge_ * dt), s.chassis.omega_world.dot(z)});
+      icr_.Add({r_ * (dr - dl) / (gauge_ * dt), s.chassis.omega_world.dot(z)});
     }
   }
   previous_ = s;
@@ -49,7 +49,7 @@ void MetricsAccumulator::Add(const RunSample& s, double terrain_height_m) {
 
 RunMetrics MetricsAccumulator::Metrics() const {
   RunMetrics m = m_;
-  m.icr = estimation::FitIcrExpansion(icr_samples_);
+  m.icr = icr_.Fit();
   if (!has_previous_) m.min_com_height_m = 0.0;
   return m;
 }

@@ -45,6 +45,14 @@ TEST(IcrCalibrationTest, RecoversTheExpansionFactorFromNoisySamples) {
   EXPECT_NEAR(fit.rms_residual_radps, 0.02, 0.002);
   EXPECT_LT(fit.samples_used, 5000);  // near-zero rates are left out
   EXPECT_EQ(estimation::FitIcrExpansion({{0.01, 0.0}}).samples_used, 0);
+  // The running fit (a run of hours): χ bit for bit, the residual to rounding.
+  estimation::RunningIcrFit running(0.05);
+  for (const estimation::IcrSample& s : samples) running.Add(s);
+  const estimation::IcrFit r = running.Fit();
+  EXPECT_EQ(r.chi, fit.chi);
+  EXPECT_EQ(r.samples_used, fit.samples_used);
+  EXPECT_NEAR(r.rms_residual_radps, fit.rms_residual_radps, 1e-12);
+  EXPECT_EQ(estimation::RunningIcrFit().Fit().samples_used, 0);
 }
 
 // Drives a unicycle with the follower's commands.

@@ -28,6 +28,22 @@ struct IcrFit {
 /// when there are none.
 IcrFit FitIcrExpansion(const std::vector<IcrSample>& samples, double min_yaw_rate_radps = 0.05);
 
+/// FitIcrExpansion accumulated sample by sample, in constant memory (a run of hours):
+/// χ and samples_used bit for bit the same (the same sums in the same order); the RMS
+/// residual from Σy² − χ·Σxy, equal up to rounding (the last digits move).
+class RunningIcrFit {
+ public:
+  explicit RunningIcrFit(double min_yaw_rate_radps = 0.05)
+      : min_yaw_rate_radps_(min_yaw_rate_radps) {}
+  void Add(const IcrSample& s);
+  IcrFit Fit() const;
+
+ private:
+  double min_yaw_rate_radps_;
+  double sxy_ = 0.0, sxx_ = 0.0, syy_ = 0.0;
+  int used_ = 0;
+};
+
 /// χ of a skid-steer vehicle turning in place in the rigid-plastic limit: equal
 /// point loads at body x positions `station_x_m` on each side, half track c =
 /// `half_track_m`, isotropic Coulomb friction. Each side's ICR lies e = y_ICR − c

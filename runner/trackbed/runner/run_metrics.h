@@ -135,7 +135,7 @@ class MetricsAccumulator {
   bool has_previous_ = false;
   RunSample previous_;
   RunMetrics m_;
-  std::vector<estimation::IcrSample> icr_samples_;
+  estimation::RunningIcrFit icr_;  // χ from running sums
 };
 
 }  // namespace trackbed::runner
