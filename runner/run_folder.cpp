@@ -122,7 +122,8 @@ class RunLogs {
         imu_(dir / "imu.csv",
              "t,gyro_x_radps,gyro_y_radps,gyro_z_radps,accel_x_mps2,accel_y_mps2,accel_z_mps2"),
         twist_(dir / "ground_truth_twist.csv",
-               "t,v_x_mps,v_y_mps,v_z_mps,omega_x_radps,omega_y_radps,omega_z_radps") {
+               "t,v_x_mps,v_y_mps,v_z_mps,omega_x_radps,omega_y_radps,omega_z_radps"),
+        decimate_(scenario.outputs.decimate) {
     if (scenario.robot.range_sensor.enabled) {
       std::string header = "t";
       for (int k = 0; k < scenario.robot.range_sensor.beams; ++k)
@@ -142,9 +143,14 @@ class RunLogs {
         "vo_dynamics_constrained");
   }
 
-  void Sample(const RunSample& s);
+  // Every sample; the logs keep every decimate-th (outputs.decimate).
+  void Sample(const RunSample& s) {
+    if (samples_++ % decimate_ == 0) WriteSample(s);
+  }
+  void Imu(const robot::ImuSample& s) {
+    if (imu_samples_++ % decimate_ == 0) WriteImu(s);
+  }
   void Frame(const LocalizationFrame& f);
-  void Imu(const robot::ImuSample& s);
   void Scan(const robot::RangeScanSample& s);
   // An estimate reported from outside the loop: a line of `<name>.tum`.
   void External(const fs::path& dir, const ExternalEstimate& e) {
@@ -166,10 +172,13 @@ class RunLogs {
   std::unique_ptr<LogFile> wheel_tum_, noslip_tum_, ekf_tum_, fused_tum_, vo_tum_, fusion_csv_,
       scan_csv_;
   std::map<std::string, std::unique_ptr<LogFile>> external_tum_;  // reported estimators
+  long long decimate_ = 1, samples_ = 0, imu_samples_ = 0;
   char line_[512];
+  void WriteSample(const RunSample& s);
+  void WriteImu(const robot::ImuSample& s);
 };
 
-void RunLogs::Sample(const RunSample& s) {
+void RunLogs::WriteSample(const RunSample& s) {
   truth_.Line(estimation::FormatTumLine({s.t_s, s.chassis.T_world_body}).c_str());
   std::snprintf(line_, sizeof(line_), "%.6f,%lld,%lld", s.t_s, s.ticks[0], s.ticks[1]);
   encoders_.Line(line_);
@@ -220,7 +229,7 @@ void RunLogs::Frame(const LocalizationFrame& f) {
   fusion_csv_->Line(line_);
 }
 
-void RunLogs::Imu(const robot::ImuSample& s) {
+void RunLogs::WriteImu(const robot::ImuSample& s) {
   std::snprintf(line_, sizeof(line_), "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", s.t_s, s.gyro_radps.x(),
                 s.gyro_radps.y(), s.gyro_radps.z(), s.accel_mps2.x(), s.accel_mps2.y(),
                 s.accel_mps2.z());
