@@ -74,21 +74,4 @@ std::vector<Eigen::Vector2d> DecimatedPath::Points() const {
   return out;
 }
 
-DecimatedSeries::DecimatedSeries(std::size_t capacity) : capacity_(capacity) {
-  if (capacity < 2) throw std::invalid_argument("DecimatedSeries: capacity must be >= 2");
-}
-
-void DecimatedSeries::Add(double t, double value) {
-  const bool keep = index_ % stride_ == 0;
-  ++index_;
-  if (!keep) return;
-  points_.emplace_back(t, value);
-  if (points_.size() < capacity_) return;
-  // Every second kept sample: those whose index is a multiple of the doubled stride.
-  std::size_t n = 0;
-  for (std::size_t k = 0; k < points_.size(); k += 2) points_[n++] = points_[k];
-  points_.resize(n);
-  stride_ *= 2;
-}
-
 }  // namespace trackbed::runner

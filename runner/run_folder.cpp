@@ -372,9 +372,9 @@ struct RunFolderWriter::Files {
   std::unique_ptr<perception::KittiWriter> kitti;
   Eigen::Isometry3d T_world_cam0 = Eigen::Isometry3d::Identity();
   std::unique_ptr<LogFile> navigation_csv;
-  std::vector<navigation::NavigationLogEntry> navigation_log;
-  std::unique_ptr<LogFile> exposure_csv;   // with the auto-exposure
-  std::unique_ptr<CameraFrameLog> camera;  // with outputs.mcap_images
+  StrideDecimated<navigation::NavigationLogEntry> navigation_log;  // for navigation.png
+  std::unique_ptr<LogFile> exposure_csv;                           // with the auto-exposure
+  std::unique_ptr<CameraFrameLog> camera;                          // with outputs.mcap_images
 };
 
 RunFolderWriter::RunFolderWriter(const scenario::Scenario& scenario, const fs::path& dir)
@@ -463,7 +463,7 @@ RunObservers RunFolderWriter::observers() {
   if (f.navigation_csv) {
     o.on_navigation_step = [&f](const navigation::NavigationLogEntry& e) {
       f.navigation_csv->Line(NavigationCsvRow(e).c_str());
-      f.navigation_log.push_back(e);
+      f.navigation_log.Add(e);
     };
   }
   return o;
@@ -490,7 +490,7 @@ void RunFolderWriter::Close(const scenario::Scenario& scenario, const RunMetrics
         dir_ / "navigation.png",
         scenario.scene.name + ": " + navigation::ToString(scenario.navigation.method) + " (" +
             metrics.navigation->status + ")",
-        f.navigation_log, ObjectCircles(scenario::SceneObjects(scenario)),
+        f.navigation_log.items(), ObjectCircles(scenario::SceneObjects(scenario)),
         scenario.navigation.safety_radius_m, scene.start, scene.goal, metrics.navigation_subgoals);
   }
   f.logs.Close();

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <stdexcept>
 #include <vector>
 
 #include <Eigen/Core>
@@ -55,21 +56,47 @@ class DecimatedPath {
   bool latest_kept_ = true;
 };
 
-/// A time series (t, value) for the plots: every sample until `capacity`, then every
-/// second of those kept, the stride doubling each time the capacity is reached again
-/// (kept: the samples whose index is a multiple of the stride).
-class DecimatedSeries {
+/// Items given in order, for a plot: every item until `capacity`, then every second of
+/// those kept, the stride doubling each time the capacity is reached again (kept: the
+/// items whose index is a multiple of the stride).
+template <class T>
+class StrideDecimated {
  public:
-  explicit DecimatedSeries(std::size_t capacity = kPlotCapacity);
-  void Add(double t, double value);
-  const std::vector<Eigen::Vector2d>& points() const { return points_; }
-  bool empty() const { return points_.empty(); }
-  std::size_t size() const { return points_.size(); }
+  explicit StrideDecimated(std::size_t capacity = kPlotCapacity) : capacity_(capacity) {
+    if (capacity < 2) throw std::invalid_argument("StrideDecimated: capacity must be >= 2");
+  }
+  void Add(const T& item) {
+    const bool keep = index_ % stride_ == 0;
+    ++index_;
+    if (!keep) return;
+    items_.push_back(item);
+    if (items_.size() < capacity_) return;
+    // Every second kept item: those whose index is a multiple of the doubled stride.
+    std::size_t n = 0;
+    for (std::size_t k = 0; k < items_.size(); k += 2) items_[n++] = items_[k];
+    items_.resize(n);
+    stride_ *= 2;
+  }
+  const std::vector<T>& items() const { return items_; }
+  std::size_t size() const { return items_.size(); }
 
  private:
   std::size_t capacity_;
   long long index_ = 0, stride_ = 1;
-  std::vector<Eigen::Vector2d> points_;
+  std::vector<T> items_;
+};
+
+/// A time series (t, value) for the plots, stride-decimated (StrideDecimated).
+class DecimatedSeries {
+ public:
+  explicit DecimatedSeries(std::size_t capacity = kPlotCapacity) : points_(capacity) {}
+  void Add(double t, double value) { points_.Add(Eigen::Vector2d(t, value)); }
+  const std::vector<Eigen::Vector2d>& points() const { return points_.items(); }
+  bool empty() const { return points_.size() == 0; }
+  std::size_t size() const { return points_.size(); }
+
+ private:
+  StrideDecimated<Eigen::Vector2d> points_;
 };
 
 }  // namespace trackbed::runner
