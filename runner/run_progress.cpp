@@ -40,11 +40,17 @@ RunProgress::RunProgress(ProgressMode mode, double total_s, std::FILE* out)
     : mode_(mode), total_s_(total_s), out_(out) {}
 
 void RunProgress::Sample(double sim_s, const Eigen::Vector3d& true_position, double wall_s) {
+  if (started_ && sim_s < last_sim_s_) {  // a second pass (teach & repeat) from t = 0
+    started_ = false;
+    last_tenth_ = 0;
+    pass_start_wall_s_ = wall_s;
+  }
+  last_sim_s_ = sim_s;
   if (started_) distance_m_ += (true_position - last_position_).norm();
   started_ = true;
   last_position_ = true_position;
   if (mode_ == ProgressMode::kNone) return;
-  const ProgressFigures f{sim_s, total_s_, wall_s, distance_m_};
+  const ProgressFigures f{sim_s, total_s_, wall_s - pass_start_wall_s_, distance_m_};
   if (mode_ == ProgressMode::kLines) {
     // One line per tenth of the duration reached (a tenth skipped is not caught up).
     const int tenth =

@@ -45,7 +45,7 @@ RunMetrics RunKinematicToFolder(const scenario::Scenario& scenario, const fs::pa
 
 RunMetrics RunToFolder(const scenario::Scenario& scenario, const fs::path& dir,
                        const RunObservers& observers) {
-  if (scenario.teach_repeat.enabled) return RunTeachRepeat(scenario, dir);
+  if (scenario.teach_repeat.enabled) return RunTeachRepeat(scenario, dir, observers);
   if (scenario.navigation.enabled &&
       scenario.navigation.mode == scenario::NavigationSpec::Mode::kKinematic) {
     return RunKinematicToFolder(scenario, dir);

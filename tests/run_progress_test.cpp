@@ -68,6 +68,28 @@ TEST(RunProgressTest, LinesModePrintsOneLinePerTenth) {
   EXPECT_NE(text.find("(100 %)"), std::string::npos);
 }
 
+TEST(RunProgressTest, ASecondPassCountsItsTenthsAgain) {
+  char* buf = nullptr;
+  std::size_t size = 0;
+  std::FILE* out = open_memstream(&buf, &size);
+  RunProgress progress(ProgressMode::kLines, 100.0, out);
+  for (int pass = 0; pass < 2; ++pass) {
+    for (int k = 0; k <= 10000; ++k) {
+      const double t = 0.01 * k;
+      // The second pass starts where the first ended: no jump in distance.
+      progress.Sample(t, Eigen::Vector3d(0.5 * t + 50.0 * pass, 0.0, 0.0), 10.0 * pass + t / 10.0);
+    }
+  }
+  progress.Finish();
+  std::fclose(out);
+  const std::string text(buf, size);
+  std::free(buf);
+  EXPECT_EQ(progress.lines(), 20);
+  EXPECT_NE(text.find("(100 %)  10x real time  0:00:00 left  50.0 m\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("(100 %)  10x real time  0:00:00 left  100.0 m\n"), std::string::npos)
+      << text;
+}
+
 TEST(RunProgressTest, BarIsRewrittenInPlaceAtMostFourTimesASecond) {
   int lines = 0;
   // 300 s at 20x: 15 s of wall time, so 60 rewrites and the first.

@@ -30,7 +30,9 @@ struct ProgressFigures {
 std::string FormatProgress(const ProgressFigures& f);
 
 /// Shows a run's progress on `out`. Sample() at every encoder sample, with the wall-clock
-/// time since the start; Finish() at the end.
+/// time since the start; Finish() at the end. A time earlier than the last starts a new
+/// pass (teach & repeat's repeat): its tenths and its real-time factor are counted
+/// afresh, the distance goes on.
 class RunProgress {
  public:
   RunProgress(ProgressMode mode, double total_s, std::FILE* out);
@@ -45,6 +47,8 @@ class RunProgress {
   double total_s_;
   std::FILE* out_;
   bool started_ = false;
+  double last_sim_s_ = 0.0;
+  double pass_start_wall_s_ = 0.0;  // the wall-clock time this pass began
   Eigen::Vector3d last_position_ = Eigen::Vector3d::Zero();
   double distance_m_ = 0.0;
   double last_bar_wall_s_ = -1.0;  // the bar is rewritten at most 4 times a second
