@@ -3,6 +3,9 @@
 //   trackbed run SCENARIO.yaml --out DIR [--seed N] [--set key=value ...]
 //
 // Exit status 0 on success; otherwise non-zero with a one-line reason on stderr.
+#include <unistd.h>
+
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -18,6 +21,7 @@
 #include "report_command.h"
 #include "sweep_command.h"
 #include "trackbed/estimation/per_distance.h"
+#include "trackbed/runner/run_progress.h"
 #include "trackbed/runner/run_scenario.h"
 #include "trackbed/scenario/scenario_yaml.h"
 #include "transfer_command.h"
@@ -81,8 +85,16 @@ void PrintRunSummary(const trackbed::runner::RunMetrics& m, const std::string& o
   }
 }
 
+// The progress mode of `--progress` (auto: a bar on a terminal, else lines).
+trackbed::runner::ProgressMode ProgressModeOf(const std::string& name) {
+  if (name != "auto") return trackbed::runner::ParseProgressMode(name);
+  return ::isatty(STDERR_FILENO) ? trackbed::runner::ProgressMode::kBar
+                                 : trackbed::runner::ProgressMode::kLines;
+}
+
 int Run(const std::string& scenario_path, const std::string& out_dir,
-        const std::vector<std::string>& sets, const std::optional<std::uint64_t>& seed) {
+        const std::vector<std::string>& sets, const std::optional<std::uint64_t>& seed,
+        const std::string& progress_mode) {
   using namespace trackbed::scenario;
   using namespace trackbed::runner;
   std::vector<Override> overrides;
@@ -91,7 +103,22 @@ int Run(const std::string& scenario_path, const std::string& out_dir,
   const Scenario scenario = LoadScenario(scenario_path, overrides);
   std::cerr << "trackbed run: " << scenario_path << " (scene " << scenario.scene.name << ", seed "
             << scenario.seed << ") -> " << out_dir << "\n";
-  const RunMetrics m = RunToFolder(scenario, out_dir);
+  // Progress on stderr, beside the run's messages (the report goes to stdout).
+  RunProgress progress(ProgressModeOf(progress_mode), scenario.duration_s, stderr);
+  const auto start = std::chrono::steady_clock::now();
+  RunObservers observers;
+  observers.on_sample = [&progress, start](const RunSample& s) {
+    const std::chrono::duration<double> wall = std::chrono::steady_clock::now() - start;
+    progress.Sample(s.t_s, s.chassis.T_world_body.translation(), wall.count());
+  };
+  RunMetrics m;
+  try {
+    m = RunToFolder(scenario, out_dir, observers);
+  } catch (...) {
+    progress.Finish();
+    throw;
+  }
+  progress.Finish();
   if (!m.completed) {
     std::cerr << "trackbed run: stopped early: " << m.stop_reason << " (files so far in " << out_dir
               << ")\n";
@@ -132,6 +159,13 @@ int main(int argc, char** argv) {
   run->add_option("--out", out_dir, "Run folder to write")->required();
   run->add_option("--seed", seed, "Seed (overrides the scenario's `seed`)");
   run->add_option("--set", sets, "Override a scenario key: --set dotted.key=value (repeatable)");
+  std::string progress = "auto";
+  run->add_option("--progress", progress,
+                  "Progress on stderr: bar (one line rewritten in place), lines (one line per "
+                  "10 % of duration_s), none, or auto (bar on a terminal, else lines)")
+      ->check(CLI::IsMember({"auto", "bar", "lines", "none"}));
+  run->add_flag_callback(
+      "--no-progress", [&progress] { progress = "none"; }, "The same as --progress none");
 
   trackbed::apps::AddEvalCommand(app);
   trackbed::apps::AddSweepCommand(app);
@@ -152,7 +186,7 @@ int main(int argc, char** argv) {
   try {
     if (*run) {
       trackbed::apps::DieWithSweepIfCell();
-      return Run(scenario_path, out_dir, sets, seed);
+      return Run(scenario_path, out_dir, sets, seed, progress);
     }
   } catch (const std::exception& e) {
     std::cerr << "trackbed: " << e.what() << "\n";

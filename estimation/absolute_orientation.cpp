@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -50,6 +51,10 @@ void CheckArguments(const char* function, const std::vector<Eigen::Vector3d>& sr
   }
 }
 
+void SolveFromMoments(const Eigen::Vector3d& c_src, const Eigen::Vector3d& c_dst,
+                      const Eigen::Matrix3d& S, double spread_src, double spread_dst,
+                      bool with_scale, HornSolution* out_solution);
+
 HornSolution Solve(const std::vector<Eigen::Vector3d>& src, const std::vector<Eigen::Vector3d>& dst,
                    bool with_scale, const std::vector<double>& weights) {
   HornSolution out;
@@ -82,6 +87,16 @@ HornSolution Solve(const std::vector<Eigen::Vector3d>& src, const std::vector<Ei
     spread_dst += w(i) * b.squaredNorm();
   }
 
+  SolveFromMoments(c_src, c_dst, S, spread_src, spread_dst, with_scale, &out);
+  return out;
+}
+
+// Horn's rotation (and the scale and translation) from the centroids, the cross-covariance
+// S = Σ w src' dst'ᵀ of the centred points and their spreads; out->pairs is already set.
+void SolveFromMoments(const Eigen::Vector3d& c_src, const Eigen::Vector3d& c_dst,
+                      const Eigen::Matrix3d& S, double spread_src, double spread_dst,
+                      bool with_scale, HornSolution* out_solution) {
+  HornSolution& out = *out_solution;
   // Horn's symmetric 4×4 matrix N (1987, §4): for a unit quaternion q = (q0, qx, qy, qz),
   // qᵀ N q = Σ w b'·(R(q) a'), so the maximiser is N's eigenvector of the largest eigenvalue.
   const double Sxx = S(0, 0), Sxy = S(0, 1), Sxz = S(0, 2);
@@ -111,7 +126,6 @@ HornSolution Solve(const std::vector<Eigen::Vector3d>& src, const std::vector<Ei
   // Umeyama's least-squares scale: Σ w b'·(R a') / Σ w |a'|², and λ_max = Σ w b'·(R a').
   T.scale = (with_scale && spread_src > 0.0) ? std::max(lambda_max, 0.0) / spread_src : 1.0;
   T.t = c_dst - T.scale * (T.R * c_src);
-  return out;
 }
 
 }  // namespace
@@ -137,6 +151,37 @@ SimilarityTransform HornAbsoluteOrientationAnyMinimizer(const std::vector<Eigen:
     throw std::invalid_argument(
         "HornAbsoluteOrientationAnyMinimizer: no point pair with positive weight");
   }
+  if (unique) *unique = s.unique;
+  return s.transform;
+}
+
+void PointPairMoments::Add(const Eigen::Vector3d& src, const Eigen::Vector3d& dst) {
+  ++count;
+  const double n = static_cast<double>(count);
+  const Eigen::Vector3d d_src = src - mean_src, d_dst = dst - mean_dst;  // from the old means
+  mean_src += d_src / n;
+  mean_dst += d_dst / n;
+  // Co-moment updates: (x − x̄ₙ₋₁)(y − ȳₙ) sums to Σ (x − x̄)(y − ȳ) exactly in exact arithmetic.
+  const Eigen::Vector3d e_dst = dst - mean_dst;
+  S += d_src * e_dst.transpose();
+  spread_src += d_src.dot(src - mean_src);
+  spread_dst += d_dst.dot(e_dst);
+}
+
+double PointPairMoments::ResidualSquaredSum(const SimilarityTransform& T) const {
+  const double r = spread_dst - 2.0 * T.scale * (T.R * S).trace() + T.scale * T.scale * spread_src;
+  return std::max(r, 0.0);
+}
+
+SimilarityTransform HornAbsoluteOrientationFromMoments(const PointPairMoments& moments,
+                                                       bool with_scale, bool* unique) {
+  if (moments.count < 1) {
+    throw std::invalid_argument("HornAbsoluteOrientationFromMoments: needs at least one pair");
+  }
+  HornSolution s;
+  s.pairs = static_cast<int>(std::min<long long>(moments.count, std::numeric_limits<int>::max()));
+  SolveFromMoments(moments.mean_src, moments.mean_dst, moments.S, moments.spread_src,
+                   moments.spread_dst, with_scale, &s);
   if (unique) *unique = s.unique;
   return s.transform;
 }

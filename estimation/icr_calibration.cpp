@@ -12,35 +12,12 @@ namespace trackbed::estimation {
 
 namespace {
 
-// One window's mean encoder (y) and reference (x) yaw rate.
-struct Window {
-  double y = 0.0, x = 0.0;
-};
-
-constexpr int kJackknifeGroups = 20;
+// Most groups of consecutive windows the jackknife keeps; when a run fills them, pairs
+// merge (kMaxGroups / 2 groups of twice the windows), so a run of any length keeps
+// between kMaxGroups / 2 and kMaxGroups groups once it has that many windows.
+constexpr std::size_t kMaxGroups = 40;
 
 double Chi(double yy, double yx) { return yx != 0.0 ? yy / yx : 1.0; }
-
-// Delete-a-group jackknife standard error of Σy² / Σyx over consecutive groups of windows.
-double JackknifeStderr(const std::vector<Window>& windows, double yy, double yx) {
-  const std::size_t n = windows.size();
-  const std::size_t groups = std::min<std::size_t>(kJackknifeGroups, n);
-  std::vector<double> estimates;
-  for (std::size_t g = 0; g < groups; ++g) {
-    double out_yy = 0.0, out_yx = 0.0;
-    for (std::size_t i = n * g / groups; i < n * (g + 1) / groups; ++i) {
-      out_yy += windows[i].y * windows[i].y;
-      out_yx += windows[i].y * windows[i].x;
-    }
-    if (yx - out_yx == 0.0) return std::numeric_limits<double>::infinity();
-    estimates.push_back(Chi(yy - out_yy, yx - out_yx));
-  }
-  double mean = 0.0;
-  for (double e : estimates) mean += e / static_cast<double>(groups);
-  double ss = 0.0;
-  for (double e : estimates) ss += (e - mean) * (e - mean);
-  return std::sqrt((static_cast<double>(groups) - 1.0) / static_cast<double>(groups) * ss);
-}
 
 std::string Figure(const char* format, double value) {
   char buf[64];
@@ -70,37 +47,81 @@ std::string WhyNotIdentified(const IcrFit& fit, double min_yaw_rate_radps) {
 
 }  // namespace
 
+void RunningIcrFit::Sums::Add(const Sums& o) {
+  yy += o.yy;
+  yx += o.yx;
+  xx += o.xx;
+  windows += o.windows;
+}
+
+RunningIcrFit::RunningIcrFit(int window_samples, double min_yaw_rate_radps)
+    : window_samples_(window_samples), min_yaw_rate_radps_(min_yaw_rate_radps) {
+  if (window_samples < 1) throw std::invalid_argument("RunningIcrFit: window_samples < 1");
+}
+
+void RunningIcrFit::Add(const IcrSample& s) {
+  window_y_ += s.encoder_yaw_rate_radps / window_samples_;
+  window_x_ += s.reference_yaw_rate_radps / window_samples_;
+  if (++in_window_ < window_samples_) return;
+  const double y = window_y_, x = window_x_;
+  window_y_ = window_x_ = 0.0;
+  in_window_ = 0;
+  if (std::abs(y) < min_yaw_rate_radps_) return;
+  const Sums window{y * y, y * x, x * x, 1};
+  total_.Add(window);
+  if (groups_.empty() || groups_.back().windows == windows_per_group_) {
+    if (groups_.size() == kMaxGroups) {
+      for (std::size_t g = 0; g < kMaxGroups / 2; ++g) {
+        groups_[g] = groups_[2 * g];
+        groups_[g].Add(groups_[2 * g + 1]);
+      }
+      groups_.resize(kMaxGroups / 2);
+      windows_per_group_ *= 2;
+    }
+    if (groups_.empty() || groups_.back().windows == windows_per_group_) groups_.push_back({});
+  }
+  groups_.back().Add(window);
+}
+
+// Delete-a-group jackknife of Σy² / Σy·x over the groups of consecutive windows.
+double RunningIcrFit::JackknifeStderr() const {
+  const auto g = static_cast<double>(groups_.size());
+  std::vector<double> estimates;
+  for (const Sums& out : groups_) {
+    if (total_.yx - out.yx == 0.0) return std::numeric_limits<double>::infinity();
+    estimates.push_back(Chi(total_.yy - out.yy, total_.yx - out.yx));
+  }
+  double mean = 0.0;
+  for (double e : estimates) mean += e / g;
+  double ss = 0.0;
+  for (double e : estimates) ss += (e - mean) * (e - mean);
+  return std::sqrt((g - 1.0) / g * ss);
+}
+
+IcrFit RunningIcrFit::Fit() const {
+  IcrFit fit;
+  fit.windows_used = total_.windows;
+  fit.samples_used = total_.windows * window_samples_;
+  if (total_.windows > 0) {
+    const auto n = static_cast<double>(total_.windows);
+    fit.chi = Chi(total_.yy, total_.yx);
+    fit.turn_rms_radps = std::sqrt(total_.yy / n);
+    // Σ (y − χx)² = Σy² − 2χ·Σyx + χ²·Σx².
+    const double sse = total_.yy - 2.0 * fit.chi * total_.yx + fit.chi * fit.chi * total_.xx;
+    fit.rms_residual_radps = std::sqrt(std::max(sse, 0.0) / n);
+    if (groups_.size() >= 2) fit.chi_stderr = JackknifeStderr();
+  }
+  fit.reason = WhyNotIdentified(fit, min_yaw_rate_radps_);
+  fit.identified = fit.reason.empty();
+  return fit;
+}
+
 IcrFit FitIcrExpansion(const std::vector<IcrSample>& samples, int window_samples,
                        double min_yaw_rate_radps) {
   if (window_samples < 1) throw std::invalid_argument("FitIcrExpansion: window_samples < 1");
-  IcrFit fit;
-  std::vector<Window> windows;
-  double yy = 0.0, yx = 0.0;
-  const auto n = static_cast<std::size_t>(window_samples);
-  for (std::size_t start = 0; start + n <= samples.size(); start += n) {
-    Window w;
-    for (std::size_t i = start; i < start + n; ++i) {
-      w.y += samples[i].encoder_yaw_rate_radps / window_samples;
-      w.x += samples[i].reference_yaw_rate_radps / window_samples;
-    }
-    if (std::abs(w.y) < min_yaw_rate_radps) continue;
-    windows.push_back(w);
-    yy += w.y * w.y;
-    yx += w.y * w.x;
-  }
-  fit.windows_used = static_cast<int>(windows.size());
-  fit.samples_used = fit.windows_used * window_samples;
-  if (!windows.empty()) {
-    fit.chi = Chi(yy, yx);
-    fit.turn_rms_radps = std::sqrt(yy / static_cast<double>(windows.size()));
-    double sse = 0.0;
-    for (const Window& w : windows) sse += (w.y - fit.chi * w.x) * (w.y - fit.chi * w.x);
-    fit.rms_residual_radps = std::sqrt(sse / static_cast<double>(windows.size()));
-    if (fit.windows_used >= 2) fit.chi_stderr = JackknifeStderr(windows, yy, yx);
-  }
-  fit.reason = WhyNotIdentified(fit, min_yaw_rate_radps);
-  fit.identified = fit.reason.empty();
-  return fit;
+  RunningIcrFit fit(window_samples, min_yaw_rate_radps);
+  for (const IcrSample& s : samples) fit.Add(s);
+  return fit.Fit();
 }
 
 double RigidPlasticIcrExpansion(const std::vector<double>& station_x_m, double half_track_m) {

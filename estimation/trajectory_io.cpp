@@ -131,32 +131,9 @@ void ForEachDataLine(const fs::path& path, F&& f) {
 LoadedTrajectory ReadTum(const fs::path& path) {
   LoadedTrajectory out;
   out.format = TrajectoryFormat::kTum;
-  bool first = true;
-  ForEachDataLine(path, [&](std::size_t line, const std::string& text) {
-    const std::vector<std::string> f = SplitWhitespace(text);
-    if (f.size() != 8) {
-      Fail(path, line,
-           "expected 8 fields `t x y z qx qy qz qw` (TUM), got " + std::to_string(f.size()));
-    }
-    const double t = Number(path, line, f[0], "time");
-    const bool ns = t > kNanosecondThreshold;
-    if (first) {
-      out.converted_from_ns = ns;
-      first = false;
-    } else if (ns != out.converted_from_ns) {
-      Fail(path, line,
-           "time " + f[0] + " mixes nanosecond and second timestamps (first pose's time was in " +
-               (out.converted_from_ns ? "ns" : "s") + ")");
-    }
-    const Eigen::Vector3d p(Number(path, line, f[1], "x"), Number(path, line, f[2], "y"),
-                            Number(path, line, f[3], "z"));
-    StampedPose pose;
-    pose.t_s = ns ? NanosecondsToSeconds(f[0], t) : t;
-    pose.T_world_body = PoseFromPositionQuaternion(
-        path, line, p, Number(path, line, f[7], "qw"), Number(path, line, f[4], "qx"),
-        Number(path, line, f[5], "qy"), Number(path, line, f[6], "qz"));
-    out.poses.push_back(pose);
-  });
+  TumReader reader(path);
+  for (StampedPose pose; reader.Next(&pose);) out.poses.push_back(pose);
+  out.converted_from_ns = reader.converted_from_ns();
   return out;
 }
 
@@ -286,6 +263,47 @@ TrajectoryFormat DetectFormat(const fs::path& path) {
   });
   if (!format) throw std::runtime_error(path.string() + ": no poses (the file has no data lines)");
   return *format;
+}
+
+TumReader::TumReader(const fs::path& path) : path_(path), in_(path) {
+  if (!in_) throw std::runtime_error(path.string() + ": cannot open file");
+}
+
+bool TumReader::Next(StampedPose* pose) {
+  std::string text;
+  for (std::string raw; text.empty();) {
+    if (!std::getline(in_, raw)) {
+      if (in_.bad()) throw std::runtime_error(path_.string() + ": read error");
+      return false;
+    }
+    ++line_;
+    text = Trim(raw);
+    if (!text.empty() && text[0] == '#') text.clear();
+  }
+  const std::size_t line = line_;
+  const fs::path& path = path_;
+  const std::vector<std::string> f = SplitWhitespace(text);
+  if (f.size() != 8) {
+    Fail(path, line,
+         "expected 8 fields `t x y z qx qy qz qw` (TUM), got " + std::to_string(f.size()));
+  }
+  const double t = Number(path, line, f[0], "time");
+  const bool ns = t > kNanosecondThreshold;
+  if (first_) {
+    converted_from_ns_ = ns;
+    first_ = false;
+  } else if (ns != converted_from_ns_) {
+    Fail(path, line,
+         "time " + f[0] + " mixes nanosecond and second timestamps (first pose's time was in " +
+             (converted_from_ns_ ? "ns" : "s") + ")");
+  }
+  const Eigen::Vector3d p(Number(path, line, f[1], "x"), Number(path, line, f[2], "y"),
+                          Number(path, line, f[3], "z"));
+  pose->t_s = ns ? NanosecondsToSeconds(f[0], t) : t;
+  pose->T_world_body = PoseFromPositionQuaternion(
+      path, line, p, Number(path, line, f[7], "qw"), Number(path, line, f[4], "qx"),
+      Number(path, line, f[5], "qy"), Number(path, line, f[6], "qz"));
+  return true;
 }
 
 LoadedTrajectory ReadTrajectory(const fs::path& path, std::optional<TrajectoryFormat> format,

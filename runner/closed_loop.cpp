@@ -97,6 +97,7 @@ class ClosedLoop::Impl {
   const StepResult& Step();
   RunMetrics Finish();
   bool done() const { return done_; }
+  HeldSizes held_sizes();
   const estimation::LocalizationStack* localization();
   void ReportEstimate(const std::string& name, const Eigen::Matrix4d& T_world_body);
   // Runs `f`; should it throw, writes a metrics.json that says why (when there is a
@@ -452,6 +453,18 @@ const estimation::LocalizationStack* ClosedLoop::Impl::localization() {
   return stack_.get();
 }
 
+HeldSizes ClosedLoop::Impl::held_sizes() {
+  if (!started_ || finished_) throw std::logic_error("ClosedLoop::held_sizes: not running");
+  if (worker_) worker_->Drain();  // the scores are then up to date
+  HeldSizes h;
+  h.scoring_window_poses = estimates_.window_size();
+  if (folder_) {
+    h.plot_points = folder_->plot_points();
+    h.largest_plot_series = folder_->largest_plot_series();
+  }
+  return h;
+}
+
 void ClosedLoop::Impl::ReportEstimate(const std::string& name, const Eigen::Matrix4d& T) {
   if (!started_) throw std::logic_error("ClosedLoop::ReportEstimate: Start() first");
   if (finished_) throw std::logic_error("ClosedLoop::ReportEstimate: the run is finished");
@@ -533,6 +546,8 @@ RobotBuild BuildRunRobot(const scenario::Scenario& scenario) {
 }
 
 const estimation::LocalizationStack* ClosedLoop::localization() { return impl_->localization(); }
+
+HeldSizes ClosedLoop::held_sizes() { return impl_->held_sizes(); }
 
 void ClosedLoop::ReportEstimate(const std::string& name, const Eigen::Matrix4d& T_world_body) {
   impl_->ReportEstimate(name, T_world_body);

@@ -1,7 +1,7 @@
 // A run folder as a ROS 2 bag (see run_bag.h). Each topic is a stream of rows read
-// from one of the folder's files; the streams are merged by time (ties in topic order)
-// and each message is serialised as it is written, so memory holds the rows, not the
-// messages.
+// one at a time from one of the folder's files; the streams are merged by time (ties in
+// topic order, then row order) and each message is serialised as it is written, so
+// memory holds one row and one message per topic, whatever the run's length.
 #include "trackbed/runner/run_bag.h"
 
 #include <algorithm>
@@ -10,6 +10,8 @@
 #include <cstdio>
 #include <fstream>
 #include <functional>
+#include <memory>
+#include <queue>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -29,18 +31,6 @@ namespace {
 namespace fs = std::filesystem;
 namespace rec = recording;
 
-// A CSV file of numbers with a header row (the run folder's form).
-struct CsvTable {
-  std::vector<std::string> columns;
-  std::vector<std::vector<double>> rows;
-
-  std::size_t Column(const fs::path& file, const std::string& name) const {
-    const auto it = std::find(columns.begin(), columns.end(), name);
-    if (it == columns.end()) throw std::runtime_error(file.string() + ": no column " + name);
-    return static_cast<std::size_t>(it - columns.begin());
-  }
-};
-
 std::vector<std::string> SplitComma(const std::string& line) {
   std::vector<std::string> out;
   std::stringstream s(line);
@@ -48,34 +38,53 @@ std::vector<std::string> SplitComma(const std::string& line) {
   return out;
 }
 
-CsvTable ReadCsv(const fs::path& file) {
-  std::ifstream in(file);
-  if (!in) throw std::runtime_error(file.string() + ": cannot open");
-  CsvTable t;
-  std::string line;
-  if (!std::getline(in, line)) throw std::runtime_error(file.string() + ": empty, no header row");
-  t.columns = SplitComma(line);
-  for (int number = 2; std::getline(in, line); ++number) {
-    if (line.empty()) continue;
+// A CSV file of numbers with a header row (the run folder's form), read row by row.
+class CsvReader {
+ public:
+  explicit CsvReader(const fs::path& file) : file_(file), in_(file) {
+    if (!in_) throw std::runtime_error(file.string() + ": cannot open");
+    std::string line;
+    if (!std::getline(in_, line))
+      throw std::runtime_error(file.string() + ": empty, no header row");
+    columns_ = SplitComma(line);
+  }
+  const std::vector<std::string>& columns() const { return columns_; }
+  std::size_t Column(const std::string& name) const {
+    const auto it = std::find(columns_.begin(), columns_.end(), name);
+    if (it == columns_.end()) throw std::runtime_error(file_.string() + ": no column " + name);
+    return static_cast<std::size_t>(it - columns_.begin());
+  }
+  /// The next row; false at the end.
+  bool Next(std::vector<double>* row) {
+    std::string line;
+    do {
+      if (!std::getline(in_, line)) return false;
+      ++number_;
+    } while (line.empty());
     const std::vector<std::string> fields = SplitComma(line);
-    if (fields.size() != t.columns.size()) {
-      throw std::runtime_error(file.string() + ":" + std::to_string(number) + ": " +
+    if (fields.size() != columns_.size()) {
+      throw std::runtime_error(file_.string() + ":" + std::to_string(number_) + ": " +
                                std::to_string(fields.size()) + " fields, the header has " +
-                               std::to_string(t.columns.size()));
+                               std::to_string(columns_.size()));
     }
-    std::vector<double> row;
+    row->clear();
     for (const std::string& f : fields) {
       char* end = nullptr;
-      row.push_back(std::strtod(f.c_str(), &end));
+      row->push_back(std::strtod(f.c_str(), &end));
       if (f.empty() || *end != '\0') {
-        throw std::runtime_error(file.string() + ":" + std::to_string(number) +
+        throw std::runtime_error(file_.string() + ":" + std::to_string(number_) +
                                  ": not a number: '" + f + "'");
       }
     }
-    t.rows.push_back(std::move(row));
+    return true;
   }
-  return t;
-}
+
+ private:
+  fs::path file_;
+  std::ifstream in_;
+  std::vector<std::string> columns_;
+  int number_ = 1;  // the header's line
+};
 
 rec::Pose ToPose(const Eigen::Isometry3d& T) {
   const Eigen::Quaterniond q(T.linear());
@@ -101,52 +110,93 @@ std::string QosProfile(bool transient_local) {
   return q;
 }
 
-// One topic: its channel, its messages' times and how to serialise the k-th.
+// One topic: its channel and its messages, read one at a time: next(&t_s, &bytes) gives
+// the next message's time and serialised bytes, false at the end.
 struct Stream {
   std::string topic, type, definition;
   bool transient_local = false;
-  std::vector<double> t_s;
-  std::function<std::vector<std::uint8_t>(std::size_t)> message;
+  std::function<bool(double*, std::vector<std::uint8_t>*)> next;
   std::uint16_t channel = 0;
+  std::uint64_t count = 0;  // messages written
 };
 
+// A stream of messages M: `next(&t_s, &m)` builds the next one, false at the end.
 template <typename M>
-Stream MakeStream(const std::string& topic, std::vector<double> t_s,
-                  std::function<M(std::size_t)> build, bool transient_local = false) {
+Stream MakeStream(const std::string& topic, std::function<bool(double*, M*)> next,
+                  bool transient_local = false) {
   const rec::MessageSchema& schema = rec::SchemaOf(M{});
-  Stream s{topic, schema.name, schema.definition, transient_local, std::move(t_s), nullptr, 0};
-  s.message = [build = std::move(build)](std::size_t k) { return rec::Serialize(build(k)); };
+  Stream s{topic, schema.name, schema.definition, transient_local, nullptr, 0, 0};
+  s.next = [next = std::move(next)](double* t_s, std::vector<std::uint8_t>* bytes) {
+    M m;
+    if (!next(t_s, &m)) return false;
+    *bytes = rec::Serialize(m);
+    return true;
+  };
   return s;
 }
 
-using Poses = std::shared_ptr<const estimation::Trajectory>;
-
-Poses ReadTum(const fs::path& tum) {
-  return std::make_shared<const estimation::Trajectory>(
-      estimation::ReadTrajectory(tum, estimation::TrajectoryFormat::kTum).poses);
+// One message at time 0, as a latched topic has it.
+template <typename M>
+Stream OnceStream(const std::string& topic, M message) {
+  auto done = std::make_shared<bool>(false);
+  return MakeStream<M>(
+      topic,
+      [done, message](double* t_s, M* m) {
+        if (*done) return false;
+        *done = true;
+        *t_s = 0.0;
+        *m = message;
+        return true;
+      },
+      true);
 }
 
-std::vector<double> TimesOf(const estimation::Trajectory& poses) {
-  std::vector<double> t;
-  for (const auto& p : poses) t.push_back(p.t_s);
-  return t;
+std::shared_ptr<estimation::TumReader> ReadTum(const fs::path& tum) {
+  return std::make_shared<estimation::TumReader>(tum);
 }
 
-// An estimate's (or the ground truth's) poses as Odometry; `twist` (rows as the poses)
-// may be empty.
-Stream OdometryStream(const std::string& topic, Poses poses, const std::string& frame,
-                      const std::string& child, std::shared_ptr<const CsvTable> twist) {
-  return MakeStream<rec::Odometry>(topic, TimesOf(*poses), [=](std::size_t k) {
-    rec::Odometry o;
-    o.header = At((*poses)[k].t_s, frame);
-    o.child_frame_id = child;
-    o.pose = ToPose((*poses)[k].T_world_body);
-    if (twist) {
-      const std::vector<double>& r = twist->rows[k];
-      o.linear = {r[1], r[2], r[3]};
-      o.angular = {r[4], r[5], r[6]};
+// The rows left in a CSV file and a TUM file (after a mismatch in their lengths).
+std::size_t RowsLeft(CsvReader* csv) {
+  std::size_t n = 0;
+  for (std::vector<double> row; csv->Next(&row);) ++n;
+  return n;
+}
+std::size_t PosesLeft(estimation::TumReader* tum) {
+  std::size_t n = 0;
+  for (estimation::StampedPose p; tum->Next(&p);) ++n;
+  return n;
+}
+
+// An estimate's (or the ground truth's) poses as Odometry; `twist` (a row per pose, the
+// ground truth's twist file) may be null.
+Stream OdometryStream(const std::string& topic, const fs::path& tum, const std::string& frame,
+                      const std::string& child, const fs::path& twist_file) {
+  auto poses = ReadTum(tum);
+  std::shared_ptr<CsvReader> twist;
+  if (!twist_file.empty()) twist = std::make_shared<CsvReader>(twist_file);
+  auto rows = std::make_shared<std::size_t>(0);
+  return MakeStream<rec::Odometry>(topic, [=](double* t_s, rec::Odometry* o) {
+    estimation::StampedPose p;
+    const bool more = poses->Next(&p);
+    std::vector<double> r;
+    const bool more_twist = twist && twist->Next(&r);
+    if (twist && more != more_twist) {  // the twist file has a row per true pose
+      const std::size_t n_twist = *rows + (more_twist ? 1 + RowsLeft(twist.get()) : 0);
+      const std::size_t n_poses = *rows + (more ? 1 + PosesLeft(poses.get()) : 0);
+      throw std::runtime_error(twist_file.string() + ": " + std::to_string(n_twist) +
+                               " rows, ground_truth.tum has " + std::to_string(n_poses));
     }
-    return o;
+    if (!more) return false;
+    ++*rows;
+    *t_s = p.t_s;
+    o->header = At(p.t_s, frame);
+    o->child_frame_id = child;
+    o->pose = ToPose(p.T_world_body);
+    if (twist) {
+      o->linear = {r[1], r[2], r[3]};
+      o->angular = {r[4], r[5], r[6]};
+    }
+    return true;
   });
 }
 
@@ -162,92 +212,104 @@ std::vector<std::string> EstimateNames(const fs::path& dir) {
   return names;
 }
 
-Stream ClockStream(const std::vector<double>& t) {
-  return MakeStream<rec::Clock>(
-      "/clock", t, [t](std::size_t k) { return rec::Clock{rec::Time::FromSeconds(t[k])}; });
+// /clock at the ground truth's times.
+Stream ClockStream(const fs::path& tum) {
+  auto poses = ReadTum(tum);
+  return MakeStream<rec::Clock>("/clock", [poses](double* t_s, rec::Clock* m) {
+    estimation::StampedPose p;
+    if (!poses->Next(&p)) return false;
+    *t_s = p.t_s;
+    *m = rec::Clock{rec::Time::FromSeconds(p.t_s)};
+    return true;
+  });
 }
 
 // /tf: map → odom, the identity (this stack has no map), and odom → base_link from the
 // fused estimate, at its rate.
-Stream TfStream(Poses poses) {
-  return MakeStream<rec::TFMessage>("/tf", TimesOf(*poses), [poses](std::size_t k) {
-    const double t_s = (*poses)[k].t_s;
-    return rec::TFMessage{{{At(t_s, "map"), "odom", rec::Pose{}},
-                           {At(t_s, "odom"), "base_link", ToPose((*poses)[k].T_world_body)}}};
+Stream TfStream(const fs::path& tum) {
+  auto poses = ReadTum(tum);
+  return MakeStream<rec::TFMessage>("/tf", [poses](double* t_s, rec::TFMessage* m) {
+    estimation::StampedPose p;
+    if (!poses->Next(&p)) return false;
+    *t_s = p.t_s;
+    *m = rec::TFMessage{{{At(p.t_s, "map"), "odom", rec::Pose{}},
+                         {At(p.t_s, "odom"), "base_link", ToPose(p.T_world_body)}}};
+    return true;
   });
 }
 
 Stream ImuStream(const fs::path& file) {
-  auto imu = std::make_shared<const CsvTable>(ReadCsv(file));
+  auto imu = std::make_shared<CsvReader>(file);
   std::array<std::size_t, 7> c;  // t, then the gyro's and the accelerometer's x, y, z
   const char* names[] = {
       "t",           "gyro_x_radps", "gyro_y_radps", "gyro_z_radps", "accel_x_mps2", "accel_y_mps2",
       "accel_z_mps2"};
-  for (std::size_t i = 0; i < c.size(); ++i) c[i] = imu->Column(file, names[i]);
-  std::vector<double> t;
-  for (const auto& r : imu->rows) t.push_back(r[c[0]]);
-  return MakeStream<rec::Imu>("/imu", t, [imu, c](std::size_t k) {
-    const std::vector<double>& r = imu->rows[k];
-    rec::Imu m;
-    m.header = At(r[c[0]], "imu_link");
-    m.orientation_covariance[0] = -1.0;  // no orientation estimate (REP-145)
-    m.angular_velocity = {r[c[1]], r[c[2]], r[c[3]]};
-    m.linear_acceleration = {r[c[4]], r[c[5]], r[c[6]]};
-    return m;
+  for (std::size_t i = 0; i < c.size(); ++i) c[i] = imu->Column(names[i]);
+  return MakeStream<rec::Imu>("/imu", [imu, c](double* t_s, rec::Imu* m) {
+    std::vector<double> r;
+    if (!imu->Next(&r)) return false;
+    *t_s = r[c[0]];
+    m->header = At(r[c[0]], "imu_link");
+    m->orientation_covariance[0] = -1.0;  // no orientation estimate (REP-145)
+    m->angular_velocity = {r[c[1]], r[c[2]], r[c[3]]};
+    m->linear_acceleration = {r[c[4]], r[c[5]], r[c[6]]};
+    return true;
   });
 }
 
 // The sprockets' angles from the encoder counts, and their rates as the backward
 // difference of the counts (what the wheel odometry sees).
 Stream JointStream(const fs::path& file, int ticks_per_rev) {
-  auto enc = std::make_shared<const CsvTable>(ReadCsv(file));
-  enc->Column(file, "left_ticks");
-  enc->Column(file, "right_ticks");
-  std::vector<double> t;
-  for (const auto& r : enc->rows) t.push_back(r[0]);
+  auto enc = std::make_shared<CsvReader>(file);
+  enc->Column("left_ticks");
+  enc->Column("right_ticks");
+  auto previous = std::make_shared<std::vector<double>>();  // the row before, if any
   const double rad_per_tick = 2.0 * M_PI / ticks_per_rev;
-  return MakeStream<rec::JointState>("/joint_states", t, [enc, rad_per_tick](std::size_t k) {
-    const std::vector<double>& r = enc->rows[k];
-    rec::JointState j;
-    j.header = At(r[0], "");
-    j.name = {"left_sprocket_joint", "right_sprocket_joint"};
-    j.position = {r[1] * rad_per_tick, r[2] * rad_per_tick};
-    j.velocity = {0.0, 0.0};
-    if (k > 0) {
-      const std::vector<double>& p = enc->rows[k - 1];
-      const double dt = r[0] - p[0];
-      if (dt > 0)
-        j.velocity = {(r[1] - p[1]) * rad_per_tick / dt, (r[2] - p[2]) * rad_per_tick / dt};
-    }
-    return j;
-  });
+  return MakeStream<rec::JointState>(
+      "/joint_states", [enc, previous, rad_per_tick](double* t_s, rec::JointState* j) {
+        std::vector<double> r;
+        if (!enc->Next(&r)) return false;
+        *t_s = r[0];
+        j->header = At(r[0], "");
+        j->name = {"left_sprocket_joint", "right_sprocket_joint"};
+        j->position = {r[1] * rad_per_tick, r[2] * rad_per_tick};
+        j->velocity = {0.0, 0.0};
+        if (!previous->empty()) {
+          const std::vector<double>& p = *previous;
+          const double dt = r[0] - p[0];
+          if (dt > 0)
+            j->velocity = {(r[1] - p[1]) * rad_per_tick / dt, (r[2] - p[2]) * rad_per_tick / dt};
+        }
+        *previous = std::move(r);
+        return true;
+      });
 }
 
 // /scan from scan.csv: the beams fan counter-clockwise from straight ahead over a full
 // turn, all taken at the scan's time (the simulated sensor does not spin during a
 // scan), +inf where no return (REP-117).
 Stream ScanStream(const fs::path& file, const robot::RangeSensorOptions& sensor) {
-  auto scans = std::make_shared<const CsvTable>(ReadCsv(file));
+  auto scans = std::make_shared<CsvReader>(file);
   const std::size_t beams = static_cast<std::size_t>(sensor.beams);
-  if (scans->columns.size() != beams + 1) {
-    throw std::runtime_error(file.string() + ": " + std::to_string(scans->columns.size() - 1) +
+  if (scans->columns().size() != beams + 1) {
+    throw std::runtime_error(file.string() + ": " + std::to_string(scans->columns().size() - 1) +
                              " ranges per row, the scenario's range sensor has " +
                              std::to_string(beams) + " beams");
   }
-  std::vector<double> t;
-  for (const auto& r : scans->rows) t.push_back(r[0]);
   rec::LaserScan shape;
   shape.angle_increment = static_cast<float>(2.0 * M_PI / sensor.beams);
   shape.angle_max = static_cast<float>(2.0 * M_PI * (sensor.beams - 1) / sensor.beams);
   shape.scan_time = static_cast<float>(1.0 / sensor.rate_hz);
   shape.range_min = static_cast<float>(sensor.min_range_m);
   shape.range_max = static_cast<float>(sensor.max_range_m);
-  return MakeStream<rec::LaserScan>("/scan", t, [scans, shape](std::size_t k) {
-    const std::vector<double>& r = scans->rows[k];
-    rec::LaserScan m = shape;
-    m.header = At(r[0], "range_sensor");
-    m.ranges.assign(r.begin() + 1, r.end());
-    return m;
+  return MakeStream<rec::LaserScan>("/scan", [scans, shape](double* t_s, rec::LaserScan* m) {
+    std::vector<double> r;
+    if (!scans->Next(&r)) return false;
+    *t_s = r[0];
+    *m = shape;
+    m->header = At(r[0], "range_sensor");
+    m->ranges.assign(r.begin() + 1, r.end());
+    return true;
   });
 }
 
@@ -271,8 +333,7 @@ Stream StaticTfStream(const calibration::RobotCalibration& given,
     add("range_sensor",
         Eigen::Isometry3d(Eigen::Translation3d(scenario.robot.range_sensor.mount_m)));
   }
-  return MakeStream<rec::TFMessage>(
-      "/tf_static", {0.0}, [m](std::size_t) { return m; }, true);
+  return OnceStream<rec::TFMessage>("/tf_static", m);
 }
 
 // camera_info of one camera (0 left, 1 right), latched at the start: K and D the
@@ -306,21 +367,32 @@ rec::CameraInfo CameraInfoOf(const calibration::StereoCalibration& given,
   return c;
 }
 
-// camera/times.txt: one time [s] per line.
-std::vector<double> ReadTimes(const fs::path& file) {
-  std::ifstream in(file);
-  std::vector<double> t;
-  std::string line;
-  for (int number = 1; std::getline(in, line); ++number) {
+// camera/times.txt (one time [s] per line), read line by line: the frames' times and
+// numbers.
+class FrameTimes {
+ public:
+  explicit FrameTimes(const fs::path& file) : file_(file), in_(file) {}
+  /// The next frame's time; false at the end.
+  bool Next(double* t_s) {
+    std::string line;
+    if (!std::getline(in_, line)) return false;
+    ++number_;
     char* end = nullptr;
-    t.push_back(std::strtod(line.c_str(), &end));
+    *t_s = std::strtod(line.c_str(), &end);
     if (line.empty() || *end != '\0') {
-      throw std::runtime_error(file.string() + ":" + std::to_string(number) + ": not a time: '" +
+      throw std::runtime_error(file_.string() + ":" + std::to_string(number_) + ": not a time: '" +
                                line + "'");
     }
+    return true;
   }
-  return t;
-}
+  /// The number (from 0) of the frame Next() gave last.
+  std::size_t frame() const { return static_cast<std::size_t>(number_ - 1); }
+
+ private:
+  fs::path file_;
+  std::ifstream in_;
+  int number_ = 0;
+};
 
 std::vector<std::uint8_t> ReadBytes(const fs::path& file) {
   std::ifstream in(file, std::ios::binary | std::ios::ate);
@@ -336,26 +408,30 @@ std::vector<std::uint8_t> ReadBytes(const fs::path& file) {
 // One camera's topics: with the frames saved (camera/), its images as PNG and a
 // camera_info per frame, stamped alike; without, camera_info once, latched.
 void AddCameraStreams(const rec::CameraInfo& info, int c, const fs::path& camera,
-                      const std::vector<double>& frames, std::vector<Stream>* streams) {
+                      std::vector<Stream>* streams) {
   const std::string side = c == 0 ? "left" : "right";
-  if (frames.empty()) {
-    streams->push_back(MakeStream<rec::CameraInfo>(
-        "/stereo/" + side + "/camera_info", {0.0}, [info](std::size_t) { return info; }, true));
+  const fs::path times = camera / "times.txt";
+  if (!fs::exists(times) || fs::file_size(times) == 0) {
+    streams->push_back(OnceStream<rec::CameraInfo>("/stereo/" + side + "/camera_info", info));
     return;
   }
+  auto image_times = std::make_shared<FrameTimes>(times);
   streams->push_back(MakeStream<rec::CompressedImage>(
-      "/stereo/" + side + "/image_raw/compressed", frames,
-      [frames, info, dir = camera / side](std::size_t k) {
+      "/stereo/" + side + "/image_raw/compressed",
+      [image_times, info, dir = camera / side](double* t_s, rec::CompressedImage* m) {
+        if (!image_times->Next(t_s)) return false;
         char name[16];
-        std::snprintf(name, sizeof(name), "%06zu.png", k);
-        return rec::CompressedImage{At(frames[k], info.header.frame_id), "png",
-                                    ReadBytes(dir / name)};
+        std::snprintf(name, sizeof(name), "%06zu.png", image_times->frame());
+        *m = rec::CompressedImage{At(*t_s, info.header.frame_id), "png", ReadBytes(dir / name)};
+        return true;
       }));
+  auto info_times = std::make_shared<FrameTimes>(times);
   streams->push_back(MakeStream<rec::CameraInfo>(
-      "/stereo/" + side + "/camera_info", frames, [frames, info](std::size_t k) {
-        rec::CameraInfo i = info;
-        i.header.stamp = rec::Time::FromSeconds(frames[k]);
-        return i;
+      "/stereo/" + side + "/camera_info", [info_times, info](double* t_s, rec::CameraInfo* m) {
+        if (!info_times->Next(t_s)) return false;
+        *m = info;
+        m->header.stamp = rec::Time::FromSeconds(*t_s);
+        return true;
       }));
 }
 
@@ -388,26 +464,16 @@ std::string MetadataYaml(const std::vector<Stream>& streams,
 std::vector<Stream> RunStreams(const fs::path& dir, const scenario::Scenario& scenario) {
   std::vector<Stream> streams;
   const bool physics = fs::exists(dir / "encoders.csv");
-  const Poses gt = ReadTum(dir / "ground_truth.tum");
-  streams.push_back(ClockStream(TimesOf(*gt)));
-  std::map<std::string, Poses> estimates;  // each file read once
-  for (const std::string& name : EstimateNames(dir))
-    estimates[name] = ReadTum(dir / (name + ".tum"));
-  if (estimates.count("fused")) streams.push_back(TfStream(estimates["fused"]));
-  std::shared_ptr<const CsvTable> twist;
-  if (physics) {
-    const fs::path file = dir / "ground_truth_twist.csv";
-    twist = std::make_shared<const CsvTable>(ReadCsv(file));
-    if (twist->rows.size() != gt->size()) {
-      throw std::runtime_error(file.string() + ": " + std::to_string(twist->rows.size()) +
-                               " rows, ground_truth.tum has " + std::to_string(gt->size()));
-    }
-  }
-  streams.push_back(
-      OdometryStream("/ground_truth/odom", gt, "map", "base_link_ground_truth", twist));
-  for (const auto& [name, poses] : estimates) {
-    streams.push_back(OdometryStream("/" + name + "/odom", poses, "odom",
-                                     name == "fused" ? "base_link" : "base_link_" + name, nullptr));
+  streams.push_back(ClockStream(dir / "ground_truth.tum"));
+  const std::vector<std::string> estimates = EstimateNames(dir);
+  if (std::count(estimates.begin(), estimates.end(), "fused"))
+    streams.push_back(TfStream(dir / "fused.tum"));
+  streams.push_back(OdometryStream("/ground_truth/odom", dir / "ground_truth.tum", "map",
+                                   "base_link_ground_truth",
+                                   physics ? dir / "ground_truth_twist.csv" : fs::path()));
+  for (const std::string& name : estimates) {
+    streams.push_back(OdometryStream("/" + name + "/odom", dir / (name + ".tum"), "odom",
+                                     name == "fused" ? "base_link" : "base_link_" + name, {}));
   }
   if (!physics) return streams;
   streams.push_back(ImuStream(dir / "imu.csv"));
@@ -419,12 +485,9 @@ std::vector<Stream> RunStreams(const fs::path& dir, const scenario::Scenario& sc
     streams.push_back(ScanStream(dir / "scan.csv", scenario.robot.range_sensor));
   }
   if (given.stereo) {
-    const fs::path camera = dir / "camera";
-    const std::vector<double> frames =
-        fs::exists(camera / "times.txt") ? ReadTimes(camera / "times.txt") : std::vector<double>{};
     const perception::StereoRectifier rectifier(*given.stereo);  // the maps built once
     for (int c = 0; c < 2; ++c) {
-      AddCameraStreams(CameraInfoOf(*given.stereo, rectifier, c), c, camera, frames, &streams);
+      AddCameraStreams(CameraInfoOf(*given.stereo, rectifier, c), c, dir / "camera", &streams);
     }
   }
   return streams;
@@ -437,19 +500,6 @@ RunBagSummary WriteRunBag(const fs::path& dir) {
   const scenario::Scenario scenario = scenario::LoadScenario((dir / "scenario.yaml").string(), {},
                                                              scenario::DriveSource::kExternal);
   std::vector<Stream> streams = RunStreams(dir, scenario);
-  // Every message by time, ties in channel order then row order.
-  struct Event {
-    std::uint64_t t_ns;
-    std::size_t stream, row;
-  };
-  std::vector<Event> events;
-  for (std::size_t s = 0; s < streams.size(); ++s) {
-    for (std::size_t k = 0; k < streams[s].t_s.size(); ++k) {
-      events.push_back({rec::Time::FromSeconds(streams[s].t_s[k]).Nanoseconds(), s, k});
-    }
-  }
-  std::stable_sort(events.begin(), events.end(),
-                   [](const Event& a, const Event& b) { return a.t_ns < b.t_ns; });
   const fs::path file = dir / "run.mcap";
   rec::McapWriter writer(file.string());
   std::map<std::string, std::uint16_t> schemas;
@@ -458,15 +508,36 @@ RunBagSummary WriteRunBag(const fs::path& dir) {
     s.channel = writer.AddChannel(schemas[s.type], s.topic, "cdr",
                                   {{"offered_qos_profiles", QosProfile(s.transient_local)}});
   }
-  for (const Event& e : events) {
-    writer.Write(streams[e.stream].channel, e.t_ns, e.t_ns, streams[e.stream].message(e.row));
+  // Every message by time, ties in channel order then row order (each file is in time
+  // order): a merge of the streams, each holding its next message.
+  struct Head {
+    std::uint64_t t_ns;
+    std::size_t stream;
+    bool operator>(const Head& o) const {
+      return t_ns != o.t_ns ? t_ns > o.t_ns : stream > o.stream;
+    }
+  };
+  std::vector<std::vector<std::uint8_t>> next(streams.size());
+  std::priority_queue<Head, std::vector<Head>, std::greater<Head>> heads;
+  const auto advance = [&](std::size_t s) {
+    double t_s = 0.0;
+    if (streams[s].next(&t_s, &next[s])) heads.push({rec::Time::FromSeconds(t_s).Nanoseconds(), s});
+  };
+  for (std::size_t s = 0; s < streams.size(); ++s) advance(s);
+  RunBagSummary summary;
+  std::uint64_t start = 0, end = 0;
+  while (!heads.empty()) {
+    const Head h = heads.top();
+    heads.pop();
+    writer.Write(streams[h.stream].channel, h.t_ns, h.t_ns, next[h.stream]);
+    if (summary.messages == 0) start = h.t_ns;
+    end = h.t_ns;
+    ++summary.messages;
+    ++streams[h.stream].count;
+    advance(h.stream);
   }
   writer.Close();
-  RunBagSummary summary;
-  for (const Stream& s : streams) summary.messages_per_topic[s.topic] = s.t_s.size();
-  summary.messages = events.size();
-  const std::uint64_t start = events.empty() ? 0 : events.front().t_ns;
-  const std::uint64_t end = events.empty() ? 0 : events.back().t_ns;
+  for (const Stream& s : streams) summary.messages_per_topic[s.topic] = s.count;
   std::ofstream yaml(dir / "metadata.yaml");
   yaml << MetadataYaml(streams, summary.messages_per_topic, start, end, summary.messages);
   if (!yaml.flush()) throw std::runtime_error((dir / "metadata.yaml").string() + ": write failed");

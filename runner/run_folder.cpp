@@ -1,6 +1,7 @@
 // Run folder writer (see run_folder.h).
 #include "trackbed/runner/run_folder.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -23,6 +24,7 @@
 #include "trackbed/runner/log_file.h"
 #include "trackbed/runner/navigation_log.h"
 #include "trackbed/runner/navigation_scenario.h"
+#include "trackbed/runner/plot_decimation.h"
 #include "trackbed/runner/run_bag.h"
 #include "trackbed/scenario/scenario_yaml.h"
 
@@ -49,46 +51,51 @@ nlohmann::ordered_json SlipJson(const SlipStats& s) {
   return j;
 }
 
-// Intrinsics and extrinsics of the stereo rig, as used for rendering.
-// What the plots need, gathered at 10 Hz while the run goes.
+// What the plots need, gathered at 10 Hz while the run goes, decimated to a bounded size
+// (plot_decimation.h).
 struct PlotData {
-  estimation::Trajectory truth;
-  std::map<std::string, estimation::Trajectory> estimates;  // name → poses
-  std::vector<Eigen::Vector2d> w, slip_left_true, slip_left_est, slip_right_true, slip_right_est;
+  DecimatedPath truth;
+  std::map<std::string, DecimatedPath> estimates;  // name → poses
+  DecimatedSeries w, slip_left_true, slip_left_est, slip_right_true, slip_right_est;
 
   void Add(const RunSample& s) {
     if (std::lround(s.t_s * 100.0) % 10 != 0) return;  // every 0.1 s
-    truth.push_back({s.t_s, s.chassis.T_world_body});
+    truth.Add(s.t_s, s.chassis.T_world_body);
     if (!s.estimate) return;
     const EstimateSample& e = *s.estimate;
-    estimates["wheel_odometry"].push_back({s.t_s, e.wheel_odometry});
-    estimates["wheel_odometry_noslip"].push_back({s.t_s, e.wheel_odometry_noslip});
-    estimates["ekf"].push_back({s.t_s, e.ekf});
-    if (e.has_camera) estimates["fused"].push_back({s.t_s, e.fused});
-    slip_left_true.emplace_back(s.t_s, s.tracks[0].slip_velocity_mps);
-    slip_right_true.emplace_back(s.t_s, s.tracks[1].slip_velocity_mps);
-    slip_left_est.emplace_back(s.t_s, e.slip.left_mps);
-    slip_right_est.emplace_back(s.t_s, e.slip.right_mps);
+    estimates["wheel_odometry"].Add(s.t_s, e.wheel_odometry);
+    estimates["wheel_odometry_noslip"].Add(s.t_s, e.wheel_odometry_noslip);
+    estimates["ekf"].Add(s.t_s, e.ekf);
+    if (e.has_camera) estimates["fused"].Add(s.t_s, e.fused);
+    slip_left_true.Add(s.t_s, s.tracks[0].slip_velocity_mps);
+    slip_right_true.Add(s.t_s, s.tracks[1].slip_velocity_mps);
+    slip_left_est.Add(s.t_s, e.slip.left_mps);
+    slip_right_est.Add(s.t_s, e.slip.right_mps);
+  }
+
+  // The sizes of every path and series.
+  std::vector<std::size_t> Sizes() const {
+    std::vector<std::size_t> n{truth.size(),           w.size(),
+                               slip_left_true.size(),  slip_left_est.size(),
+                               slip_right_true.size(), slip_right_est.size()};
+    for (const auto& [name, t] : estimates) n.push_back(t.size());
+    return n;
   }
 
   // trajectories.png, error_histogram.png and (with a camera) fusion.png.
   void Write(const fs::path& dir, const std::string& scene) const {
-    if (truth.size() < 2 || estimates.empty()) return;
-    auto xy = [](const estimation::Trajectory& t) {
-      std::vector<Eigen::Vector2d> pts;
-      for (const estimation::StampedPose& p : t)
-        pts.push_back(p.T_world_body.translation().head<2>());
-      return pts;
-    };
-    std::vector<plot::PlotSeries> paths{{"ground truth", xy(truth)}};
-    for (const auto& [name, t] : estimates) paths.push_back({name, xy(t)});
+    if (truth.Points().size() < 2 || estimates.empty()) return;
+    std::vector<plot::PlotSeries> paths{{"ground truth", truth.Points()}};
+    for (const auto& [name, t] : estimates) paths.push_back({name, t.Points()});
     plot::WriteTrajectoryPlot(dir / "trajectories.png", scene + ": trajectories over the true path",
                               paths);
     std::vector<double> edges;
     for (int k = 0; k <= 20; ++k) edges.push_back(0.05 * k);
     std::vector<plot::HistogramSeries> bars;
+    const estimation::Trajectory truth_poses = truth.Poses();
     for (const auto& [name, t] : estimates) {
-      const estimation::DistanceHistogram h = estimation::DistanceErrorHistogram(t, truth, edges);
+      const estimation::DistanceHistogram h =
+          estimation::DistanceErrorHistogram(t.Poses(), truth_poses, edges);
       plot::HistogramSeries b{name + " (>1 m: " + std::to_string(h.above) + ")", {}};
       for (std::size_t c : h.counts) b.counts.push_back(static_cast<double>(c) / h.total());
       bars.push_back(b);
@@ -99,9 +106,11 @@ struct PlotData {
     if (w.empty()) return;
     plot::WriteTimePlot(
         dir / "fusion.png", scene + ": fusion weight and track slip",
-        {{"w (wheel odometry)", {{"w", w}}},
-         {"left slip [m/s]", {{"true", slip_left_true}, {"estimated", slip_left_est}}},
-         {"right slip [m/s]", {{"true", slip_right_true}, {"estimated", slip_right_est}}}});
+        {{"w (wheel odometry)", {{"w", w.points()}}},
+         {"left slip [m/s]",
+          {{"true", slip_left_true.points()}, {"estimated", slip_left_est.points()}}},
+         {"right slip [m/s]",
+          {{"true", slip_right_true.points()}, {"estimated", slip_right_est.points()}}}});
   }
 };
 
@@ -123,7 +132,8 @@ class RunLogs {
         imu_(dir / "imu.csv",
              "t,gyro_x_radps,gyro_y_radps,gyro_z_radps,accel_x_mps2,accel_y_mps2,accel_z_mps2"),
         twist_(dir / "ground_truth_twist.csv",
-               "t,v_x_mps,v_y_mps,v_z_mps,omega_x_radps,omega_y_radps,omega_z_radps") {
+               "t,v_x_mps,v_y_mps,v_z_mps,omega_x_radps,omega_y_radps,omega_z_radps"),
+        decimate_(scenario.outputs.decimate) {
     if (scenario.robot.range_sensor.enabled) {
       std::string header = "t";
       for (int k = 0; k < scenario.robot.range_sensor.beams; ++k)
@@ -143,9 +153,14 @@ class RunLogs {
         "vo_dynamics_constrained");
   }
 
-  void Sample(const RunSample& s);
+  // Every sample; the logs keep every decimate-th (outputs.decimate).
+  void Sample(const RunSample& s) {
+    if (samples_++ % decimate_ == 0) WriteSample(s);
+  }
+  void Imu(const robot::ImuSample& s) {
+    if (imu_samples_++ % decimate_ == 0) WriteImu(s);
+  }
   void Frame(const LocalizationFrame& f);
-  void Imu(const robot::ImuSample& s);
   void Scan(const robot::RangeScanSample& s);
   // An estimate reported from outside the loop: a line of `<name>.tum`.
   void External(const fs::path& dir, const ExternalEstimate& e) {
@@ -167,10 +182,13 @@ class RunLogs {
   std::unique_ptr<LogFile> wheel_tum_, noslip_tum_, ekf_tum_, fused_tum_, vo_tum_, fusion_csv_,
       scan_csv_;
   std::map<std::string, std::unique_ptr<LogFile>> external_tum_;  // reported estimators
+  long long decimate_ = 1, samples_ = 0, imu_samples_ = 0;
   char line_[512];
+  void WriteSample(const RunSample& s);
+  void WriteImu(const robot::ImuSample& s);
 };
 
-void RunLogs::Sample(const RunSample& s) {
+void RunLogs::WriteSample(const RunSample& s) {
   truth_.Line(estimation::FormatTumLine({s.t_s, s.chassis.T_world_body}).c_str());
   std::snprintf(line_, sizeof(line_), "%.6f,%lld,%lld", s.t_s, s.ticks[0], s.ticks[1]);
   encoders_.Line(line_);
@@ -221,7 +239,7 @@ void RunLogs::Frame(const LocalizationFrame& f) {
   fusion_csv_->Line(line_);
 }
 
-void RunLogs::Imu(const robot::ImuSample& s) {
+void RunLogs::WriteImu(const robot::ImuSample& s) {
   std::snprintf(line_, sizeof(line_), "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", s.t_s, s.gyro_radps.x(),
                 s.gyro_radps.y(), s.gyro_radps.z(), s.accel_mps2.x(), s.accel_mps2.y(),
                 s.accel_mps2.z());
@@ -369,9 +387,9 @@ struct RunFolderWriter::Files {
   std::unique_ptr<perception::KittiWriter> kitti;
   Eigen::Isometry3d T_world_cam0 = Eigen::Isometry3d::Identity();
   std::unique_ptr<LogFile> navigation_csv;
-  std::vector<navigation::NavigationLogEntry> navigation_log;
-  std::unique_ptr<LogFile> exposure_csv;   // with the auto-exposure
-  std::unique_ptr<CameraFrameLog> camera;  // with outputs.mcap_images
+  StrideDecimated<navigation::NavigationLogEntry> navigation_log;  // for navigation.png
+  std::unique_ptr<LogFile> exposure_csv;                           // with the auto-exposure
+  std::unique_ptr<CameraFrameLog> camera;                          // with outputs.mcap_images
 };
 
 RunFolderWriter::RunFolderWriter(const scenario::Scenario& scenario, const fs::path& dir)
@@ -447,23 +465,34 @@ RunObservers RunFolderWriter::observers() {
     f.logs.Sample(s);
   };
   o.on_localization_frame = [&f](const LocalizationFrame& l) {
-    f.plots.w.emplace_back(l.t_s, l.report.w);
-    f.plots.estimates["visual_odometry"].push_back({l.t_s, l.visual_odometry});
+    f.plots.w.Add(l.t_s, l.report.w);
+    f.plots.estimates["visual_odometry"].Add(l.t_s, l.visual_odometry);
     f.logs.Frame(l);
   };
   o.on_imu = [&f](const robot::ImuSample& s) { f.logs.Imu(s); };
   o.on_scan = [&f](const robot::RangeScanSample& s) { f.logs.Scan(s); };
   o.on_external_estimate = [&f, dir = dir_](const ExternalEstimate& e) {
-    f.plots.estimates[*e.name].push_back({e.t_s, e.T_world_body});
+    f.plots.estimates[*e.name].Add(e.t_s, e.T_world_body);
     f.logs.External(dir, e);
   };
   if (f.navigation_csv) {
     o.on_navigation_step = [&f](const navigation::NavigationLogEntry& e) {
       f.navigation_csv->Line(NavigationCsvRow(e).c_str());
-      f.navigation_log.push_back(e);
+      f.navigation_log.Add(e);
     };
   }
   return o;
+}
+
+std::size_t RunFolderWriter::plot_points() const {
+  std::size_t n = 0;
+  for (std::size_t k : files_->plots.Sizes()) n += k;
+  return n;
+}
+
+std::size_t RunFolderWriter::largest_plot_series() const {
+  const std::vector<std::size_t> n = files_->plots.Sizes();
+  return *std::max_element(n.begin(), n.end());
 }
 
 void RunFolderWriter::Close(const scenario::Scenario& scenario, const RunMetrics& metrics) {
@@ -476,7 +505,7 @@ void RunFolderWriter::Close(const scenario::Scenario& scenario, const RunMetrics
         dir_ / "navigation.png",
         scenario.scene.name + ": " + navigation::ToString(scenario.navigation.method) + " (" +
             metrics.navigation->status + ")",
-        f.navigation_log, ObjectCircles(scenario::SceneObjects(scenario)),
+        f.navigation_log.items(), ObjectCircles(scenario::SceneObjects(scenario)),
         scenario.navigation.safety_radius_m, scene.start, scene.goal, metrics.navigation_subgoals);
   }
   f.logs.Close();

@@ -41,8 +41,8 @@ void MetricsAccumulator::Add(const RunSample& s, double terrain_height_m) {
     if (dt > 0) {
       // True yaw rate about the body z axis, from the world angular velocity.
       const Eigen::Vector3d z = s.chassis.T_world_body.linear().col(2);
-      icr_samples_.push_back({r_ * (dr - dl) / (gauge_ * dt), s.chassis.omega_world.dot(z)});
-      icr_time_s_ += dt;
+      if (!icr_) icr_.emplace(std::max(1, static_cast<int>(std::lround(1.0 / dt))));
+      icr_->Add({r_ * (dr - dl) / (gauge_ * dt), s.chassis.omega_world.dot(z)});
     }
   }
   previous_ = s;
@@ -51,11 +51,7 @@ void MetricsAccumulator::Add(const RunSample& s, double terrain_height_m) {
 
 RunMetrics MetricsAccumulator::Metrics() const {
   RunMetrics m = m_;
-  // χ on windows of 1 s of samples (docs/physics.md, "ICR calibration").
-  const double mean_dt_s =
-      icr_samples_.empty() ? 1.0 : icr_time_s_ / static_cast<double>(icr_samples_.size());
-  m.icr = estimation::FitIcrExpansion(icr_samples_,
-                                      std::max(1, static_cast<int>(std::lround(1.0 / mean_dt_s))));
+  m.icr = icr_ ? icr_->Fit() : estimation::FitIcrExpansion({});
   if (!has_previous_) m.min_com_height_m = 0.0;
   return m;
 }

@@ -43,14 +43,16 @@ RunMetrics RunKinematicToFolder(const scenario::Scenario& scenario, const fs::pa
 
 }  // namespace
 
-RunMetrics RunToFolder(const scenario::Scenario& scenario, const fs::path& dir) {
-  if (scenario.teach_repeat.enabled) return RunTeachRepeat(scenario, dir);
+RunMetrics RunToFolder(const scenario::Scenario& scenario, const fs::path& dir,
+                       const RunObservers& observers) {
+  if (scenario.teach_repeat.enabled) return RunTeachRepeat(scenario, dir, observers);
   if (scenario.navigation.enabled &&
       scenario.navigation.mode == scenario::NavigationSpec::Mode::kKinematic) {
     return RunKinematicToFolder(scenario, dir);
   }
   ClosedLoopOptions options;
   options.dir = dir;
+  options.observers = observers;
   return ClosedLoop(scenario, std::move(options)).Run();
 }
 

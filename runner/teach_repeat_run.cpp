@@ -51,7 +51,8 @@ std::uintmax_t FolderBytes(const std::filesystem::path& folder) {
 // images are not all held.
 teach_repeat::TeachMap Teach(const scenario::Scenario& scenario, const RobotBuild& robot,
                              const fs::path& dir, const fs::path& map_dir,
-                             std::vector<Eigen::Vector2d>* taught_path) {
+                             std::vector<Eigen::Vector2d>* taught_path,
+                             const RunObservers& observers) {
   scenario::Scenario teach = scenario;
   teach.teach_repeat.enabled = false;
   const scenario::RobotSpec& rs = scenario.robot;
@@ -83,7 +84,7 @@ teach_repeat::TeachMap Teach(const scenario::Scenario& scenario, const RobotBuil
   };
   ClosedLoopOptions loop;
   loop.dir = dir;
-  loop.observers = extra;
+  loop.observers = Chained(extra, observers);
   loop.robot = robot;
   const RunMetrics m = ClosedLoop(teach, std::move(loop)).Run();
   if (!m.completed) throw std::runtime_error("teach pass stopped: " + m.stop_reason);
@@ -294,7 +295,8 @@ teach_repeat::Localizer3dOptions Localizer3dOptionsOf(const scenario::TeachRepea
   return o;
 }
 
-RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& dir) {
+RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& dir,
+                          const RunObservers& observers) {
   scenario.Validate();
   fs::create_directories(dir);
   const scenario::TeachRepeatSpec& tr = scenario.teach_repeat;
@@ -303,7 +305,7 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
   // One robot for both passes (the same as built, calibrated once).
   const RobotBuild robot = BuildRunRobot(scenario);
   if (tr.map.empty()) {
-    map = Teach(scenario, robot, dir / "teach", dir / "teach_map", &taught);
+    map = Teach(scenario, robot, dir / "teach", dir / "teach_map", &taught, observers);
     teach_repeat::SaveTeachMap(map, (dir / "teach_map").string());
     // Repeated from the saved map as a map given by teach_repeat.map would be: its key
     // images and features read milestone by milestone.
@@ -360,7 +362,7 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
   };
   ClosedLoopOptions options;
   options.dir = dir;
-  options.observers = extra;
+  options.observers = Chained(extra, observers);
   options.robot = robot;
   options.commander = std::make_unique<RepeatCommander>(
       repeater.get(), repeat.estimation.icr_expansion * repeat.robot.vehicle.track_gauge_m,

@@ -285,6 +285,9 @@ void OutputsSpec::Validate() const {
   if (save_images != "none" && save_images != "kitti") {
     throw OptionError("save_images", "must be none or kitti (got '" + save_images + "')");
   }
+  if (decimate < 1) {
+    throw OptionError("decimate", "must be >= 1 (got " + std::to_string(decimate) + ")");
+  }
 }
 
 bool Scenario::CarriedOnPosePath(DriveSource drive_source) const {

@@ -162,6 +162,30 @@ TEST(IcrCalibrationTest, NoTurningLeavesChiAtOneWithTheReason) {
   EXPECT_THROW(estimation::FitIcrExpansion({}, 0), std::invalid_argument);
 }
 
+TEST(IcrCalibrationTest, ALongRunKeepsAtMostFortyGroups) {
+  // 100 000 windows of one sample: the fit holds 20–40 groups, and its χ is the one of
+  // the sums.
+  estimation::RunningIcrFit running(1, 0.05);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> rate(0.2, 0.8);
+  double yy = 0.0, yx = 0.0;
+  for (int k = 0; k < 100000; ++k) {
+    const double x = rate(rng), y = 1.3 * x + 0.01 * ((k % 7) - 3);
+    running.Add({y, x});
+    yy += y * y;
+    yx += y * x;
+    EXPECT_LE(running.groups(), 40u);
+  }
+  EXPECT_GE(running.groups(), 20u);
+  const estimation::IcrFit fit = running.Fit();
+  EXPECT_EQ(fit.windows_used, 100000);
+  EXPECT_EQ(fit.chi, yy / yx);
+  EXPECT_GT(fit.chi_stderr, 0.0);
+  EXPECT_LT(fit.chi_stderr, 1e-3);
+  EXPECT_TRUE(fit.identified) << fit.reason;
+  EXPECT_THROW(estimation::RunningIcrFit(0), std::invalid_argument);
+}
+
 // Drives a unicycle with the follower's commands.
 navigation::Pose2 Follow(navigation::PurePursuit& follower, navigation::Pose2 pose,
                          double* max_cross_track, int* steps) {

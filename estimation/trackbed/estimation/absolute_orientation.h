@@ -61,4 +61,28 @@ SimilarityTransform HornAbsoluteOrientationAnyMinimizer(const std::vector<Eigen:
                                                         const std::vector<double>& weights = {},
                                                         bool* unique = nullptr);
 
+/// The moments of a growing set of point pairs (src_i, dst_i), all of weight 1, from which
+/// Horn's solution is exact without keeping the points: the count, both centroids, the
+/// cross-covariance S = Σ src' dst'ᵀ of the centred points and their spreads Σ |src'|²,
+/// Σ |dst'|². Accumulated with Welford's centred updates (Welford 1962; the co-moment form
+/// of Chan, Golub & LeVeque 1983), so that a trajectory far from the origin loses no digits.
+struct PointPairMoments {
+  long long count = 0;
+  Eigen::Vector3d mean_src = Eigen::Vector3d::Zero(), mean_dst = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d S = Eigen::Matrix3d::Zero();  ///< Σ (src − mean_src)(dst − mean_dst)ᵀ
+  double spread_src = 0.0, spread_dst = 0.0;  ///< Σ |src − mean_src|², Σ |dst − mean_dst|²
+
+  void Add(const Eigen::Vector3d& src, const Eigen::Vector3d& dst);
+  /// Σ |dst_i − (s R src_i + t)|² for a transform whose t = mean_dst − s R mean_src (the
+  /// minimiser's): Σ|dst'|² − 2 s tr(R S) + s² Σ|src'|², clamped at 0.
+  double ResidualSquaredSum(const SimilarityTransform& T) const;
+};
+
+/// HornAbsoluteOrientationAnyMinimizer from accumulated moments: the same transform up to
+/// floating-point rounding (the moments are summed in another order). Needs count ≥ 1 (else
+/// std::invalid_argument).
+SimilarityTransform HornAbsoluteOrientationFromMoments(const PointPairMoments& moments,
+                                                       bool with_scale = false,
+                                                       bool* unique = nullptr);
+
 }  // namespace trackbed::estimation

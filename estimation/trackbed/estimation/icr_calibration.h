@@ -38,8 +38,9 @@ struct IcrFit {
   int samples_used = 0;             ///< Samples in the windows used.
   int windows_used = 0;             ///< Windows whose mean encoder yaw rate exceeds the threshold.
   double rms_residual_radps = 0.0;  ///< RMS over those windows of y − χ·x (window means).
-  /// Standard error of χ: delete-a-group jackknife over up to 20 groups of consecutive
-  /// windows; NaN with fewer than two windows (or none fitted).
+  /// Standard error of χ: delete-a-group jackknife over 20–40 groups of consecutive
+  /// windows (one a window below 40 windows; RunningIcrFit); NaN with fewer than two windows (or
+  /// none fitted).
   double chi_stderr = std::numeric_limits<double>::quiet_NaN();
   double turn_rms_radps = 0.0;  ///< RMS of the windows' mean encoder yaw rate.
   /// The rules of IcrIdentification hold.
@@ -61,6 +62,36 @@ struct IcrFit {
 /// second). Throws std::invalid_argument when `window_samples` < 1.
 IcrFit FitIcrExpansion(const std::vector<IcrSample>& samples, int window_samples = 100,
                        double min_yaw_rate_radps = 0.05);
+
+/// FitIcrExpansion sample by sample, in bounded memory (a run of hours): the sums of
+/// the windows used, and for the standard error the sums of at most 40 groups of
+/// consecutive windows (pairs of groups merge when a run fills them, so a long run
+/// keeps 20–40 groups of equal length but the last).
+class RunningIcrFit {
+ public:
+  /// Throws std::invalid_argument when `window_samples` < 1.
+  explicit RunningIcrFit(int window_samples = 100, double min_yaw_rate_radps = 0.05);
+  void Add(const IcrSample& s);
+  IcrFit Fit() const;
+  /// The jackknife's groups held (at most 40 however long the run).
+  std::size_t groups() const { return groups_.size(); }
+
+ private:
+  struct Sums {
+    double yy = 0.0, yx = 0.0, xx = 0.0;
+    int windows = 0;
+    void Add(const Sums& o);
+  };
+  double JackknifeStderr() const;
+
+  int window_samples_;
+  double min_yaw_rate_radps_;
+  double window_y_ = 0.0, window_x_ = 0.0;  // the open window's means so far
+  int in_window_ = 0;
+  Sums total_;
+  std::vector<Sums> groups_;
+  int windows_per_group_ = 1;
+};
 
 /// χ of a skid-steer vehicle turning in place in the rigid-plastic limit: equal
 /// point loads at body x positions `station_x_m` on each side, half track c =

@@ -20,6 +20,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <fstream>
 #include <optional>
 #include <string>
 #include <utility>
@@ -53,6 +54,26 @@ struct LoadedTrajectory {
 /// fields → KITTI; 8 → TUM. Throws std::runtime_error naming the file (and line) if it
 /// cannot be read, has no data line, or the line fits none of these.
 TrajectoryFormat DetectFormat(const std::filesystem::path& path);
+
+/// A TUM file read pose by pose, in the memory of one line (a run folder's `.tum` files
+/// of hours). The same checks and messages as ReadTrajectory's TUM reading.
+class TumReader {
+ public:
+  /// Throws std::runtime_error naming the file if it cannot be opened.
+  explicit TumReader(const std::filesystem::path& path);
+  /// The next pose; false at the end of the file. Throws std::runtime_error with
+  /// `file:line: reason` for a malformed line.
+  bool Next(StampedPose* pose);
+  /// True when the file's times are nanoseconds (converted to seconds).
+  bool converted_from_ns() const { return converted_from_ns_; }
+
+ private:
+  std::filesystem::path path_;
+  std::ifstream in_;
+  std::size_t line_ = 0;
+  bool first_ = true;
+  bool converted_from_ns_ = false;
+};
 
 /// Reads a trajectory; `format` overrides detection. `times_path` (KITTI only) names a
 /// times file with one time [s] per pose. Throws std::runtime_error with `file:line:

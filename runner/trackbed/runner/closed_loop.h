@@ -5,6 +5,7 @@
 // at a time: `trackbed run` is a loop over Step().
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -67,6 +68,13 @@ struct StepResult {
   Eigen::Isometry3d T_world_body = Eigen::Isometry3d::Identity();  ///< ground truth at the end
 };
 
+/// Sizes of what a run holds in memory beyond its fixed state (ClosedLoop::held_sizes).
+struct HeldSizes {
+  std::size_t scoring_window_poses = 0;  ///< poses in the estimator scores' 10 m windows
+  std::size_t plot_points = 0;           ///< points of every plot path and series
+  std::size_t largest_plot_series = 0;   ///< points of the largest one
+};
+
 /// One closed-loop run. Not copyable. Start() once, Step() until done(), Finish() once.
 /// A simulation that diverges (NaN, chassis through the ground) ends the run early with
 /// completed = false and the reason, keeping what was measured until then. Any
@@ -93,6 +101,9 @@ class ClosedLoop {
   /// The robot's localization stack, up to date with every sample taken so far; null
   /// when estimation is off. Valid until the next Step() or Finish().
   const estimation::LocalizationStack* localization();
+  /// What the run holds that a longer run could make larger (tests of long runs):
+  /// the scores' drift windows and the plots' points. Between Start() and Finish().
+  HeldSizes held_sizes();
   /// Scores `T_world_body` as estimator `name`'s estimate at the loop's current time
   /// (the end of the last Step(), or t = 0 after Start()) against ground truth then,
   /// beside the stack's estimators: metrics.json `estimators.<name>`, `<name>.tum` and

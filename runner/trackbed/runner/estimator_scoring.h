@@ -1,15 +1,17 @@
 // Scores the localization stack's estimators, and estimators reported from outside
 // the loop, against ground truth as a run goes (definitions: docs/run_folder.md):
-// every estimate is paired with the true pose at the same simulation time.
+// every estimate is paired with the true pose at the same simulation time, and added to
+// running sums and a window of the last 10 m (estimation::RunningTrajectoryScore), so that
+// the memory does not grow with the run's length.
 #pragma once
 
+#include <cstddef>
 #include <map>
 #include <string>
-#include <vector>
 
 #include <Eigen/Geometry>
 
-#include "trackbed/estimation/trajectory.h"
+#include "trackbed/estimation/running_trajectory_score.h"
 
 namespace trackbed::runner {
 
@@ -58,15 +60,14 @@ class EstimatorScoring {
   /// the run's true path length.
   std::map<std::string, EstimatorMetrics> Metrics(double distance_m) const;
   LocalizationSummary Summary() const;
-  bool empty() const { return truth_.empty(); }
+  bool empty() const { return wheel_.count() == 0; }
+  /// Poses held in all the scores' drift windows (bounded by 10 m of path each).
+  std::size_t window_size() const;
 
  private:
-  estimation::Trajectory truth_, wheel_, wheel_noslip_, fused_, ekf_;
-  estimation::Trajectory vo_truth_, vo_;
-  struct Track {
-    estimation::Trajectory truth, estimate;
-  };
-  std::map<std::string, Track> external_;  // name → its estimates and the truth then
+  using Running = estimation::RunningTrajectoryScore;
+  Running wheel_, wheel_noslip_, fused_, ekf_, vo_;
+  std::map<std::string, Running> external_;  // name → its estimates against the truth then
   bool has_camera_ = false;
   long long vo_failures_ = 0, vo_constrained_ = 0, vo_coasted_ = 0, blackout_frames_ = 0;
   double inliers_sum_ = 0.0, w_sum_ = 0.0;

@@ -33,6 +33,9 @@ class RunFolderWriter {
   void WriteCalibration(const scenario::Scenario& scenario, const RobotBuild& robot);
   /// The observers that write the logs; they refer to this writer.
   RunObservers observers();
+  /// Points the plots hold so far, in all their paths and series, and in the largest.
+  std::size_t plot_points() const;
+  std::size_t largest_plot_series() const;
   /// Closes the logs, draws the plots and writes metrics.json.
   void Close(const scenario::Scenario& scenario, const RunMetrics& metrics);
 

@@ -135,8 +135,9 @@ class MetricsAccumulator {
   bool has_previous_ = false;
   RunSample previous_;
   RunMetrics m_;
-  std::vector<estimation::IcrSample> icr_samples_;
-  double icr_time_s_ = 0.0;  // the time icr_samples_ span
+  // χ from running sums, its windows 1 s long at the first sample interval's rate
+  // (docs/physics.md, "ICR calibration").
+  std::optional<estimation::RunningIcrFit> icr_;
 };
 
 }  // namespace trackbed::runner

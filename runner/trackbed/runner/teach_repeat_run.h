@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "trackbed/runner/run_metrics.h"
+#include "trackbed/runner/run_observers.h"
 #include "trackbed/scenario/scenario.h"
 #include "trackbed/teach_repeat/funnel_lane_controller.h"
 #include "trackbed/teach_repeat/milestone_builder.h"
@@ -17,8 +18,10 @@ namespace trackbed::runner {
 
 /// Teaches (unless teach_repeat.map names a map to load) and repeats `scenario` into
 /// `dir`. A map loaded this way is scored against the taught ground truth in the
-/// teach/ folder beside it when there is one.
-RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const std::filesystem::path& dir);
+/// teach/ folder beside it when there is one. `observers` are called in both passes,
+/// after the run's own (the repeat pass's times start again from 0).
+RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const std::filesystem::path& dir,
+                          const RunObservers& observers = {});
 
 /// The options a run of `tr` builds, from the section's structs: the teach pass's
 /// milestones (mode: `method`) …

@@ -467,6 +467,10 @@ struct OutputsSpec {
   /// Whether the bag also holds the camera images (PNG, as the stack receives them),
   /// which the run then saves in camera/ (needs mcap and robot.stereo.enabled).
   bool mcap_images = false;
+  /// Keep every N-th row of the high-rate logs (the encoder-rate files and imu.csv;
+  /// docs/run_folder.md), N >= 1; 1 keeps every row. The metrics and plots use every
+  /// sample whatever N.
+  int decimate = 1;
 
   void Validate() const;
 
@@ -477,6 +481,7 @@ struct OutputsSpec {
     a->Visit("save_images", &save_images);
     a->Visit("mcap", &mcap);
     a->Visit("mcap_images", &mcap_images);
+    a->Visit("decimate", &decimate);
   }
 };
 
