@@ -458,6 +458,7 @@ HeldSizes ClosedLoop::Impl::held_sizes() {
   if (worker_) worker_->Drain();  // the scores are then up to date
   HeldSizes h;
   h.scoring_window_poses = estimates_.window_size();
+  if (metrics_) h.icr_fit_groups = metrics_->icr_fit_groups();
   if (folder_) {
     h.plot_points = folder_->plot_points();
     h.largest_plot_series = folder_->largest_plot_series();

@@ -48,11 +48,14 @@ TEST(SoakTest, FortyMinutesOfTheParkHoldBoundedScoresAndPlots) {
     EXPECT_GT(h.scoring_window_poses, 3u * 2000u);
     EXPECT_LT(h.scoring_window_poses, 3u * 4000u);
     EXPECT_LT(h.largest_plot_series, kPlotCapacity);
+    EXPECT_LE(h.icr_fit_groups, 40u);
   }
   // The plots filled up (20000 points of 10 Hz at 2000 s) and were thinned: 40 minutes
   // hold fewer points than 20.
   EXPECT_EQ(sizes[4].largest_plot_series, 12001u);  // 1200 s at 10 Hz, t = 0 included
   EXPECT_LT(sizes.back().largest_plot_series, sizes[7].largest_plot_series);
+  // The park's loop turns at every corner: the ICR fit's groups filled and merged.
+  EXPECT_GE(sizes.back().icr_fit_groups, 20u);
   fs::remove_all(dir);
 }
 

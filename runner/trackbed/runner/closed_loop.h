@@ -73,6 +73,7 @@ struct HeldSizes {
   std::size_t scoring_window_poses = 0;  ///< poses in the estimator scores' 10 m windows
   std::size_t plot_points = 0;           ///< points of every plot path and series
   std::size_t largest_plot_series = 0;   ///< points of the largest one
+  std::size_t icr_fit_groups = 0;        ///< the ICR fit's jackknife groups (at most 40)
 };
 
 /// One closed-loop run. Not copyable. Start() once, Step() until done(), Finish() once.

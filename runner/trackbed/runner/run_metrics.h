@@ -128,6 +128,8 @@ class MetricsAccumulator {
   void Add(const RunSample& sample, double terrain_height_m);
   /// The metrics so far (wall time, completion and reason left to the caller).
   RunMetrics Metrics() const;
+  /// The ICR fit's jackknife groups held (estimation::RunningIcrFit::groups).
+  std::size_t icr_fit_groups() const { return icr_ ? icr_->groups() : 0; }
 
  private:
   double r_, gauge_;
