@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "command_errors.h"
 #include "trackbed/estimation/per_distance.h"
 #include "trackbed/estimation/trajectory_io.h"
 #include "trackbed/estimation/trajectory_metrics.h"
@@ -373,17 +374,7 @@ void AddEvalCommand(CLI::App& app) {
   eval->add_option("--delta-unit", args->delta_unit, "RPE spacing unit: frames|m")
       ->capture_default_str();
   eval->add_flag("--json", args->json, "Print JSON instead of the table");
-  eval->callback([args]() {
-    try {
-      RunEval(*args, std::cout);
-      std::cout.flush();
-    } catch (const std::exception& e) {
-      std::cout.flush();
-      std::cerr << "trackbed eval: " << e.what() << std::endl;
-      throw CLI::RuntimeError(2);
-    }
-    throw CLI::RuntimeError(0);
-  });
+  eval->callback([args]() { RunCommand("eval", [&] { RunEval(*args, std::cout); }); });
 }
 
 }  // namespace trackbed::apps

@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "command_errors.h"
 #include "trackbed/runner/run_bag.h"
 
 namespace trackbed::apps {
@@ -17,18 +18,14 @@ void AddExportMcapCommand(CLI::App& app) {
       "export-mcap", "Write a finished run folder as a ROS 2 bag: run.mcap and metadata.yaml");
   exporter->add_option("run_dir", *dir, "Run folder (the --out of `trackbed run`)")->required();
   exporter->callback([dir]() {
-    try {
+    RunCommand("export-mcap", [&] {
       if (!std::filesystem::exists(std::filesystem::path(*dir) / "scenario.yaml")) {
         throw std::runtime_error(*dir + ": not a run folder (no scenario.yaml)");
       }
       const runner::RunBagSummary s = runner::WriteRunBag(*dir);
       std::cout << "trackbed export-mcap: " << s.messages << " messages on "
                 << s.messages_per_topic.size() << " topics -> " << *dir << "/run.mcap" << std::endl;
-    } catch (const std::exception& e) {
-      std::cerr << "trackbed export-mcap: " << e.what() << std::endl;
-      throw CLI::RuntimeError(2);
-    }
-    throw CLI::RuntimeError(0);
+    });
   });
 }
 

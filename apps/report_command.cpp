@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include "command_errors.h"
 #include "trackbed/experiments/expectation_checks.h"
 
 namespace trackbed::apps {
@@ -20,7 +21,7 @@ void AddReportCommand(CLI::App& app) {
       "from its cell files");
   report->add_option("dir", *dir, "Sweep folder (the --out of `trackbed sweep`)")->required();
   report->callback([dir]() {
-    try {
+    RunCommand("report", [&] {
       const experiments::SweepVerdict verdict = experiments::ReportSweep(*dir);
       const experiments::SweepCounts& n = verdict.cells;
       std::cout << "trackbed report: " << n.total() << " cells (" << n.ok << " ok, " << n.failed
@@ -29,11 +30,7 @@ void AddReportCommand(CLI::App& app) {
       for (const std::string& f : verdict.expectations.failed) {
         std::cout << "trackbed report: expectation failed: " << f << "\n";
       }
-    } catch (const std::exception& e) {
-      std::cerr << "trackbed report: " << e.what() << std::endl;
-      throw CLI::RuntimeError(2);
-    }
-    throw CLI::RuntimeError(0);
+    });
   });
 }
 

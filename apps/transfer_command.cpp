@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "command_errors.h"
 #include "trackbed/experiments/transfer_files.h"
 #include "trackbed/experiments/transfer_study.h"
 
@@ -62,15 +63,7 @@ void AddTransferCommand(CLI::App& app) {
                   "(default 1.5)");
   cmd->add_flag("--higher-is-better", args->options.higher_is_better,
                 "A higher outcome is better (success rates); default: lower (errors)");
-  cmd->callback([args]() {
-    try {
-      RunTransfer(*args);
-    } catch (const std::exception& e) {
-      std::cerr << "trackbed transfer: " << e.what() << "\n";
-      throw CLI::RuntimeError(2);
-    }
-    throw CLI::Success();
-  });
+  cmd->callback([args]() { RunCommand("transfer", [&] { RunTransfer(*args); }); });
 }
 
 }  // namespace trackbed::apps

@@ -15,6 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "command_errors.h"
 #include "trackbed/common/archive.h"
 #include "trackbed/estimation/absolute_orientation.h"
 #include "trackbed/estimation/per_distance.h"
@@ -310,15 +311,7 @@ void AddVoCommand(CLI::App& app) {
   vo->add_option("--set", args->sets,
                  "KEY=VALUE: one VO option by its key under a scenario's estimation.vo "
                  "(tracker.window_px=21, ransac.threshold_px=1), after --config; repeatable");
-  vo->callback([args]() {
-    try {
-      RunVo(*args);
-    } catch (const std::exception& e) {
-      std::cerr << "trackbed vo: " << e.what() << "\n";
-      throw CLI::RuntimeError(2);
-    }
-    throw CLI::Success();
-  });
+  vo->callback([args]() { RunCommand("vo", [&] { RunVo(*args); }); });
 }
 
 }  // namespace trackbed::apps

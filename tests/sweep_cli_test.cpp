@@ -55,17 +55,19 @@ nlohmann::json CellJson(const fs::path& sweep, const std::string& cell) {
   return nlohmann::json::parse(Slurp(sweep / "cells" / cell / "cell.json"));
 }
 
-// A sweep of the paper's navigation scene over four methods, one of them unknown.
-fs::path WriteNavigationSweep(const fs::path& dir) {
-  const fs::path file = dir / "nav.yaml";
-  std::ofstream(file) << "name: nav\n"
+// A sweep of the paper's navigation scene over `methods` (by default four, one of them
+// unknown), written to dir/NAME.yaml.
+fs::path WriteNavigationSweep(
+    const fs::path& dir, const std::string& name = "nav",
+    const std::string& methods = "gauss_newton_subgoal, potential_field, teleport, dwa") {
+  const fs::path file = dir / (name + ".yaml");
+  std::ofstream(file) << "name: " << name << "\n"
                       << "scenarios: [" << (kSource / "scenes/nav_paper_left.yaml").string()
                       << "]\n"
                       << "seeds: [1]\n"
                       << "set: [\"duration_s=30\"]\n"
                       << "vary:\n"
-                      << "  - {key: navigation.method, values: [gauss_newton_subgoal, "
-                         "potential_field, teleport, dwa]}\n";
+                      << "  - {key: navigation.method, values: [" << methods << "]}\n";
   return file;
 }
 
@@ -422,15 +424,8 @@ std::size_t MinutesSecondsAt(const std::string& s, std::size_t at) {
 
 TEST(SweepCliTest, TheBarOnATerminalShowsTheTimeLeft) {
   const fs::path dir = TempDir("bar");
-  const fs::path file = dir / "nav3.yaml";
-  std::ofstream(file) << "name: nav3\n"
-                      << "scenarios: [" << (kSource / "scenes/nav_paper_left.yaml").string()
-                      << "]\n"
-                      << "seeds: [1]\n"
-                      << "set: [\"duration_s=30\"]\n"
-                      << "vary:\n"
-                      << "  - {key: navigation.method, values: [gauss_newton_subgoal, "
-                         "potential_field, dwa]}\n";
+  const fs::path file =
+      WriteNavigationSweep(dir, "nav3", "gauss_newton_subgoal, potential_field, dwa");
   const std::string out =
       OnATerminal({"sweep", file.string(), "--out", (dir / "sweep").string(), "--jobs", "1"});
   // Before any cell has finished there is no pace to go by.
