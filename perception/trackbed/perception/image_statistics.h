@@ -8,7 +8,7 @@
 //   fast_corners        cv::FastFeatureDetector (threshold 20, non-maximum suppression,
 //                       TYPE_9_16) run on the whole image, corners counted by the band
 //                       their row falls in (detecting on band crops instead loses the
-//                       3-pixel border of every band: 3–6 % fewer per band on KITTI 06);
+//                       3-pixel border of every band: 4–6 % fewer per band on KITTI 06);
 //   shi_tomasi_corners  cv::goodFeaturesToTrack on the whole image (at most 2000,
 //                       quality 0.01, minimum distance 5 px, 3×3 block, no Harris),
 //                       counted per band;
