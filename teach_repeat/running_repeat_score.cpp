@@ -110,4 +110,27 @@ RepeatPathMetrics RunningRepeatScore::Metrics(bool completed) const {
   return m;
 }
 
+std::vector<PathProjection> ProjectOntoPath(const std::vector<Eigen::Vector2d>& taught,
+                                            const std::vector<Eigen::Vector2d>& repeated,
+                                            const PathProjectionOptions& options) {
+  options.Validate();
+  if (taught.empty()) throw std::invalid_argument("ProjectOntoPath: the taught path is empty");
+  RunningRepeatScore score(taught, options);
+  std::vector<PathProjection> out;
+  out.reserve(repeated.size());
+  for (const Eigen::Vector2d& p : repeated) out.push_back(score.Add(p));
+  return out;
+}
+
+RepeatPathMetrics EvaluateRepeatPath(const std::vector<Eigen::Vector2d>& taught,
+                                     const std::vector<Eigen::Vector2d>& repeated, bool completed,
+                                     const PathProjectionOptions& options) {
+  if (taught.empty() || repeated.empty()) {
+    throw std::invalid_argument("EvaluateRepeatPath: taught and repeated paths must be non-empty");
+  }
+  RunningRepeatScore score(taught, options);
+  for (const Eigen::Vector2d& p : repeated) score.Add(p);
+  return score.Metrics(completed);
+}
+
 }  // namespace trackbed::teach_repeat

@@ -8,7 +8,6 @@
 #include <string>
 
 #include "trackbed/common/option_error.h"
-#include "trackbed/teach_repeat/running_repeat_score.h"
 
 namespace trackbed::teach_repeat {
 namespace {
@@ -23,29 +22,6 @@ double PolylineLength(const std::vector<Eigen::Vector2d>& path) {
   double length = 0.0;
   for (std::size_t i = 1; i < path.size(); ++i) length += (path[i] - path[i - 1]).norm();
   return length;
-}
-
-std::vector<PathProjection> ProjectOntoPath(const std::vector<Eigen::Vector2d>& taught,
-                                            const std::vector<Eigen::Vector2d>& repeated,
-                                            const PathProjectionOptions& options) {
-  options.Validate();
-  if (taught.empty()) throw std::invalid_argument("ProjectOntoPath: the taught path is empty");
-  RunningRepeatScore score(taught, options);
-  std::vector<PathProjection> out;
-  out.reserve(repeated.size());
-  for (const Eigen::Vector2d& p : repeated) out.push_back(score.Add(p));
-  return out;
-}
-
-RepeatPathMetrics EvaluateRepeatPath(const std::vector<Eigen::Vector2d>& taught,
-                                     const std::vector<Eigen::Vector2d>& repeated, bool completed,
-                                     const PathProjectionOptions& options) {
-  if (taught.empty() || repeated.empty()) {
-    throw std::invalid_argument("EvaluateRepeatPath: taught and repeated paths must be non-empty");
-  }
-  RunningRepeatScore score(taught, options);
-  for (const Eigen::Vector2d& p : repeated) score.Add(p);
-  return score.Metrics(completed);
 }
 
 RecoveryMetrics EvaluateRecovery(const std::vector<RecoveryCounts>& places) {

@@ -3,7 +3,7 @@
 // projection of teach_repeat_metrics.h) and only sums, the largest values and the
 // positions of the end window are held, so that an hour's repeat does not keep its
 // 360 000 positions. The figures are the batch function's bit for bit: the same sums
-// in the same order (EvaluateRepeatPath is this class given every position).
+// in the same order (EvaluateRepeatPath, below, is this class given every position).
 //
 // The taught path is held whole (its positions and their arc lengths, 24 B a point): it
 // is the reference every position is scored against, and grows with the route taught,
@@ -53,5 +53,17 @@ class RunningRepeatScore {
   std::vector<PathProjection> end_;  // in time order; some may have fallen behind
   std::size_t end_compacted_size_ = 0;
 };
+
+/// Progressive projection of `repeated` onto `taught` (see the file comment). Throws
+/// std::invalid_argument for an empty taught path; OptionError for bad options.
+std::vector<PathProjection> ProjectOntoPath(const std::vector<Eigen::Vector2d>& taught,
+                                            const std::vector<Eigen::Vector2d>& repeated,
+                                            const PathProjectionOptions& options = {});
+
+/// Scores `repeated` (ground-truth positions of the repeat up to its end or failure, in
+/// time order) against `taught`. Throws std::invalid_argument if either is empty.
+RepeatPathMetrics EvaluateRepeatPath(const std::vector<Eigen::Vector2d>& taught,
+                                     const std::vector<Eigen::Vector2d>& repeated, bool completed,
+                                     const PathProjectionOptions& options = {});
 
 }  // namespace trackbed::teach_repeat
