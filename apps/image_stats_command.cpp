@@ -55,7 +55,7 @@ constexpr Column kColumns[] = {
     {"track share", &perception::BandStatistics::track_share, "%10.3f", "track_share"},
 };
 
-std::string Format(const char* format, double value) {
+std::string FormatCell(const char* format, double value) {
   if (!std::isfinite(value)) return "       n/a";
   char buf[32];
   std::snprintf(buf, sizeof(buf), format, value);
@@ -81,7 +81,7 @@ void PrintTables(const std::vector<Measured>& measured, int bands) {
     for (const Measured& m : measured) {
       std::printf("%-*s", static_cast<int>(width), m.folder.c_str());
       for (const perception::BandStatistics& band : m.statistics.bands) {
-        std::printf("%s", Format(c.format, band.*(c.field)).c_str());
+        std::printf("%s", FormatCell(c.format, band.*(c.field)).c_str());
       }
       std::printf("\n");
     }

@@ -18,7 +18,7 @@ namespace {
 constexpr int kMinBandRows = 8;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-void CheckImage(const cv::Mat& gray, const char* function) {
+void CheckGrayImage(const cv::Mat& gray, const char* function) {
   if (gray.empty() || gray.type() != CV_8UC1) {
     throw std::invalid_argument(std::string(function) + ": needs a non-empty CV_8UC1 image");
   }
@@ -139,7 +139,7 @@ std::vector<cv::Range> BandRows(int rows, int bands) {
 }
 
 double SpectrumSlope(const cv::Mat& gray, const ImageStatisticsOptions& options) {
-  CheckImage(gray, "SpectrumSlope");
+  CheckGrayImage(gray, "SpectrumSlope");
   options.Validate();
   if (gray.rows < kMinBandRows || gray.cols < kMinBandRows) {
     throw std::invalid_argument("SpectrumSlope: needs at least 8 x 8 pixels");
@@ -179,7 +179,7 @@ double SpectrumSlope(const cv::Mat& gray, const ImageStatisticsOptions& options)
 
 std::vector<BandStatistics> MeasureImage(const cv::Mat& gray, const cv::Mat& next,
                                          const ImageStatisticsOptions& options) {
-  CheckImage(gray, "MeasureImage");
+  CheckGrayImage(gray, "MeasureImage");
   options.Validate();
   if (!next.empty() && (next.size() != gray.size() || next.type() != CV_8UC1)) {
     throw std::invalid_argument("MeasureImage: the next image must be CV_8UC1 of the same size");

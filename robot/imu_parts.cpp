@@ -11,11 +11,9 @@
 namespace trackbed::robot {
 namespace {
 
-constexpr double kStandardGravity = 9.80665;  // [m/s²], per g of a data sheet
-
 double DegPerHour(double v) { return units::Radians(v) / 3600.0; }
 double DegPerSecondPerRootHz(double v) { return units::Radians(v); }
-double MicroG(double v) { return v * 1e-6 * kStandardGravity; }
+double MicroG(double v) { return v * 1e-6 * units::kStandardGravity; }
 
 // scripts/imu_gauss_markov_fit.py: least squares of the summed Allan variance of four
 // Gauss–Markov terms (τ = 1, 10, 100, 1000 s) on a flat floor over τ = 1–3000 s.
