@@ -11,18 +11,13 @@
 
 #include "trackbed/common/option_error.h"
 #include "trackbed/perception/feature_tracker.h"
+#include "trackbed/perception/opencv_views.h"
 
 namespace trackbed::perception {
 namespace {
 
 constexpr int kMinBandRows = 8;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-void CheckGrayImage(const cv::Mat& gray, const char* function) {
-  if (gray.empty() || gray.type() != CV_8UC1) {
-    throw std::invalid_argument(std::string(function) + ": needs a non-empty CV_8UC1 image");
-  }
-}
 
 // Which band row y falls in, or -1 (below the last band).
 int BandOf(float y, const std::vector<cv::Range>& rows) {
@@ -139,7 +134,7 @@ std::vector<cv::Range> BandRows(int rows, int bands) {
 }
 
 double SpectrumSlope(const cv::Mat& gray, const ImageStatisticsOptions& options) {
-  CheckGrayImage(gray, "SpectrumSlope");
+  CheckGray8(gray, "SpectrumSlope");
   options.Validate();
   if (gray.rows < kMinBandRows || gray.cols < kMinBandRows) {
     throw std::invalid_argument("SpectrumSlope: needs at least 8 x 8 pixels");
@@ -179,7 +174,7 @@ double SpectrumSlope(const cv::Mat& gray, const ImageStatisticsOptions& options)
 
 std::vector<BandStatistics> MeasureImage(const cv::Mat& gray, const cv::Mat& next,
                                          const ImageStatisticsOptions& options) {
-  CheckGrayImage(gray, "MeasureImage");
+  CheckGray8(gray, "MeasureImage");
   options.Validate();
   if (!next.empty() && (next.size() != gray.size() || next.type() != CV_8UC1)) {
     throw std::invalid_argument("MeasureImage: the next image must be CV_8UC1 of the same size");

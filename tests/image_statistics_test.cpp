@@ -17,6 +17,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "real_data.h"
+#include "textured_images.h"
 #include "trackbed/common/option_error.h"
 #include "trackbed/perception/image_sequence_statistics.h"
 
@@ -59,29 +60,8 @@ cv::Mat PowerLawNoise(int width, int height, double alpha, std::uint64_t seed) {
   return image;
 }
 
-// Texture with detail at two scales (as the tracker's tests use), 0..255, float.
-cv::Mat Texture(int width, int height, std::uint64_t seed) {
-  cv::RNG rng(seed);
-  cv::Mat fine(height, width, CV_32F), coarse(height, width, CV_32F);
-  rng.fill(fine, cv::RNG::UNIFORM, 0.0, 1.0);
-  rng.fill(coarse, cv::RNG::UNIFORM, 0.0, 1.0);
-  cv::GaussianBlur(fine, fine, cv::Size(0, 0), 1.5);
-  cv::GaussianBlur(coarse, coarse, cv::Size(0, 0), 6.0);
-  cv::normalize(fine, fine, 0.0, 1.0, cv::NORM_MINMAX);
-  cv::normalize(coarse, coarse, 0.0, 1.0, cv::NORM_MINMAX);
-  cv::Mat texture;
-  cv::normalize(fine + coarse, texture, 0.0, 255.0, cv::NORM_MINMAX);
-  return texture;
-}
-
-// `texture` moved by (dx, dy) px and quantised to 8 bits.
-cv::Mat Shifted(const cv::Mat& texture, double dx, double dy) {
-  const cv::Mat M = (cv::Mat_<double>(2, 3) << 1.0, 0.0, dx, 0.0, 1.0, dy);
-  cv::Mat moved, out;
-  cv::warpAffine(texture, moved, M, texture.size(), cv::INTER_CUBIC, cv::BORDER_REFLECT_101);
-  moved.convertTo(out, CV_8U);
-  return out;
-}
+using testing_images::Shifted;
+using testing_images::Texture;
 
 TEST(ImageStatisticsTest, BandsAreEqualRowsFromTheTop) {
   const std::vector<cv::Range> kitti = BandRows(370, 4);  // the last 2 rows in no band
