@@ -199,6 +199,10 @@ LocalizationFrameReport LocalizationStack::ProcessStereoFrame(double t_s, const 
     // The left camera's motion, expressed as the body's motion.
     const Eigen::Isometry3d T_body_motion =
         T_body_left_ * report.vo.T_prev_curr * T_body_left_.inverse();
+    report.vo_body_motion = T_body_motion;
+    if (report.vo.covariance_valid) {
+      report.vo_body_covariance = TransformMotionCovariance(report.vo.covariance, T_body_left_);
+    }
     const geometry::Pose2 planar_before = geometry::PlanarPose(T_world_body_vo_);
     T_world_body_vo_ = T_world_body_vo_ * T_body_motion;
     // The planar motion is the change of the 3-D pose's planar projection, not the

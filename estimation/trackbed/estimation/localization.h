@@ -112,6 +112,13 @@ struct LocalizationFrameReport {
   double w = 1.0;                  ///< Weight of wheel odometry applied in this step.
   double w_rule = 1.0;             ///< The rule base's weight for this frame alone.
   TrackSlip slip;                  ///< Estimated slip of both tracks.
+  /// VO's motion as the body's: T_prev_curr of the body (p_prev = T · p_curr), and the
+  /// covariance of the left increment of its inverse (curr from prev) in the current
+  /// body's axes [m², m·rad, rad²] (VoFrameResult::covariance carried by the camera's
+  /// mounting, TransformMotionCovariance). Identity and zero unless vo_valid;
+  /// the covariance is zero also where VO's is not valid.
+  Eigen::Isometry3d vo_body_motion = Eigen::Isometry3d::Identity();
+  MotionCovarianceMatrix vo_body_covariance = MotionCovarianceMatrix::Zero();
 };
 
 /// Runs the estimators side by side. Every estimator starts at the robot's
