@@ -101,6 +101,27 @@ InputStatus StampStatus(double t_s, bool has_last, double last_s) {
 
 }  // namespace
 
+namespace {
+
+/// The covariance of a VO frame's planar increment (x, y, yaw in the previous pose's
+/// heading frame) from the body motion's: the body's motion curr-from-prev is off by
+/// the left increment (ρ, φ) in the current body's axes, so T_prev_curr is off by
+/// (−R_pc·ρ, −R_pc·φ) in the previous body's, carried into the heading frame (the
+/// previous body's world rotation without its yaw). To first order: x, y from the
+/// translation, yaw from the rotation's vertical component.
+Eigen::Matrix3d PlanarCovariance(const MotionCovarianceMatrix& body_covariance,
+                                 const Eigen::Isometry3d& T_world_body_prev, double yaw_prev,
+                                 const Eigen::Isometry3d& T_prev_curr) {
+  const Eigen::Matrix3d M = Eigen::AngleAxisd(-yaw_prev, Eigen::Vector3d::UnitZ()).matrix() *
+                            T_world_body_prev.linear() * T_prev_curr.linear();
+  Eigen::Matrix<double, 3, 6> J = Eigen::Matrix<double, 3, 6>::Zero();
+  J.block<2, 3>(0, 0) = M.topRows<2>();
+  J.block<1, 3>(2, 3) = M.row(2);
+  return J * body_covariance * J.transpose();
+}
+
+}  // namespace
+
 InputStatus LocalizationStack::AddImuSample(double t_s, const Eigen::Vector3d& gyro_radps,
                                             const Eigen::Vector3d& accel_mps2) {
   if (!gyro_radps.allFinite() || !accel_mps2.allFinite()) {
@@ -195,15 +216,18 @@ LocalizationFrameReport LocalizationStack::ProcessStereoFrame(double t_s, const 
   gyro_since_frame_ = false;
   report.vo_valid = report.vo.status == VoStatus::kOk;
   std::optional<geometry::Pose2> vo_increment;
+  std::optional<Eigen::Matrix3d> vo_planar_covariance;
   if (report.vo_valid) {
     // The left camera's motion, expressed as the body's motion.
     const Eigen::Isometry3d T_body_motion =
         T_body_left_ * report.vo.T_prev_curr * T_body_left_.inverse();
     report.vo_body_motion = T_body_motion;
+    const geometry::Pose2 planar_before = geometry::PlanarPose(T_world_body_vo_);
     if (report.vo.covariance_valid) {
       report.vo_body_covariance = TransformMotionCovariance(report.vo.covariance, T_body_left_);
+      vo_planar_covariance = PlanarCovariance(report.vo_body_covariance, T_world_body_vo_,
+                                              planar_before.yaw, T_body_motion);
     }
-    const geometry::Pose2 planar_before = geometry::PlanarPose(T_world_body_vo_);
     T_world_body_vo_ = T_world_body_vo_ * T_body_motion;
     // The planar motion is the change of the 3-D pose's planar projection, not the
     // planar part of the 3-D increment: on tilted ground the body's x axis is not
@@ -231,7 +255,8 @@ LocalizationFrameReport LocalizationStack::ProcessStereoFrame(double t_s, const 
   }
   // Only a measured motion enters the EKF; after a failed or coasted frame the next
   // motion starts from here.
-  ekf_.AddCameraFrame(t_s, vo_increment, report.vo.inliers);
+  ekf_.AddCameraFrame(t_s, vo_increment, report.vo.inliers,
+                      vo_planar_covariance ? &*vo_planar_covariance : nullptr);
   report.slip = wheel_.slip();
   report.slip_velocity_mps = report.slip.max_abs_mps();
   report.features = report.vo.inliers;
