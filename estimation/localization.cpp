@@ -156,6 +156,9 @@ InputStatus LocalizationStack::AddGyroSample(double t_s, const Eigen::Vector3d& 
     return status;
   }
   ekf_.AddGyro(t_s, rate_radps.z());
+  if (options_.apply_camera_time_offset && has_gyro_) {
+    gyro_intervals_.push_back({t_gyro_, t_s, rate_radps});
+  }
   if (has_gyro_) {
     // The rate held over the interval since the last sample (body frame: right-multiplied).
     const Eigen::Vector3d phi = rate_radps * (t_s - t_gyro_);
@@ -205,13 +208,29 @@ LocalizationFrameReport LocalizationStack::AddStereoFrame(double t_s, const cv::
   return ProcessStereoFrame(t_s, left, right);
 }
 
+const Eigen::Matrix3d* LocalizationStack::RotationPrior(double t_s, Eigen::Matrix3d* R) {
+  const Eigen::Matrix3d& R_bc = T_body_left_.linear();
+  if (!options_.apply_camera_time_offset) {
+    // The gyro's rotation since the last frame's stamp, in the left camera's frame.
+    *R = R_bc.transpose() * R_gyro_since_frame_ * R_bc;
+    return gyro_since_frame_ ? R : nullptr;
+  }
+  const double t_exposure = t_s + options_.imu.camera_time_offset_s;
+  const bool has_prior = has_exposure_ && !gyro_intervals_.empty() && t_exposure > t_exposure_;
+  if (has_prior) {
+    *R = R_bc.transpose() * IntegrateGyro(gyro_intervals_, t_exposure_, t_exposure) * R_bc;
+  }
+  DropGyroBefore(t_exposure, &gyro_intervals_);
+  t_exposure_ = t_exposure;
+  has_exposure_ = true;
+  return has_prior ? R : nullptr;
+}
+
 LocalizationFrameReport LocalizationStack::ProcessStereoFrame(double t_s, const cv::Mat& left,
                                                               const cv::Mat& right) {
   LocalizationFrameReport report;
-  // The gyro's rotation since the last frame, in the left camera's frame.
-  const Eigen::Matrix3d& R_bc = T_body_left_.linear();
-  const Eigen::Matrix3d R_prior = R_bc.transpose() * R_gyro_since_frame_ * R_bc;
-  report.vo = vo_->Process(left, right, t_s, gyro_since_frame_ ? &R_prior : nullptr);
+  Eigen::Matrix3d R_prior;
+  report.vo = vo_->Process(left, right, t_s, RotationPrior(t_s, &R_prior));
   R_gyro_since_frame_.setIdentity();
   gyro_since_frame_ = false;
   report.vo_valid = report.vo.status == VoStatus::kOk;
