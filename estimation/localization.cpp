@@ -99,10 +99,6 @@ InputStatus StampStatus(double t_s, bool has_last, double last_s) {
   return InputStatus::kUsed;
 }
 
-}  // namespace
-
-namespace {
-
 /// The covariance of a VO frame's planar increment (x, y, yaw in the previous pose's
 /// heading frame) from the body motion's: the body's motion curr-from-prev is off by
 /// the left increment (ρ, φ) in the current body's axes, so T_prev_curr is off by
@@ -156,7 +152,7 @@ InputStatus LocalizationStack::AddGyroSample(double t_s, const Eigen::Vector3d& 
     return status;
   }
   ekf_.AddGyro(t_s, rate_radps.z());
-  if (options_.apply_camera_time_offset && has_gyro_) {
+  if (options_.apply_camera_time_offset && vo_ && has_gyro_) {
     gyro_intervals_.push_back({t_gyro_, t_s, rate_radps});
   }
   if (has_gyro_) {
