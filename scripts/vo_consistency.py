@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Visual odometry's consistency over run folders: per frame with a motion, the
 normalised estimation error squared (NEES) of VO's body motion against the ground
-truth's, with VO's own covariance (`vo_covariance.csv`, docs/run_folder.md), no scale
-factor fitted:
+truth's between the two frames' exposures (stamp plus the camera–IMU time offset as
+built, `ground_truth_calibration.json`), with VO's own covariance
+(`vo_covariance.csv`, docs/run_folder.md), no scale factor fitted:
 
     ε = (ρ, φ) with  T_true = (Exp(φ), ρ) ∘ T_vo   (the body's motion, curr from prev)
     NEES = εᵀ Σ⁻¹ ε,  6 degrees of freedom
@@ -16,6 +17,7 @@ translation and rotation blocks alone (3 degrees of freedom each).
 """
 import bisect
 import csv
+import json
 import math
 import pathlib
 import statistics
@@ -131,9 +133,20 @@ def truth_at(times, poses, t):
     return pose(R, [(1 - s) * a + s * b for a, b in zip(ta, tb)])
 
 
+def exposure_offset(folder):
+    """The camera–IMU time offset as built (ground_truth_calibration.json): a frame
+    stamped t was exposed at t + offset, so VO measures the motion between exposures."""
+    try:
+        with open(folder / "ground_truth_calibration.json") as f:
+            return float(json.load(f)["imu"]["camera_time_offset_s"])
+    except (OSError, KeyError, ValueError):
+        return 0.0
+
+
 def frame_errors(folder):
     """(ε, Σ) per frame with a motion in one run folder."""
     times, poses = read_truth(folder)
+    offset = exposure_offset(folder)
     out = []
     prev_t = None
     with open(folder / "vo_covariance.csv") as f:
@@ -143,7 +156,8 @@ def frame_errors(folder):
             if status == "not_processed":
                 continue
             if status == "ok" and row["x_m"] != "" and prev_t is not None:
-                a, b = truth_at(times, poses, prev_t), truth_at(times, poses, t)
+                a = truth_at(times, poses, prev_t + offset)
+                b = truth_at(times, poses, t + offset)
                 if a is not None and b is not None:
                     true_cp = matmul(inverse(b), a)  # the body's motion, curr from prev
                     M = pose(exp_so3([float(row[k]) for k in ("rx_rad", "ry_rad", "rz_rad")]),
