@@ -24,7 +24,8 @@ class BicubicRemap {
   BicubicRemap(const cv::Mat& map_xy, const cv::Mat& map_a, cv::Size source_size);
 
   /// *out = cv::remap(source, map_xy, map_a, INTER_CUBIC, BORDER_CONSTANT, 0), byte for
-  /// byte. `source`: CV_8UC1 of source_size (throws std::invalid_argument otherwise).
+  /// byte. `source`: CV_8UC1 of source_size (throws std::invalid_argument otherwise);
+  /// *out must not share its pixels (it is written as the source is read).
   void Apply(const cv::Mat& source, cv::Mat* out) const;
 
   /// OpenCV's fixed-point bicubic weights: 1024 entries (fraction row · 32 + column) of
