@@ -32,6 +32,26 @@ if ((${#missing[@]})); then
     "${missing[@]}" >/dev/null
 fi
 
+# The example elevation model of scenes/olinda_dem.yaml: the Olinda DEM and Landsat
+# image Debian's r-cran-stars ships (Apache-2.0), taken from the package without
+# installing R; its test skips where it is absent (no network to the archive).
+stars=/usr/local/share/trackbed/r-cran-stars
+if [ ! -f "$stars/tif/olinda_dem_utm25s.tif" ]; then
+  sudo_cmd=()
+  [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+  tmp=$(mktemp -d)
+  if (cd "$tmp" && { apt-get download r-cran-stars >/dev/null 2>&1 ||
+        { "${sudo_cmd[@]}" apt-get update -qq && apt-get download r-cran-stars >/dev/null 2>&1; }; }); then
+    dpkg-deb -x "$tmp"/r-cran-stars_*.deb "$tmp/x"
+    "${sudo_cmd[@]}" mkdir -p "$stars"
+    "${sudo_cmd[@]}" cp -r "$tmp/x/usr/lib/R/site-library/stars/tif" \
+      "$tmp/x/usr/share/doc/r-cran-stars/copyright" "$stars/"
+  else
+    echo "setup: r-cran-stars could not be downloaded: scenes/olinda_dem.yaml will not run"
+  fi
+  rm -rf "$tmp"
+fi
+
 launcher=()
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" >/dev/null

@@ -68,5 +68,52 @@ TEST(DemClosedLoopTest, TheTracksClimbTheModelsSlopeAndStayOnIt) {
   EXPECT_LT(hi - lo, 0.03) << "height above the ground from " << lo << " to " << hi << " m";
 }
 
+// scenes/olinda_dem.yaml on the model Debian's r-cran-stars ships (scripts/setup.sh
+// installs it): the terrain's heights at pixel centres are the file's, read here
+// through GDAL, less the origin's; the robot drives on them.
+TEST(DemClosedLoopTest, TheOlindaExampleStandsOnTheFilesHeights) {
+  const std::string file = "/usr/local/share/trackbed/r-cran-stars/tif/olinda_dem_utm25s.tif";
+  if (!fs::exists(file)) GTEST_SKIP() << file << " absent (scripts/setup.sh installs it)";
+  const scenario::Scenario s =
+      scenario::LoadScenario(std::string(TRACKBED_SOURCE_DIR) + "/scenes/olinda_dem.yaml",
+                             {scenario::ParseOverride("duration_s=4"),
+                              scenario::ParseOverride("robot.stereo.enabled=false")});
+  const sim::TerrainOptions& t = s.scene.terrain;
+  double at_origin = 0.0;
+  const auto model = assets::ReadDem(t.dem, t.grid_extent_m(), &at_origin);
+  const sim::Terrain terrain(t, 1, model);
+  GDALDatasetH ds = GDALOpen(file.c_str(), GA_ReadOnly);
+  ASSERT_NE(ds, nullptr);
+  double gt[6];
+  ASSERT_EQ(GDALGetGeoTransform(ds, gt), CE_None);
+  // Pixels (16..22, 17..23) around the origin, pixel (19, 20)'s centre.
+  for (int r = 17; r <= 23; ++r) {
+    for (int c = 16; c <= 22; ++c) {
+      float h = 0.0f;
+      ASSERT_EQ(
+          GDALRasterIO(GDALGetRasterBand(ds, 1), GF_Read, c, r, 1, 1, &h, 1, 1, GDT_Float32, 0, 0),
+          CE_None);
+      const double x = gt[0] + (c + 0.5) * gt[1] - t.dem.origin_m.x();
+      const double y = gt[3] + (r + 0.5) * gt[5] - t.dem.origin_m.y();
+      EXPECT_NEAR(model->Height(x, y) + at_origin, h, 1e-3) << "pixel " << c << ", " << r;
+    }
+  }
+  GDALClose(ds);
+  const fs::path dir = fs::path(testing::TempDir()) / "dem_olinda";
+  runner::RunToFolder(s, dir);
+  std::ifstream tum(dir / "ground_truth.tum");
+  std::string line;
+  double lo = 1e9, hi = -1e9;
+  while (std::getline(tum, line)) {
+    std::istringstream in(line);
+    double time, x, y, z;
+    in >> time >> x >> y >> z;
+    lo = std::min(lo, z - terrain.Height(x, y));
+    hi = std::max(hi, z - terrain.Height(x, y));
+  }
+  EXPECT_GT(lo, 0.0);
+  EXPECT_LT(hi - lo, 0.05) << "height above the ground from " << lo << " to " << hi << " m";
+}
+
 }  // namespace
 }  // namespace trackbed
