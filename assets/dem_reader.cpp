@@ -152,6 +152,12 @@ std::string Describe(double v) {
 sim::ElevationGrid ReadWindow(const OpenDem& d, const sim::DemOptions& o, const int win[4]) {
   const GDALRasterBandH band = GDALGetRasterBand(d.dataset.get(), 1);
   const int nc = win[1] - win[0] + 1, nr = win[3] - win[2] + 1;
+  // 64 million pixels (512 MB of heights): a terrain of 10 km a side needs 11 million
+  // at 3 m pixels.
+  if (static_cast<double>(nc) * nr > 64e6) {
+    Fail(o, "the terrain needs " + std::to_string(nc) + " × " + std::to_string(nr) +
+                " of its pixels, more than 64 million");
+  }
   std::vector<double> file_rows(static_cast<std::size_t>(nc) * static_cast<std::size_t>(nr));
   QuietErrors quiet;
   if (GDALRasterIO(band, GF_Read, win[0], win[2], nc, nr, file_rows.data(), nc, nr, GDT_Float64, 0,
@@ -175,8 +181,10 @@ sim::ElevationGrid ReadWindow(const OpenDem& d, const sim::DemOptions& o, const 
         Fail(o, "pixel (" + std::to_string(win[0] + c) + ", " + std::to_string(win[2] + r) +
                     ") has no height, and the terrain needs it");
       }
+      const double h = v * scale + offset;
+      if (!std::isfinite(h)) Fail(o, "a height is not finite after the band's scale and offset");
       const int world_row = flip ? nr - 1 - r : r;
-      heights[static_cast<std::size_t>(world_row) * nc + c] = v * scale + offset;
+      heights[static_cast<std::size_t>(world_row) * nc + c] = h;
     }
   }
   const double y_first = RowY(d, o, flip ? win[3] : win[2]);

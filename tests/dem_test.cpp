@@ -131,12 +131,20 @@ TEST(DemReaderTest, GeoTiffPointPixelsHoldTheirHeightsAtTheTiePoints) {
   ExpectHeightsAtPixelCentres(dem, 0.0);
 }
 
-TEST(DemReaderTest, AsciiGridCornerAndCentreConventionsAgree) {
-  const fs::path dir = testing::TempDir();
+std::string Utm33nWkt() {
   OGRSpatialReferenceH srs = OSRNewSpatialReference(nullptr);
   OSRImportFromEPSG(srs, kUtm33n);
   char* wkt = nullptr;
   OSRExportToWkt(srs, &wkt);
+  const std::string text = wkt;
+  CPLFree(wkt);
+  OSRDestroySpatialReference(srs);
+  return text;
+}
+
+TEST(DemReaderTest, AsciiGridCornerAndCentreConventionsAgree) {
+  const fs::path dir = testing::TempDir();
+  const std::string wkt = Utm33nWkt();
   for (const std::string corner : {"corner", "center"}) {
     std::ofstream(dir / ("grid_" + corner + ".prj")) << wkt;
     std::ofstream f(dir / ("grid_" + corner + ".asc"));
@@ -148,8 +156,6 @@ TEST(DemReaderTest, AsciiGridCornerAndCentreConventionsAgree) {
       for (int c = 0; c < 12; ++c) f << FileHeight(c, r) << (c == 11 ? "\n" : " ");
     }
   }
-  CPLFree(wkt);
-  OSRDestroySpatialReference(srs);
   // Both describe the same pixels: their centres half a pixel in from the corner.
   for (const char* name : {"grid_corner.asc", "grid_center.asc"}) {
     const sim::DemOptions dem = Dem(dir / name, kEast + 6.5 * kPixel, kNorth - 4.5 * kPixel);
@@ -184,6 +190,22 @@ TEST(DemReaderTest, ErrorsNameTheFileAndTheProblem) {
     EXPECT_NE(std::string(err.what()).find("short of the terrain's"), std::string::npos);
   }
   ExpectError(Dem("/vsicurl/https://example.org/dem.tif", e, n), "network and virtual paths");
+  // 1 mm pixels over the terrain's 40 m × 40 m: 1.6 billion of them, refused before
+  // reading (the file is sparse: its pixels are never written).
+  const fs::path fine = fs::path(testing::TempDir()) / "dem_fine.tif";
+  {
+    const char* sparse[] = {"SPARSE_OK=TRUE", "TILED=YES", nullptr};
+    GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), fine.c_str(), 100000, 100000, 1,
+                                 GDT_Float32, const_cast<char**>(sparse));
+    double gt[6] = {0.0, 0.001, 0.0, 100.0, 0.0, -0.001};
+    GDALSetGeoTransform(ds, gt);
+    OGRSpatialReferenceH srs = OSRNewSpatialReference(nullptr);
+    OSRImportFromEPSG(srs, kUtm33n);
+    GDALSetSpatialRef(ds, srs);
+    OSRDestroySpatialReference(srs);
+    GDALClose(ds);
+  }
+  ExpectError(Dem(fine, 50.0, 50.0), "more than 64 million");
   const fs::path text = fs::path(testing::TempDir()) / "dem_text.tif";
   std::ofstream(text) << "not a raster\n";
   ExpectError(Dem(text, e, n), "not a raster");
