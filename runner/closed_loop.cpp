@@ -44,6 +44,7 @@ EstimateSample EstimateAfterEncoders(estimation::LocalizationStack& stack, const
   e.wheel_odometry = stack.wheel_odometry();
   e.wheel_odometry_noslip = stack.wheel_odometry_noslip();
   e.fused = stack.fused();
+  e.fused_ham2012 = stack.fused_ham2012();
   e.ekf = stack.ekf();
   e.has_camera = has_camera;
   e.slip = stack.slip();
@@ -232,8 +233,8 @@ void ClosedLoop::Impl::BuildSchedule() {
   if (commander_->trigger() == Commander::Trigger::kPeriodic) {
     schedule_.control = clock_->StepsPerPeriod(1.0 / commander_->period_s());
   }
-  schedule_.end_step =
-      static_cast<std::int64_t>(std::llround(scenario_.duration_s / clock_->step_s()));
+  schedule_.end_step = static_cast<std::int64_t>(
+      std::llround(scenario_.RunDuration(drive_source()) / clock_->step_s()));
   v_at_last_imu_ = plant_->vehicle->chassis().v_world;
 }
 
