@@ -112,9 +112,9 @@ class ClosedLoop::Impl {
       throw;
     }
   }
-  scenario::DriveSource drive_source() const {
-    return options_.commander ? scenario::DriveSource::kExternal : scenario::DriveSource::kScenario;
-  }
+  // Whether a commander was given from outside (BuildSoftware later sets the scenario's
+  // own in options_.commander).
+  scenario::DriveSource drive_source() const { return drive_source_; }
 
  private:
   using ImagePair = std::pair<GrayImage, GrayImage>;
@@ -142,6 +142,8 @@ class ClosedLoop::Impl {
 
   scenario::Scenario scenario_;
   ClosedLoopOptions options_;
+  scenario::DriveSource drive_source_ =
+      options_.commander ? scenario::DriveSource::kExternal : scenario::DriveSource::kScenario;
   RobotBuild robot_;
   std::unique_ptr<RunFolderWriter> folder_;
   bool started_ = false, finished_ = false, done_ = false, failed_ = false, time_ran_out_ = false;
