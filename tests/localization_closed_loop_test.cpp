@@ -1,5 +1,8 @@
 // The localization stack in closed loop on short routes of the shipped scenes:
 // the orderings of Ham et al. 2012 that hold today, on ground-truth error.
+#include <cmath>
+#include <string>
+
 #include <gtest/gtest.h>
 
 #include "trackbed/runner/closed_loop.h"
@@ -92,6 +95,46 @@ TEST(LocalizationClosedLoopTest, VisionSeesTheSameImagesWhicheverThreadRunsTheSe
     EXPECT_EQ(on_main.inliers[i], on_worker.inliers[i]) << "frame " << i;
   }
   EXPECT_EQ(Ate(on_main.metrics, "fused"), Ate(on_worker.metrics, "fused"));
+}
+
+// Each estimator's own uncertainty against the bound (docs/localization.md, "Honest
+// outputs"): a blacked-out camera leaves visual odometry alone without a motion over
+// the blackout, and it says so at the blackout's first frame; the covariance fusion
+// goes on with the gyro-led wheels and stays within the bound; without the blackout
+// VO stays within it too. Wheel odometry has no covariance of its own and says so.
+TEST(LocalizationClosedLoopTest, ABlackedOutCameraLosesVisionAloneButNotTheFusion) {
+  const auto run = [](const std::string& blackouts) {
+    return runner::RunClosedLoop(
+        scenario::LoadScenario(std::string(TRACKBED_SOURCE_DIR) + "/scenes/outdoor.yaml",
+                               {{"duration_s", "4"},
+                                {"seed", "3"},
+                                {"robot.stereo.blackouts_s", blackouts},
+                                {"estimation.fusion.method", "covariance"}}));
+  };
+  const runner::RunMetrics dark = run("[[1.95,0.5]]"), lit = run("[]");
+  ASSERT_TRUE(dark.completed) << dark.stop_reason;
+  ASSERT_TRUE(lit.completed) << lit.stop_reason;
+  const runner::EstimatorMetrics& vo = dark.estimators.at("visual_odometry");
+  EXPECT_EQ(vo.covariance, "vo_frames_composed");
+  EXPECT_TRUE(vo.localization_lost);
+  EXPECT_NEAR(vo.localization_lost_time_s, 2.0, 0.0101);  // the first black frame
+  EXPECT_TRUE(std::isinf(vo.final_position_sigma_m));
+  for (const runner::RunMetrics* m : {&dark, &lit}) {
+    const runner::EstimatorMetrics& fused = m->estimators.at("fused");
+    EXPECT_EQ(fused.covariance, "covariance_fusion");
+    EXPECT_FALSE(fused.localization_lost);
+    EXPECT_TRUE(std::isnan(fused.localization_lost_time_s));
+    EXPECT_GT(fused.final_position_sigma_m, 0.0);
+    EXPECT_LT(2.0 * fused.final_position_sigma_m, 0.1);
+    const runner::EstimatorMetrics& wheels = m->estimators.at("wheel_odometry");
+    EXPECT_EQ(wheels.covariance, "none");
+    EXPECT_FALSE(wheels.localization_lost);
+    EXPECT_TRUE(std::isnan(wheels.final_position_sigma_m));
+  }
+  const runner::EstimatorMetrics& vo_lit = lit.estimators.at("visual_odometry");
+  EXPECT_FALSE(vo_lit.localization_lost);
+  EXPECT_LT(2.0 * vo_lit.final_position_sigma_m, 0.1);
+  EXPECT_GT(vo_lit.final_position_sigma_m, 0.0);
 }
 
 }  // namespace
