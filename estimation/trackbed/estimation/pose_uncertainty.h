@@ -1,6 +1,6 @@
 // How uncertain each estimator says its planar pose is, and when that uncertainty
 // passes a stated bound: the estimate then counts as lost ("localization lost",
-// docs/localization.md "Honest outputs"). An estimator that carries no covariance of
+// docs/localization.md "Each estimator's covariance"). An estimator that carries no covariance of
 // its own reports none, rather than one made up for it.
 #pragma once
 
@@ -26,6 +26,9 @@ struct LocalizationLostOptions {
   /// Throws OptionError naming the first invalid field.
   void Validate() const;
 
+  /// The scenario file's keys for these fields (`estimation.localization_lost`,
+  /// docs/scenario_format.md), read and written by the config archive
+  /// (trackbed/common/archive.h).
   template <class Archive>
   void Serialize(Archive* a) {
     a->Visit("position_m", &position_m);
