@@ -1,0 +1,51 @@
+// The shader program every surface is drawn with. Private to the renderer.
+//
+// Light, per vertex as the fixed-function pipeline lights: ambient and the sun's
+// diffuse term; with scene lighting (scene_lighting.h) the sun's term is shadowed and
+// the whole scaled by the light map's gain, read per fragment at the fragment's world
+// x, y, then by the exposure.
+//
+// Texture, per fragment, as a camera pixel sees it: the mean of the texture over the
+// pixel's footprint, in one trilinear lookup (textureLod). The footprint is the ellipse
+// the pixel's sides map to in the texture (from the singular vectors of the texture
+// coordinates' screen derivatives); the lookup reads the layer pre-filtered for its
+// length over its width (the nearest power of two, up to 2^kMaxAnisotropyLog2) and
+// the direction of its major axis (footprint_mips.h), at the mip level whose texel is
+// the footprint's length over the layer's. A texture without those layers (an
+// object's) is read isotropically at the footprint's width. The driver's anisotropic
+// filtering (GL_EXT_texture_filter_anisotropic) is not used: its sample pattern
+// differs between Mesa versions. docs/rendering.md has what it gives against a
+// supersampled render.
+#pragma once
+
+#define GL_GLEXT_PROTOTYPES 1
+#include <GL/gl.h>
+#include <GL/glext.h>
+
+#include <Eigen/Core>
+
+#include "trackbed/render/scene_lighting.h"
+
+namespace trackbed::render {
+
+class SurfaceProgram {
+ public:
+  /// Compiles the program in the current context; with a light map (scene lighting),
+  /// uploads it on texture unit 1. Throws std::runtime_error when the driver cannot.
+  SurfaceProgram(const LightMap* map, double ambient, double diffuse);
+  SurfaceProgram(const SurfaceProgram&) = delete;
+  SurfaceProgram& operator=(const SurfaceProgram&) = delete;
+
+  /// Draws with the program until End: `view` maps world to OpenGL eye coordinates,
+  /// `sun` is the unit vector towards the sun in the world, `exposure` scales the
+  /// output (1 without a light map).
+  void Begin(const Eigen::Matrix4d& view, const Eigen::Vector3d& sun, double exposure) const;
+  /// Back to no program.
+  void End() const;
+
+ private:
+  GLuint program_ = 0, light_texture_ = 0;
+  GLint world_from_eye_ = -1, sun_eye_ = -1, exposure_ = -1;
+};
+
+}  // namespace trackbed::render
