@@ -6,7 +6,7 @@
 // x, y, then by the exposure.
 //
 // Texture, per fragment, as a camera pixel sees it: the mean of the texture over the
-// pixel's footprint, in one trilinear lookup (textureLod). The footprint is the ellipse
+// pixel's footprint, in one trilinear lookup. The footprint is the ellipse
 // the pixel's sides map to in the texture (from the singular vectors of the texture
 // coordinates' screen derivatives); the lookup reads the layer pre-filtered for its
 // length over its width (the nearest power of two, up to 2^kMaxAnisotropyLog2) and
