@@ -2,12 +2,12 @@
 //
 // OpenGL in the compatibility profile, every surface drawn with one shader program
 // (SurfaceProgram: light per vertex, the texture filtered over each pixel's footprint),
-// back faces culled: one display list per object compiled once, the terrain in chunks per material
-// meshed at the detail the distance from the detail centre asks for (TerrainDetail), kept while it
-// holds; textures uploaded once with a mip chain built here (box filter) so that the bytes do not
-// depend on the driver's mipmap generation. Each frame: cull chunks against the view frustum, draw
-// near to far into a frame buffer object of one 8-bit channel, read it back flipped to top-down
-// rows.
+// back faces culled: one display list per object compiled once, the terrain in chunks
+// per material meshed at the detail the distance from the detail centre asks for
+// (TerrainDetail), kept while it holds; textures uploaded once with their mip chains
+// and footprint layers built here (FootprintMips), so that the bytes do not depend on
+// the driver. Each frame: cull chunks against the view frustum, draw near to far into a
+// frame buffer object of one 8-bit channel, read it back flipped to top-down rows.
 #include "trackbed/render/renderer.h"
 
 #define GL_GLEXT_PROTOTYPES 1  // buffer objects (GL 1.5), which libOSMesa exports
