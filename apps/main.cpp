@@ -18,6 +18,7 @@
 
 #include "eval_command.h"
 #include "export_mcap_command.h"
+#include "image_stats_command.h"
 #include "report_command.h"
 #include "sweep_command.h"
 #include "trackbed/estimation/per_distance.h"
@@ -172,6 +173,7 @@ int main(int argc, char** argv) {
   trackbed::apps::AddReportCommand(app);
   trackbed::apps::AddVoCommand(app);
   trackbed::apps::AddTransferCommand(app);
+  trackbed::apps::AddImageStatsCommand(app);
   trackbed::apps::AddExportMcapCommand(app);
 
   if (const std::optional<std::string> unknown = trackbed::apps::UnknownArgument(app, argc, argv)) {

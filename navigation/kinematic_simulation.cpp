@@ -36,6 +36,10 @@ KinematicRun RunKinematicSimulation(const NavigationScene& scene, Navigator& nav
   double clearance =
       FootprintClearance({pose.x, pose.y}, options.footprint_radius_m, scene.obstacles);
   std::string status = "time_limit";
+  const auto log_row = [&run, &options](const NavigationLogEntry& row) {
+    run.log.push_back(row);
+    if (options.on_row) options.on_row(row);
+  };
   for (long k = 0;; ++k) {
     NavigationLogEntry row;
     row.t_s = static_cast<double>(k) * dt;
@@ -47,11 +51,11 @@ KinematicRun RunKinematicSimulation(const NavigationScene& scene, Navigator& nav
     row.target_y_m = scene.goal.y;
     if (clearance < 0.0 && options.stop_on_collision) {
       status = "collision";
-      run.log.push_back(row);
+      log_row(row);
       break;
     }
     if (k >= steps) {
-      run.log.push_back(row);
+      log_row(row);
       break;
     }
     const NavigationCommand command = navigator.Update(pose, scene.obstacles);
@@ -62,7 +66,7 @@ KinematicRun RunKinematicSimulation(const NavigationScene& scene, Navigator& nav
     row.target_x_m = command.target.x();
     row.target_y_m = command.target.y();
     row.subgoal_active = command.subgoal_active;
-    run.log.push_back(row);
+    log_row(row);
     if (command.status != NavigationStatus::kDriving) {
       status = NavigationStatusName(command.status);
       break;

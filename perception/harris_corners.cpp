@@ -9,15 +9,10 @@
 #include <opencv2/imgproc.hpp>
 
 #include "trackbed/common/option_error.h"
+#include "trackbed/perception/opencv_views.h"
 
 namespace trackbed::perception {
 namespace {
-
-void CheckImage(const cv::Mat& gray, const char* function) {
-  if (gray.empty() || gray.type() != CV_8UC1) {
-    throw std::invalid_argument(std::string(function) + ": needs a non-empty CV_8UC1 image");
-  }
-}
 
 /// Offset in [-0.5, 0.5] of the vertex of the parabola through (-1, a), (0, b), (1, c).
 float ParabolaPeak(float a, float b, float c) {
@@ -102,7 +97,7 @@ void HarrisOptions::Validate() const {
 }
 
 cv::Mat HarrisResponse(const cv::Mat& gray, const HarrisOptions& options) {
-  CheckImage(gray, "HarrisResponse");
+  CheckGray8(gray, "HarrisResponse");
   options.Validate();
   cv::Mat image;
   gray.convertTo(image, CV_32F, 1.0 / 255.0);
@@ -144,7 +139,7 @@ cv::Mat HarrisResponse(const cv::Mat& gray, const HarrisOptions& options) {
 }
 
 std::vector<Corner> DetectHarrisCorners(const cv::Mat& gray, const HarrisOptions& options) {
-  CheckImage(gray, "DetectHarrisCorners");
+  CheckGray8(gray, "DetectHarrisCorners");
   std::vector<Corner> corners = Candidates(gray, options);
   if (options.max_corners > 0 && corners.size() > static_cast<std::size_t>(options.max_corners)) {
     corners.resize(static_cast<std::size_t>(options.max_corners));
@@ -154,7 +149,7 @@ std::vector<Corner> DetectHarrisCorners(const cv::Mat& gray, const HarrisOptions
 
 std::vector<Corner> DetectHarrisCornersBucketed(const cv::Mat& gray, const HarrisOptions& options,
                                                 int cols, int rows, int per_cell) {
-  CheckImage(gray, "DetectHarrisCornersBucketed");
+  CheckGray8(gray, "DetectHarrisCornersBucketed");
   if (cols < 1 || rows < 1 || per_cell < 1) {
     throw std::invalid_argument(
         "DetectHarrisCornersBucketed: cols, rows and per_cell must be >= 1");

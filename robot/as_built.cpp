@@ -16,8 +16,6 @@
 namespace trackbed::robot {
 namespace {
 
-constexpr double kStandardGravity = 9.80665;  // [m/s²], per g of a datasheet
-
 Imperfections IdealProfile() {
   Imperfections p;
   p.sprocket_radius_rel_std = p.track_gauge_rel_std = 0.0;
@@ -290,7 +288,7 @@ calibration::RobotCalibration DrawAsBuilt(const calibration::RobotCalibration& d
   if (v.z() != 0) c.vehicle.track_gauge_m *= 1.0 + v.z();
   // The IMU.
   c.imu.gyro_axes = DrawAxes(&g, *p.gyro_scale_std, *p.gyro_misalignment_std_deg);
-  const double gs = units::Radians(*p.gyro_g_sensitivity_std_dps_per_g) / kStandardGravity;
+  const double gs = units::Radians(*p.gyro_g_sensitivity_std_dps_per_g) / units::kStandardGravity;
   for (int r = 0; r < 3; ++r) {
     c.imu.gyro_g_sensitivity.row(r) = Gaussian3(&g, Eigen::Vector3d::Constant(gs)).transpose();
   }

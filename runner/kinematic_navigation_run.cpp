@@ -16,13 +16,22 @@
 namespace trackbed::runner {
 
 RunMetrics RunKinematicNavigation(const scenario::Scenario& scenario,
-                                  const std::filesystem::path& dir) {
+                                  const std::filesystem::path& dir, const RunObservers& observers) {
   const auto wall_start = std::chrono::steady_clock::now();
   const navigation::NavigationScene scene = NavigationSceneOf(scenario);
   const std::unique_ptr<navigation::Navigator> navigator = navigation::MakeNavigator(
       scenario.navigation.method, NavigatorOptionsOf(scenario), scene.goal);
+  navigation::KinematicSimulationOptions options = KinematicOptionsOf(scenario);
+  if (observers.on_sample) {
+    options.on_row = [&observers](const navigation::NavigationLogEntry& e) {
+      RunSample s;
+      s.t_s = e.t_s;
+      s.chassis.T_world_body = geometry::ToIsometry({e.x_m, e.y_m, e.yaw_rad}, 0.0);
+      observers.on_sample(s);
+    };
+  }
   const navigation::KinematicRun run =
-      navigation::RunKinematicSimulation(scene, *navigator, KinematicOptionsOf(scenario));
+      navigation::RunKinematicSimulation(scene, *navigator, options);
 
   LogFile truth(dir / "ground_truth.tum", "");
   LogFile csv(dir / "navigation.csv", kNavigationCsvHeader);

@@ -6,6 +6,7 @@
 #include "trackbed/common/split_mix.h"
 #include "trackbed/common/units.h"
 #include "trackbed/robot/as_built.h"
+#include "trackbed/robot/imu_parts.h"
 #include "trackbed/robot/tracked_vehicle.h"
 
 namespace trackbed::runner {
@@ -63,8 +64,8 @@ Plant BuildPlant(const scenario::Scenario& scenario, const RobotBuild& robot, bo
         &robot.truth.vehicle);
   }
   p.encoders = std::make_unique<robot::SprocketEncoders>(rs.encoders);
-  p.imu = std::make_unique<robot::Imu>(rs.imu, gravity, split_mix::Stream(scenario.seed, 1),
-                                       &robot.truth.imu);
+  p.imu = std::make_unique<robot::Imu>(robot::WithImuPartResolved(rs.imu, rs.realism), gravity,
+                                       split_mix::Stream(scenario.seed, 1), &robot.truth.imu);
   if (rs.stereo.enabled) p.camera = BuildCamera(scenario, robot, *p.world);
   if (rs.range_sensor.enabled) {
     p.range_sensor =

@@ -20,7 +20,8 @@ namespace fs = std::filesystem;
 
 // The kinematic simulation's folder: the resolved scenario, its logs and
 // metrics.json (saying why when it fails).
-RunMetrics RunKinematicToFolder(const scenario::Scenario& scenario, const fs::path& dir) {
+RunMetrics RunKinematicToFolder(const scenario::Scenario& scenario, const fs::path& dir,
+                                const RunObservers& observers) {
   scenario.Validate();
   fs::create_directories(dir);
   fs::remove(dir / "metrics.json");  // no stale result may pass for this run's
@@ -29,7 +30,7 @@ RunMetrics RunKinematicToFolder(const scenario::Scenario& scenario, const fs::pa
                           scenario::WithRealismResolved(scenario))));
   RunMetrics metrics;
   try {
-    metrics = RunKinematicNavigation(scenario, dir);
+    metrics = RunKinematicNavigation(scenario, dir, observers);
     if (scenario.outputs.mcap) WriteRunBag(dir);
   } catch (const std::exception& e) {
     metrics.completed = false;
@@ -48,7 +49,7 @@ RunMetrics RunToFolder(const scenario::Scenario& scenario, const fs::path& dir,
   if (scenario.teach_repeat.enabled) return RunTeachRepeat(scenario, dir, observers);
   if (scenario.navigation.enabled &&
       scenario.navigation.mode == scenario::NavigationSpec::Mode::kKinematic) {
-    return RunKinematicToFolder(scenario, dir);
+    return RunKinematicToFolder(scenario, dir, observers);
   }
   ClosedLoopOptions options;
   options.dir = dir;

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
@@ -23,12 +24,14 @@
 #include "trackbed/perception/opencv_views.h"
 #include "trackbed/plot/plots.h"
 #include "trackbed/runner/closed_loop.h"
+#include "trackbed/runner/plot_decimation.h"
 #include "trackbed/runner/repeat_commander.h"
 #include "trackbed/runner/run_folder.h"
 #include "trackbed/teach_repeat/funnel_lane_controller.h"
 #include "trackbed/teach_repeat/milestone_builder.h"
 #include "trackbed/teach_repeat/milestone_localizer_3d.h"
 #include "trackbed/teach_repeat/repeater_factory.h"
+#include "trackbed/teach_repeat/running_repeat_score.h"
 #include "trackbed/teach_repeat/teach_map.h"
 #include "trackbed/teach_repeat/teach_repeat_metrics.h"
 
@@ -324,7 +327,11 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
   const int teach_images = static_cast<int>(map.images.size());
   std::unique_ptr<teach_repeat::Repeater> repeater = MakeRunRepeater(tr, std::move(map));
 
-  std::vector<Eigen::Vector2d> repeated;
+  // The repeat scored as it goes against the taught path; its true path kept for the plot
+  // (docs/run_folder.md, "Plots of long runs").
+  std::optional<teach_repeat::RunningRepeatScore> score;
+  if (!taught.empty()) score.emplace(std::move(taught), tr.path_projection);
+  DecimatedPath repeated;
   // teach_repeat.csv: what the repeater saw and did at every frame.
   std::ofstream csv(dir / "teach_repeat.csv", std::ios::out | std::ios::trunc);
   csv << "t,status,v_mps,yaw_rate_radps,milestone,switched,features,tracked,votes_left,"
@@ -358,7 +365,8 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
     timing_csv << line;
   };
   extra.on_sample = [&](const RunSample& s) {
-    repeated.push_back(s.chassis.T_world_body.translation().head<2>());
+    if (score) score->Add(s.chassis.T_world_body.translation().head<2>());
+    repeated.Add(s.t_s, s.chassis.T_world_body);
   };
   ClosedLoopOptions options;
   options.dir = dir;
@@ -387,9 +395,8 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
   t.features_recovered = m.repeat_features_recovered;
   ScorePlaces(tr, counts, &t);
   if (!t.places.empty()) WriteRecoveryPlot(scenario, t, dir);
-  if (!taught.empty() && !repeated.empty()) {
-    const teach_repeat::RepeatPathMetrics p = teach_repeat::EvaluateRepeatPath(
-        taught, repeated, t.status == "finished", tr.path_projection);
+  if (score && score->samples() > 0) {
+    const teach_repeat::RepeatPathMetrics p = score->Metrics(t.status == "finished");
     t.completed = p.completed;
     t.autonomy = p.autonomy;
     t.end_point_error_m = p.end_point_error_m;
@@ -399,11 +406,11 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
     t.lateral_end_rms_m = p.lateral_end_rms_m;
     t.taught_length_m = p.taught_length_m;
     t.map_mb_per_100m = estimation::PercentOfPath(t.map_size_mb, p.taught_length_m);  // 100·MB/m
-    plot::WriteTrajectoryPlot(
-        dir / "teach_repeat.png",
-        scenario.scene.name + ": teach & repeat (" + teach_repeat::ToString(tr.method) + ", " +
-            t.status + ")",
-        {{"taught (ground truth)", taught}, {"repeated (ground truth)", repeated}});
+    plot::WriteTrajectoryPlot(dir / "teach_repeat.png",
+                              scenario.scene.name + ": teach & repeat (" +
+                                  teach_repeat::ToString(tr.method) + ", " + t.status + ")",
+                              {{"taught (ground truth)", score->taught()},
+                               {"repeated (ground truth)", repeated.Points()}});
   }
   m.teach_repeat = t;
   WriteMetricsJson(m, dir);  // again, now with the score

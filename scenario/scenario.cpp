@@ -139,7 +139,7 @@ void RobotSpec::Validate() const {
   option_check::Finite("start.yaw_deg", start.yaw_deg);
   option_check::Nested("vehicle", vehicle);
   option_check::Nested("encoders", encoders);
-  option_check::Nested("imu", imu);
+  option_check::Nested("imu", robot::WithImuPartResolved(imu, realism));
   option_check::Nested("stereo", stereo);
   option_check::Nested("range_sensor", range_sensor);
   option_check::Nested("imperfections", imperfections);
@@ -372,6 +372,7 @@ Scenario WithRealismResolved(Scenario scenario) {
   RobotSpec& r = scenario.robot;
   r.imperfections = r.imperfections.Resolve(r.realism);
   r.stereo = robot::WithCameraEffectsResolved(r.stereo, r.realism);
+  r.imu = robot::WithImuPartResolved(r.imu, r.realism);
   r.as_built_seed = r.AsBuiltSeed(scenario.seed);
   return scenario;
 }

@@ -427,7 +427,7 @@ TEST(CliTest, AMisspeltSubcommandOrOptionIsAnsweredWithTheClosestValidOne) {
   EXPECT_EQ(
       far.stderr_text.substr(0, far.stderr_text.find('\n')),
       "trackbed: unknown subcommand 'xyz' (one of: run eval sweep sweep-cell report vo transfer "
-      "export-mcap)");
+      "image-stats export-mcap)");
   // A negative value is a value, not an option.
   const Result offset = Trackbed("eval a.tum b.tum --t-offset -0.5", "offset");
   EXPECT_EQ(offset.stderr_text.find("unknown"), std::string::npos) << offset.stderr_text;

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "trackbed/robot/imu.h"
+#include "trackbed/robot/imu_parts.h"
 
 namespace trackbed::robot {
 namespace {
@@ -35,7 +36,7 @@ double AllanDeviation(const std::vector<double>& x, std::size_t m) {
 // both are measurable in an hour: at τ = 20 s the 180 clusters put about 5 % of
 // sampling error on the deviation, hence the 15 % tolerance.
 TEST(ImuNoiseTest, AllanDeviationFollowsTheConfiguredDensities) {
-  ImuOptions o;
+  ImuOptions o = WithImuPartResolved(ImuOptions{}, Realism::kIdeal);  // no Gauss–Markov terms
   o.rate_hz = 200.0;
   o.gyro_noise_density = 1e-3;
   o.gyro_bias_random_walk = 1e-2;
@@ -62,8 +63,8 @@ TEST(ImuNoiseTest, AllanDeviationFollowsTheConfiguredDensities) {
       return std::sqrt(N * N / tau + K * K * tau / 3.0);
     };
     for (int a = 0; a < 3; ++a) {
-      const double g = expected(o.gyro_noise_density, o.gyro_bias_random_walk);
-      const double f = expected(o.accel_noise_density, o.accel_bias_random_walk);
+      const double g = expected(*o.gyro_noise_density, *o.gyro_bias_random_walk);
+      const double f = expected(*o.accel_noise_density, *o.accel_bias_random_walk);
       EXPECT_NEAR(AllanDeviation(gyro[a], m) / g, 1.0, 0.15) << "gyro axis " << a << " tau " << tau;
       EXPECT_NEAR(AllanDeviation(accel[a], m) / f, 1.0, 0.15)
           << "accel axis " << a << " tau " << tau;

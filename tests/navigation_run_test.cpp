@@ -4,7 +4,9 @@
 // folder holds what docs/run_folder.md promises.
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -37,6 +39,32 @@ std::string ScenarioErrorOf(const std::string& text) {
     return e.what();
   }
   return "";
+}
+
+// A run's progress (runner/run_progress.h) follows the encoder samples; a kinematic
+// run has none, so its observers see every control step's pose instead, in order.
+TEST(NavigationRunTest, KinematicRunShowsEveryControlStepToTheObservers) {
+  const Scenario s = LoadScenario(std::string(TRACKBED_SOURCE_DIR) + "/scenes/nav_paper_left.yaml");
+  const fs::path dir = FreshDir("observed");
+  std::vector<RunSample> seen;
+  RunObservers observers;
+  observers.on_sample = [&seen](const RunSample& r) { seen.push_back(r); };
+  const RunMetrics m = RunToFolder(s, dir, observers);
+  std::ifstream truth(dir / "ground_truth.tum");
+  std::string line;
+  std::size_t rows = 0;
+  while (std::getline(truth, line)) {
+    ASSERT_LT(rows, seen.size());
+    double t = 0.0, x = 0.0, y = 0.0;
+    std::istringstream(line) >> t >> x >> y;
+    EXPECT_NEAR(seen[rows].t_s, t, 1e-6) << rows;
+    EXPECT_NEAR(seen[rows].chassis.T_world_body.translation().x(), x, 1e-6) << rows;
+    EXPECT_NEAR(seen[rows].chassis.T_world_body.translation().y(), y, 1e-6) << rows;
+    ++rows;
+  }
+  EXPECT_GT(rows, 10u);
+  EXPECT_EQ(seen.size(), rows);
+  EXPECT_NEAR(seen.back().t_s, m.sim_time_s, 1e-9);
 }
 
 TEST(NavigationRunTest, PaperSceneLeftReachesTheGoalPoseThroughASubgoal) {

@@ -18,6 +18,7 @@
 #include "trackbed/perception/stereo_rectifier.h"
 #include "trackbed/robot/as_built.h"
 #include "trackbed/robot/imu.h"
+#include "trackbed/robot/imu_parts.h"
 #include "trackbed/runner/closed_loop.h"
 #include "trackbed/runner/wheel_calibration_run.h"
 #include "trackbed/scenario/scenario_yaml.h"
@@ -181,7 +182,7 @@ TEST(RobotCalibrationTest, TheImuCorrectionInvertsTheImuAsBuilt) {
   big.imu_mount_std_deg = 1.0;
   const calibration::ImuCalibration truth =
       robot::DrawAsBuilt({}, big.Resolve(robot::Realism::kIdeal), 9).imu;
-  robot::ImuOptions quiet;
+  robot::ImuOptions quiet = robot::WithImuPartResolved({}, robot::Realism::kIdeal);
   quiet.gyro_noise_density = quiet.gyro_bias_random_walk = 0.0;
   quiet.accel_noise_density = quiet.accel_bias_random_walk = 0.0;
   quiet.gyro_initial_bias_std = quiet.accel_initial_bias_std = 0.0;

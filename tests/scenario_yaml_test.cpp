@@ -45,7 +45,9 @@ TEST(ScenarioYamlTest, MinimalFileTakesStructDefaults) {
   EXPECT_EQ(s.robot.vehicle.hull_size_m, defaults.robot.vehicle.hull_size_m);
   EXPECT_EQ(s.robot.vehicle.motor.max_torque_nm, 20.0);
   EXPECT_EQ(s.robot.encoders.ticks_per_rev, 4096);
-  EXPECT_EQ(s.robot.imu.gyro_noise_density, 1.6968e-4);
+  EXPECT_FALSE(s.robot.imu.gyro_noise_density);  // the realism profile's part
+  EXPECT_EQ(*WithRealismResolved(s).robot.imu.gyro_noise_density,
+            *robot::WithImuPartResolved({}, robot::Realism::kTypical).gyro_noise_density);
   EXPECT_EQ(s.drive.mode, DriveSpec::Mode::kPath);
   ASSERT_EQ(s.drive.waypoints.size(), 2u);
   EXPECT_EQ(s.drive.waypoints[1], Eigen::Vector2d(5.0, 0.0));
@@ -58,6 +60,7 @@ TEST(ScenarioYamlTest, WriterEmitsEveryKeyWithShortestDoubles) {
   Scenario s = ParseScenario(kMinimal, "test.yaml");
   s.duration_s = 1.0 / 3.0;
   s.robot.imu.rate_hz = 1e3 / 7.0;
+  s.robot.imu.gyro_noise_density = 1.6968e-4;
   s.seed = 18446744073709551615u;
   const std::string text = ScenarioToYaml(s);
   EXPECT_NE(text.find("seed: 18446744073709551615\n"), std::string::npos) << text;

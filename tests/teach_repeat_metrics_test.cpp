@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "trackbed/common/option_error.h"
+#include "trackbed/teach_repeat/running_repeat_score.h"
 
 namespace trackbed::teach_repeat {
 namespace {

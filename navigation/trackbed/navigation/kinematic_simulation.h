@@ -5,6 +5,7 @@
 // physical circle, checked along the motion, not only at the control instants.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "trackbed/navigation/diff_drive.h"
@@ -32,6 +33,9 @@ struct KinematicSimulationOptions {
   int substeps = 10;
   /// End the run at the first collision (status "collision").
   bool stop_on_collision = true;
+  /// Called with each row as it is logged, in order (a run's progress); may be empty.
+  /// Not a key.
+  std::function<void(const NavigationLogEntry&)> on_row;
 
   /// Throws OptionError naming the first invalid field.
   void Validate() const;

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstdint>
+#include <stdexcept>
+#include <string>
 
 #include <opencv2/core.hpp>
 
@@ -16,6 +18,14 @@ namespace trackbed::perception {
 inline cv::Mat AsCvMat(const GrayImage& image) {
   return cv::Mat(image.height, image.width, CV_8UC1,
                  const_cast<std::uint8_t*>(image.pixels.data()));
+}
+
+/// Throws std::invalid_argument, naming `function`, unless `gray` is a non-empty
+/// CV_8UC1 image.
+inline void CheckGray8(const cv::Mat& gray, const char* function) {
+  if (gray.empty() || gray.type() != CV_8UC1) {
+    throw std::invalid_argument(std::string(function) + ": needs a non-empty CV_8UC1 image");
+  }
 }
 
 /// The camera matrix K of `camera`.

@@ -22,7 +22,8 @@ struct RunObservers {
   /// Every stereo pair (when robot.stereo.enabled). An observer here makes the
   /// camera's sensor model run on the main thread (the bytes are the same).
   std::function<void(const StereoFrame&)> on_stereo;
-  /// Every encoder sample (ground truth and, when estimation.enabled, the estimates alongside).
+  /// Every encoder sample (ground truth and, when estimation.enabled, the estimates
+  /// alongside); in kinematic navigation every control step's pose.
   std::function<void(const RunSample&)> on_sample;
   /// Every IMU sample.
   std::function<void(const robot::ImuSample&)> on_imu;

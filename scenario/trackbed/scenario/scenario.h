@@ -25,6 +25,7 @@
 #include "trackbed/robot/as_built.h"
 #include "trackbed/robot/encoder.h"
 #include "trackbed/robot/imu.h"
+#include "trackbed/robot/imu_parts.h"
 #include "trackbed/robot/range_sensor.h"
 #include "trackbed/robot/stereo_rig.h"
 #include "trackbed/robot/tracked_vehicle.h"

@@ -7,10 +7,11 @@
 //   path's end — the paper's "measured end-point error"); and the autonomy, the
 //   fraction of the taught route's length covered before a failure (1 for a completed
 //   repeat).
-//   Positions are projected progressively: each onto the part of the taught path within
-//   `window_m` of arc length of the previous projection (the first near the start), so
-//   that a route that passes near itself (a loop, an out-and-back) does not make the
-//   projection jump to the wrong pass.
+//   The projection and these scores are computed in running_repeat_score.h, as the
+//   repeat goes or from a whole path. Positions are projected progressively: each onto
+//   the part of the taught path within `window_m` of arc length of the previous
+//   projection (the first near the start), so that a route that passes near itself (a
+//   loop, an out-and-back) does not make the projection jump to the wrong pass.
 // * Feature recovery (experiment 1, Table 1): per place (a stop with a pedestrian
 //   crossing the view), the features lost and recovered there; the rate per place,
 //   their mean (the paper's 86.18 %) and the pooled rate Σ recovered / Σ lost (531 of
@@ -49,12 +50,6 @@ struct PathProjection {
 /// Length of a polyline [m] (0 for fewer than two points).
 double PolylineLength(const std::vector<Eigen::Vector2d>& path);
 
-/// Progressive projection of `repeated` onto `taught` (see the file comment). Throws
-/// std::invalid_argument for an empty taught path; OptionError for bad options.
-std::vector<PathProjection> ProjectOntoPath(const std::vector<Eigen::Vector2d>& taught,
-                                            const std::vector<Eigen::Vector2d>& repeated,
-                                            const PathProjectionOptions& options = {});
-
 /// Path-following scores of one repeat.
 struct RepeatPathMetrics {
   std::size_t samples = 0;         ///< repeated positions scored
@@ -76,12 +71,6 @@ struct RepeatPathMetrics {
   double autonomy = 0.0;
   bool completed = false;
 };
-
-/// Scores `repeated` (ground-truth positions of the repeat up to its end or failure, in
-/// time order) against `taught`. Throws std::invalid_argument if either is empty.
-RepeatPathMetrics EvaluateRepeatPath(const std::vector<Eigen::Vector2d>& taught,
-                                     const std::vector<Eigen::Vector2d>& repeated, bool completed,
-                                     const PathProjectionOptions& options = {});
 
 /// Features lost and recovered at one place (or event).
 struct RecoveryCounts {
