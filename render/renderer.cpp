@@ -753,8 +753,10 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
   for (const auto& [distance, k] : order) {
     const Drawable& d = g.drawables[static_cast<std::size_t>(k)];
     if (d.terrain >= 0) {
+      g.program->Use(SurfaceProgram::Kind::kFootprint);
       g.DrawTerrain(g.terrain_drawables[static_cast<std::size_t>(d.terrain)], center_xy);
     } else {
+      g.program->Use(SurfaceProgram::Kind::kIsotropic);
       glCallList(g.ObjectList(d, K.fx, center_xy));
     }
   }
@@ -763,6 +765,7 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
   glDisableClientState(GL_VERTEX_ARRAY);
   glDisableClientState(GL_NORMAL_ARRAY);
   glDisableClientState(GL_TEXTURE_COORD_ARRAY);
+  g.program->Use(SurfaceProgram::Kind::kIsotropic);
   for (std::size_t k = 0; k < g.occluders.size(); ++k) {
     const sim::OccluderPose pose = sim::OccluderPoseAt(g.occluders[k], t_s);
     glPushMatrix();

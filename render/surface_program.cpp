@@ -81,6 +81,9 @@ float FootprintMean() {
       .r;
 }
 
+// An object's texture (one layer): the implicit level, the footprint's length.
+float IsotropicMean() { return texture(albedo, vec3(albedo_st, 0.0)).r; }
+
 void main() {
 #ifdef LIGHT_MAP
   vec2 l = texture(light, light_st).rg;
@@ -88,7 +91,12 @@ void main() {
   vec2 l = vec2(1.0);
 #endif
   float shade = min(ambient + direct * l.r, 1.0) * l.g;
-  gl_FragColor = vec4(vec3(FootprintMean() * shade * exposure), 1.0);
+#ifdef FOOTPRINT
+  float albedo_mean = FootprintMean();
+#else
+  float albedo_mean = IsotropicMean();
+#endif
+  gl_FragColor = vec4(vec3(albedo_mean * shade * exposure), 1.0);
 }
 )";
 
@@ -142,10 +150,21 @@ GLuint UploadLightMap(const LightMap& map) {
 }  // namespace
 
 SurfaceProgram::SurfaceProgram(const LightMap* map, double ambient, double diffuse) {
+  for (Kind kind : {Kind::kFootprint, Kind::kIsotropic}) {
+    programs_[static_cast<int>(kind)] = Link(kind, map, ambient, diffuse);
+  }
+  if (map) light_texture_ = UploadLightMap(*map);
+}
+
+SurfaceProgram::Linked SurfaceProgram::Link(Kind kind, const LightMap* map, double ambient,
+                                            double diffuse) {
   const std::string defines = std::string(map ? "#define LIGHT_MAP\n" : "") +
+                              (kind == Kind::kFootprint ? "#define FOOTPRINT\n" : "") +
                               "#define MAX_ANISOTROPY_LOG2 " + std::to_string(kMaxAnisotropyLog2) +
                               ".0\n#define LOD_BIAS " + kLodBias + "\n";
-  program_ = glCreateProgram();
+  Linked out;
+  out.program = glCreateProgram();
+  const GLuint program_ = out.program;
   glAttachShader(program_, Compile(GL_VERTEX_SHADER, defines, kVertexShader));
   glAttachShader(program_, Compile(GL_FRAGMENT_SHADER, defines, kFragmentShader));
   glLinkProgram(program_);
@@ -164,28 +183,37 @@ SurfaceProgram::SurfaceProgram(const LightMap* map, double ambient, double diffu
                 static_cast<float>(1.0 / (map->width * map->texel_m)),
                 static_cast<float>(1.0 / (map->height * map->texel_m)));
   }
-  world_from_eye_ = glGetUniformLocation(program_, "world_from_eye");
-  sun_eye_ = glGetUniformLocation(program_, "sun_eye");
-  exposure_ = glGetUniformLocation(program_, "exposure");
+  out.world_from_eye = glGetUniformLocation(program_, "world_from_eye");
+  out.sun_eye = glGetUniformLocation(program_, "sun_eye");
+  out.exposure = glGetUniformLocation(program_, "exposure");
   glUseProgram(0);
-  if (map) light_texture_ = UploadLightMap(*map);
+  return out;
 }
 
 void SurfaceProgram::Begin(const Eigen::Matrix4d& view, const Eigen::Vector3d& sun,
-                           double exposure) const {
-  glUseProgram(program_);
-  if (light_texture_ != 0) {
-    const Eigen::Matrix4f world_from_eye = view.inverse().cast<float>();
-    glUniformMatrix4fv(world_from_eye_, 1, GL_FALSE, world_from_eye.data());
-  }
+                           double exposure) {
+  const Eigen::Matrix4f world_from_eye = view.inverse().cast<float>();
   const Eigen::Vector3f sun_eye = (view.topLeftCorner<3, 3>() * sun).cast<float>();
-  glUniform3f(sun_eye_, sun_eye.x(), sun_eye.y(), sun_eye.z());
-  glUniform1f(exposure_, static_cast<float>(exposure));
+  for (const Linked& p : programs_) {
+    glUseProgram(p.program);
+    if (light_texture_ != 0) {
+      glUniformMatrix4fv(p.world_from_eye, 1, GL_FALSE, world_from_eye.data());
+    }
+    glUniform3f(p.sun_eye, sun_eye.x(), sun_eye.y(), sun_eye.z());
+    glUniform1f(p.exposure, static_cast<float>(exposure));
+  }
+  current_ = Kind::kIsotropic;
   if (light_texture_ != 0) {
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_2D, light_texture_);
     glActiveTexture(GL_TEXTURE0);
   }
+}
+
+void SurfaceProgram::Use(Kind kind) {
+  if (kind == current_) return;
+  glUseProgram(programs_[static_cast<int>(kind)].program);
+  current_ = kind;
 }
 
 void SurfaceProgram::End() const { glUseProgram(0); }

@@ -11,8 +11,10 @@
 // coordinates' screen derivatives); the lookup reads the layer pre-filtered for its
 // length over its width (the nearest power of two, up to 2^kMaxAnisotropyLog2) and
 // the direction of its major axis (footprint_mips.h), at the mip level whose texel is
-// the footprint's length over the layer's. A texture without those layers (an
-// object's) is read isotropically at the footprint's width. The driver's anisotropic
+// the footprint's length over the layer's. Objects are drawn by a second program
+// that reads their texture (one layer) at the level llvmpipe takes from the quad's
+// derivatives (about the footprint's length), trilinearly: a third of the ground's
+// per-pixel cost. The driver's anisotropic
 // filtering (GL_EXT_texture_filter_anisotropic) is not used: its sample pattern
 // differs between Mesa versions. docs/rendering.md has what it gives against a
 // supersampled render.
@@ -36,16 +38,29 @@ class SurfaceProgram {
   SurfaceProgram(const SurfaceProgram&) = delete;
   SurfaceProgram& operator=(const SurfaceProgram&) = delete;
 
-  /// Draws with the program until End: `view` maps world to OpenGL eye coordinates,
-  /// `sun` is the unit vector towards the sun in the world, `exposure` scales the
-  /// output (1 without a light map).
-  void Begin(const Eigen::Matrix4d& view, const Eigen::Vector3d& sun, double exposure) const;
+  /// How a draw reads its texture: over the footprint from the layers (a ground's), or
+  /// at the level llvmpipe takes from the quad's derivatives (an object's).
+  enum class Kind { kFootprint = 0, kIsotropic = 1 };
+
+  /// Draws with the programs until End, the isotropic one first: `view` maps world to
+  /// OpenGL eye coordinates, `sun` is the unit vector towards the sun in the world,
+  /// `exposure` scales the output (1 without a light map).
+  void Begin(const Eigen::Matrix4d& view, const Eigen::Vector3d& sun, double exposure);
+  /// Draws what follows with the program of `kind`.
+  void Use(Kind kind);
   /// Back to no program.
   void End() const;
 
  private:
-  GLuint program_ = 0, light_texture_ = 0;
-  GLint world_from_eye_ = -1, sun_eye_ = -1, exposure_ = -1;
+  struct Linked {
+    GLuint program = 0;
+    GLint world_from_eye = -1, sun_eye = -1, exposure = -1;
+  };
+  static Linked Link(Kind kind, const LightMap* map, double ambient, double diffuse);
+
+  Linked programs_[2];
+  GLuint light_texture_ = 0;
+  Kind current_ = Kind::kIsotropic;
 };
 
 }  // namespace trackbed::render
