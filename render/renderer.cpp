@@ -78,6 +78,7 @@ struct Drawable {
   int terrain = -1;                      // index of a terrain drawable
   Eigen::AlignedBox3d box;               // world-frame bounds, for culling
   std::vector<FarVersion> far_versions;  // coarser and coarser
+  bool curved = false;                   // a cylinder's outline: drawn antialiased
 };
 
 // A texture as uploaded: GL name and world size of one repeat.
@@ -456,6 +457,24 @@ struct Renderer::Gl {
     }
   }
 
+  // The pixels the outlines of curved objects cross, far to near, blended over what
+  // is behind by the fraction of each pixel inside (surface_program.h).
+  void DrawOutlineFringes(const std::vector<std::pair<double, int>>& order, double focal_px,
+                          const Eigen::Vector2d& center_xy) {
+    program->Use(SurfaceProgram::Kind::kOutlineFringe);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    glDepthMask(GL_FALSE);
+    glDepthFunc(GL_LEQUAL);
+    for (auto it = order.rbegin(); it != order.rend(); ++it) {
+      const Drawable& d = drawables[static_cast<std::size_t>(it->second)];
+      if (d.curved) glCallList(ObjectList(d, focal_px, center_xy));
+    }
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+  }
+
   // The version of an object to draw: the coarsest whose silhouette departs from
   // the full one's by less than `object_far_error_px`, seen from the detail centre at
   // the distance of the object's nearest side (so both cameras of a pair draw the same).
@@ -498,11 +517,13 @@ struct Renderer::Gl {
       glTranslated(0, 0, o.size_m.z() / 2);
       DrawBox(o.size_m, tex.meters_per_repeat);
     } else {
+      glMultiTexCoord4d(GL_TEXTURE1, 0, 0, 0, -o.radius_m);  // the outline's shape
       DrawCylinder(o.radius_m, o.height_m, tex.meters_per_repeat, level.trunk_slices);
       if (crown) {
         // Visual-only foliage: a crown a third of the trunk's height across.
         glBindTexture(GL_TEXTURE_2D_ARRAY, leaves.name);
         glTranslated(0, 0, o.height_m);
+        glMultiTexCoord4d(GL_TEXTURE1, 0, 0, 0, TreeCrownRadius(o));
         DrawSphere(TreeCrownRadius(o), leaves.meters_per_repeat, level.crown_slices,
                    level.crown_stacks);
       }
@@ -535,6 +556,7 @@ struct Renderer::Gl {
       Drawable d;
       d.list = CompileObject(o, kTreeLevels[0]);
       d.box = DrawnBounds(o);
+      d.curved = o.shape == sim::StaticObject::Shape::kCylinder;
       if (IsTree(o) && appearance.object_far_error_px > 0.0) {
         const double crown = DrawsCrown(o) ? TreeCrownRadius(o) : 0.0;
         for (std::size_t l = 1; l < kTreeLevels.size(); ++l) {
@@ -711,7 +733,7 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
   glLoadMatrixd(view.data());
   const Eigen::Vector3d sun_world =
       SunDirection(g.appearance.sun_azimuth_deg, g.appearance.sun_elevation_deg);
-  g.program->Begin(view, sun_world, g.lit ? g.exposure : 1.0);
+  g.program->Begin(view, sun_world, g.lit ? g.exposure : 1.0, K.fx);
 
   // Frustum culling in camera coordinates: a box is skipped when all its
   // corners are outside one of the six planes.
@@ -756,7 +778,8 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
       g.program->Use(SurfaceProgram::Kind::kFootprint);
       g.DrawTerrain(g.terrain_drawables[static_cast<std::size_t>(d.terrain)], center_xy);
     } else {
-      g.program->Use(SurfaceProgram::Kind::kIsotropic);
+      g.program->Use(d.curved ? SurfaceProgram::Kind::kOutlineCore
+                              : SurfaceProgram::Kind::kIsotropic);
       glCallList(g.ObjectList(d, K.fx, center_xy));
     }
   }
@@ -775,6 +798,7 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
     glCallList(g.occluder_lists[k]);
     glPopMatrix();
   }
+  g.DrawOutlineFringes(order, K.fx, center_xy);
   g.program->End();
   g.ReadBack(gray, depth);
 }

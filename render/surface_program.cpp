@@ -25,9 +25,28 @@ uniform float diffuse;
 out vec2 albedo_st;
 out vec2 light_st;
 out float direct;
+#ifdef OUTLINE
+uniform float outline_px_per_depth;  // a pixel's width at unit depth (1 / f)
+flat out vec4 shape_eye;  // the shape's centre in eye coordinates, its signed radius
+flat out vec3 axis_eye;   // a cylinder's axis
+out vec3 position_eye;
+#endif
 void main() {
+  vec3 normal = gl_NormalMatrix * gl_Normal;
   vec4 eye = gl_ModelViewMatrix * gl_Vertex;
-  direct = diffuse * max(dot(gl_NormalMatrix * gl_Normal, sun_eye), 0.0);
+  direct = diffuse * max(dot(normal, sun_eye), 0.0);
+#ifdef OUTLINE
+  vec4 shape = gl_MultiTexCoord1;
+  shape_eye = vec4((gl_ModelViewMatrix * vec4(shape.xyz, 1.0)).xyz, shape.w);
+  axis_eye = gl_NormalMatrix * vec3(0.0, 0.0, 1.0);
+#endif
+#ifdef OUTLINE_FRINGE
+  // A pixel outwards, and past the facets' chords (2 % of the radius at 16 facets).
+  eye.xyz += normal * (outline_px_per_depth * -eye.z + 0.02 * abs(shape.w));
+#endif
+#ifdef OUTLINE
+  position_eye = eye.xyz;
+#endif
 #ifdef LIGHT_MAP
   light_st = ((world_from_eye * eye).xy - light_origin) * light_per_m;
 #else
@@ -84,7 +103,47 @@ float FootprintMean() {
 // An object's texture (one layer): the implicit level, the footprint's length.
 float IsotropicMean() { return texture(albedo, vec3(albedo_st, 0.0)).r; }
 
+#ifdef OUTLINE
+uniform float outline_px_per_depth;
+flat in vec4 shape_eye;
+flat in vec3 axis_eye;
+in vec3 position_eye;
+// How far the pixel centre's ray passes inside the outline of the true sphere
+// (radius > 0) or cylinder (radius < 0, about axis_eye) [px]: the ray's distance from
+// the centre or the axis, against the radius, at the depth of its closest approach.
+float OutlineDistance() {
+  vec3 r = normalize(position_eye);
+  vec3 c = shape_eye.xyz;
+  float t, off;
+  if (shape_eye.w > 0.0) {
+    t = dot(c, r);
+    off = length(c - t * r);
+  } else {
+    vec3 rp = r - dot(r, axis_eye) * axis_eye;
+    vec3 cp = c - dot(c, axis_eye) * axis_eye;
+    t = dot(cp, rp) / dot(rp, rp);
+    off = length(cp - t * rp);
+  }
+  return (abs(shape_eye.w) - off) / (t * -r.z * outline_px_per_depth);
+}
+#endif
+
 void main() {
+  // First whether the pixel is this pass's: llvmpipe skips the rest for a block of
+  // pixels all discarded.
+  float coverage = 1.0;
+#ifdef OUTLINE_CORE
+  if (OutlineDistance() < 0.5) discard;  // a pixel the outline crosses: the fringe's
+#endif
+#ifdef OUTLINE_FRINGE
+  // The object is drawn grown past its outline; the fraction of the pixel inside the
+  // outline, as for a straight edge; the pixels the core drew are left (up to the
+  // facets' chords inside the outline: 2 % of the radius).
+  float inside = OutlineDistance();
+  float core = 1.0 + 0.02 * abs(shape_eye.w) / (-position_eye.z * outline_px_per_depth);
+  if (inside <= -0.5 || inside >= core) discard;
+  coverage = clamp(0.5 + inside, 0.0, 1.0);
+#endif
 #ifdef LIGHT_MAP
   vec2 l = texture(light, light_st).rg;
 #else
@@ -96,7 +155,7 @@ void main() {
 #else
   float albedo_mean = IsotropicMean();
 #endif
-  gl_FragColor = vec4(vec3(albedo_mean * shade * exposure), 1.0);
+  gl_FragColor = vec4(vec3(albedo_mean * shade * exposure), coverage);
 }
 )";
 
@@ -150,7 +209,7 @@ GLuint UploadLightMap(const LightMap& map) {
 }  // namespace
 
 SurfaceProgram::SurfaceProgram(const LightMap* map, double ambient, double diffuse) {
-  for (Kind kind : {Kind::kFootprint, Kind::kIsotropic}) {
+  for (Kind kind : {Kind::kFootprint, Kind::kIsotropic, Kind::kOutlineCore, Kind::kOutlineFringe}) {
     programs_[static_cast<int>(kind)] = Link(kind, map, ambient, diffuse);
   }
   if (map) light_texture_ = UploadLightMap(*map);
@@ -158,10 +217,14 @@ SurfaceProgram::SurfaceProgram(const LightMap* map, double ambient, double diffu
 
 SurfaceProgram::Linked SurfaceProgram::Link(Kind kind, const LightMap* map, double ambient,
                                             double diffuse) {
-  const std::string defines = std::string(map ? "#define LIGHT_MAP\n" : "") +
-                              (kind == Kind::kFootprint ? "#define FOOTPRINT\n" : "") +
-                              "#define MAX_ANISOTROPY_LOG2 " + std::to_string(kMaxAnisotropyLog2) +
-                              ".0\n#define LOD_BIAS " + kLodBias + "\n";
+  const std::string defines =
+      std::string(map ? "#define LIGHT_MAP\n" : "") +
+      (kind == Kind::kFootprint ? "#define FOOTPRINT\n" : "") +
+      (kind == Kind::kOutlineCore     ? "#define OUTLINE\n#define OUTLINE_CORE\n"
+       : kind == Kind::kOutlineFringe ? "#define OUTLINE\n#define OUTLINE_FRINGE\n"
+                                      : "") +
+      "#define MAX_ANISOTROPY_LOG2 " + std::to_string(kMaxAnisotropyLog2) +
+      ".0\n#define LOD_BIAS " + kLodBias + "\n";
   Linked out;
   out.program = glCreateProgram();
   const GLuint program_ = out.program;
@@ -186,12 +249,13 @@ SurfaceProgram::Linked SurfaceProgram::Link(Kind kind, const LightMap* map, doub
   out.world_from_eye = glGetUniformLocation(program_, "world_from_eye");
   out.sun_eye = glGetUniformLocation(program_, "sun_eye");
   out.exposure = glGetUniformLocation(program_, "exposure");
+  out.outline_px_per_depth = glGetUniformLocation(program_, "outline_px_per_depth");
   glUseProgram(0);
   return out;
 }
 
-void SurfaceProgram::Begin(const Eigen::Matrix4d& view, const Eigen::Vector3d& sun,
-                           double exposure) {
+void SurfaceProgram::Begin(const Eigen::Matrix4d& view, const Eigen::Vector3d& sun, double exposure,
+                           double focal_px) {
   const Eigen::Matrix4f world_from_eye = view.inverse().cast<float>();
   const Eigen::Vector3f sun_eye = (view.topLeftCorner<3, 3>() * sun).cast<float>();
   for (const Linked& p : programs_) {
@@ -201,6 +265,9 @@ void SurfaceProgram::Begin(const Eigen::Matrix4d& view, const Eigen::Vector3d& s
     }
     glUniform3f(p.sun_eye, sun_eye.x(), sun_eye.y(), sun_eye.z());
     glUniform1f(p.exposure, static_cast<float>(exposure));
+    if (p.outline_px_per_depth >= 0) {
+      glUniform1f(p.outline_px_per_depth, static_cast<float>(1.0 / focal_px));
+    }
   }
   current_ = Kind::kIsotropic;
   if (light_texture_ != 0) {

@@ -14,10 +14,18 @@
 // the footprint's length over the layer's. Objects are drawn by a second program
 // that reads their texture (one layer) at the level llvmpipe takes from the quad's
 // derivatives (about the footprint's length), trilinearly: a third of the ground's
-// per-pixel cost. The driver's anisotropic
-// filtering (GL_EXT_texture_filter_anisotropic) is not used: its sample pattern
-// differs between Mesa versions. docs/rendering.md has what it gives against a
-// supersampled render.
+// per-pixel cost.
+//
+// Outlines of cylinders and spheres (trunks, crowns), in two passes: the core program
+// leaves out the pixels whose centre lies less than half a pixel inside the outline of
+// the true shape (from its centre and radius, an attribute per shape, not the facets),
+// and after every other draw the fringe program draws the object grown a pixel outwards,
+// far to near and blended over what is behind by the fraction of each such pixel inside
+// the outline (as for a straight edge). The depth image there is what is behind.
+//
+// The driver's anisotropic filtering (GL_EXT_texture_filter_anisotropic) is not used:
+// its sample pattern differs between Mesa versions. docs/rendering.md has what it gives
+// against a supersampled render.
 #pragma once
 
 #define GL_GLEXT_PROTOTYPES 1
@@ -39,13 +47,15 @@ class SurfaceProgram {
   SurfaceProgram& operator=(const SurfaceProgram&) = delete;
 
   /// How a draw reads its texture: over the footprint from the layers (a ground's), or
-  /// at the level llvmpipe takes from the quad's derivatives (an object's).
-  enum class Kind { kFootprint = 0, kIsotropic = 1 };
+  /// at the level llvmpipe takes from the quad's derivatives (an object's); a curved
+  /// object's core and, in a later pass, its outline's fringe.
+  enum class Kind { kFootprint = 0, kIsotropic = 1, kOutlineCore = 2, kOutlineFringe = 3 };
 
   /// Draws with the programs until End, the isotropic one first: `view` maps world to
   /// OpenGL eye coordinates, `sun` is the unit vector towards the sun in the world,
-  /// `exposure` scales the output (1 without a light map).
-  void Begin(const Eigen::Matrix4d& view, const Eigen::Vector3d& sun, double exposure);
+  /// `exposure` scales the output (1 without a light map), `focal_px` the camera's.
+  void Begin(const Eigen::Matrix4d& view, const Eigen::Vector3d& sun, double exposure,
+             double focal_px);
   /// Draws what follows with the program of `kind`.
   void Use(Kind kind);
   /// Back to no program.
@@ -54,11 +64,11 @@ class SurfaceProgram {
  private:
   struct Linked {
     GLuint program = 0;
-    GLint world_from_eye = -1, sun_eye = -1, exposure = -1;
+    GLint world_from_eye = -1, sun_eye = -1, exposure = -1, outline_px_per_depth = -1;
   };
   static Linked Link(Kind kind, const LightMap* map, double ambient, double diffuse);
 
-  Linked programs_[2];
+  Linked programs_[4];
   GLuint light_texture_ = 0;
   Kind current_ = Kind::kIsotropic;
 };
