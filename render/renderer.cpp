@@ -79,6 +79,7 @@ struct Drawable {
   Eigen::AlignedBox3d box;               // world-frame bounds, for culling
   std::vector<FarVersion> far_versions;  // coarser and coarser
   bool curved = false;                   // a cylinder's outline: drawn antialiased
+  bool flat = false;                     // a box or the ceiling: read by footprint
 };
 
 // A texture as uploaded: GL name and world size of one repeat.
@@ -504,7 +505,9 @@ struct Renderer::Gl {
   // are made before the list is compiled: made inside it, their upload would be
   // compiled into the list instead of done.
   GLuint CompileObject(const sim::StaticObject& o, const TreeTessellation& level) {
-    const GlTexture& tex = Texture(o.appearance);
+    // A box's faces (walls, seen at grazing angles) read by footprint, as the ground.
+    const bool flat = o.shape == sim::StaticObject::Shape::kBox;
+    const GlTexture& tex = Texture(o.appearance, 0.5, flat);
     const bool crown = DrawsCrown(o);
     const GlTexture& leaves = crown ? Texture("leaves") : tex;
     const GLuint list = glGenLists(1);
@@ -557,6 +560,7 @@ struct Renderer::Gl {
       d.list = CompileObject(o, kTreeLevels[0]);
       d.box = DrawnBounds(o);
       d.curved = o.shape == sim::StaticObject::Shape::kCylinder;
+      d.flat = o.shape == sim::StaticObject::Shape::kBox;
       if (IsTree(o) && appearance.object_far_error_px > 0.0) {
         const double crown = DrawsCrown(o) ? TreeCrownRadius(o) : 0.0;
         for (std::size_t l = 1; l < kTreeLevels.size(); ++l) {
@@ -568,9 +572,10 @@ struct Renderer::Gl {
     }
     if (appearance.ceiling_height_m > 0.0) {
       const sim::Terrain& t = *terrain;
-      const GlTexture& tex = Texture("ceiling");
+      const GlTexture& tex = Texture("ceiling", 0.5, true);
       const double z = appearance.ceiling_height_m, m = tex.meters_per_repeat;
       Drawable d;
+      d.flat = true;
       d.box = Eigen::AlignedBox3d(Eigen::Vector3d(t.x_min(), t.y_min(), z),
                                   Eigen::Vector3d(t.x_max(), t.y_max(), z));
       d.list = glGenLists(1);
@@ -778,8 +783,9 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
       g.program->Use(SurfaceProgram::Kind::kFootprint);
       g.DrawTerrain(g.terrain_drawables[static_cast<std::size_t>(d.terrain)], center_xy);
     } else {
-      g.program->Use(d.curved ? SurfaceProgram::Kind::kOutlineCore
-                              : SurfaceProgram::Kind::kIsotropic);
+      g.program->Use(d.flat     ? SurfaceProgram::Kind::kFootprint
+                     : d.curved ? SurfaceProgram::Kind::kOutlineCore
+                                : SurfaceProgram::Kind::kIsotropic);
       glCallList(g.ObjectList(d, K.fx, center_xy));
     }
   }

@@ -11,10 +11,10 @@
 // coordinates' screen derivatives); the lookup reads the layer pre-filtered for its
 // length over its width (the nearest power of two, up to 2^kMaxAnisotropyLog2) and
 // the direction of its major axis (footprint_mips.h), at the mip level whose texel is
-// the footprint's length over the layer's. Objects are drawn by a second program
-// that reads their texture (one layer) at the level llvmpipe takes from the quad's
-// derivatives (about the footprint's length), trilinearly: a third of the ground's
-// per-pixel cost.
+// the footprint's length over the layer's (the terrain, boxes, the ceiling). Cylinders,
+// crowns and people are drawn by a second program that reads their texture (one
+// layer) at the level llvmpipe takes from the quad's derivatives (about the
+// footprint's length), trilinearly: a third of the footprint lookup's per-pixel cost.
 //
 // Outlines of cylinders and spheres (trunks, crowns), in two passes: the core program
 // leaves out the pixels whose centre lies less than half a pixel inside the outline of
@@ -46,9 +46,9 @@ class SurfaceProgram {
   SurfaceProgram(const SurfaceProgram&) = delete;
   SurfaceProgram& operator=(const SurfaceProgram&) = delete;
 
-  /// How a draw reads its texture: over the footprint from the layers (a ground's), or
-  /// at the level llvmpipe takes from the quad's derivatives (an object's); a curved
-  /// object's core and, in a later pass, its outline's fringe.
+  /// How a draw reads its texture: over the footprint from the layers (the ground's, a
+  /// box's), or at the level llvmpipe takes from the quad's derivatives (a cylinder's, a
+  /// crown's); a curved object's core and, in a later pass, its outline's fringe.
   enum class Kind { kFootprint = 0, kIsotropic = 1, kOutlineCore = 2, kOutlineFringe = 3 };
 
   /// Draws with the programs until End, the isotropic one first: `view` maps world to
