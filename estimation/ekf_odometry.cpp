@@ -126,7 +126,7 @@ void EkfOdometry::AddGyro(double t_s, double yaw_rate_radps) {
 }
 
 void EkfOdometry::AddCameraFrame(double t_s, const std::optional<geometry::Pose2>& motion,
-                                 int inliers) {
+                                 int inliers, const Eigen::Matrix3d* covariance) {
   PredictTo(t_s);
   const double dt = t_s - t_clone_;
   if (motion && has_clone_ && inliers > 0 && dt > 0.0) {
@@ -152,7 +152,10 @@ void EkfOdometry::AddCameraFrame(double t_s, const std::optional<geometry::Pose2
     const double scale = options_.vo_reference_inliers / static_cast<double>(inliers);
     const double var_t = scale * std::pow(options_.vo_speed_std * dt, 2);
     const double var_r = scale * std::pow(options_.vo_yaw_rate_std * dt, 2);
-    const Eigen::Matrix3d R = Eigen::Vector3d(var_t, var_t, var_r).asDiagonal();
+    const Eigen::Matrix3d R =
+        options_.vo_covariance_from_vo && covariance
+            ? *covariance
+            : Eigen::Matrix3d(Eigen::Vector3d(var_t, var_t, var_r).asDiagonal());
     Update<3>(innovation, H, R);
   }
   ClonePose();

@@ -99,6 +99,23 @@ InputStatus StampStatus(double t_s, bool has_last, double last_s) {
   return InputStatus::kUsed;
 }
 
+/// The covariance of a VO frame's planar increment (x, y, yaw in the previous pose's
+/// heading frame) from the body motion's: the body's motion curr-from-prev is off by
+/// the left increment (ρ, φ) in the current body's axes, so T_prev_curr is off by
+/// (−R_pc·ρ, −R_pc·φ) in the previous body's, carried into the heading frame (the
+/// previous body's world rotation without its yaw). To first order: x, y from the
+/// translation, yaw from the rotation's vertical component.
+Eigen::Matrix3d PlanarCovariance(const MotionCovarianceMatrix& body_covariance,
+                                 const Eigen::Isometry3d& T_world_body_prev, double yaw_prev,
+                                 const Eigen::Isometry3d& T_prev_curr) {
+  const Eigen::Matrix3d M = Eigen::AngleAxisd(-yaw_prev, Eigen::Vector3d::UnitZ()).matrix() *
+                            T_world_body_prev.linear() * T_prev_curr.linear();
+  Eigen::Matrix<double, 3, 6> J = Eigen::Matrix<double, 3, 6>::Zero();
+  J.block<2, 3>(0, 0) = M.topRows<2>();
+  J.block<1, 3>(2, 3) = M.row(2);
+  return J * body_covariance * J.transpose();
+}
+
 }  // namespace
 
 InputStatus LocalizationStack::AddImuSample(double t_s, const Eigen::Vector3d& gyro_radps,
@@ -135,6 +152,9 @@ InputStatus LocalizationStack::AddGyroSample(double t_s, const Eigen::Vector3d& 
     return status;
   }
   ekf_.AddGyro(t_s, rate_radps.z());
+  if (options_.apply_camera_time_offset && vo_ && has_gyro_) {
+    gyro_intervals_.push_back({t_gyro_, t_s, rate_radps});
+  }
   if (has_gyro_) {
     // The rate held over the interval since the last sample (body frame: right-multiplied).
     const Eigen::Vector3d phi = rate_radps * (t_s - t_gyro_);
@@ -184,22 +204,45 @@ LocalizationFrameReport LocalizationStack::AddStereoFrame(double t_s, const cv::
   return ProcessStereoFrame(t_s, left, right);
 }
 
+const Eigen::Matrix3d* LocalizationStack::RotationPrior(double t_s, Eigen::Matrix3d* R) {
+  const Eigen::Matrix3d& R_bc = T_body_left_.linear();
+  if (!options_.apply_camera_time_offset) {
+    // The gyro's rotation since the last frame's stamp, in the left camera's frame.
+    *R = R_bc.transpose() * R_gyro_since_frame_ * R_bc;
+    return gyro_since_frame_ ? R : nullptr;
+  }
+  const double t_exposure = t_s + options_.imu.camera_time_offset_s;
+  const bool has_prior = has_exposure_ && !gyro_intervals_.empty() && t_exposure > t_exposure_;
+  if (has_prior) {
+    *R = R_bc.transpose() * IntegrateGyro(gyro_intervals_, t_exposure_, t_exposure) * R_bc;
+  }
+  DropGyroBefore(t_exposure, &gyro_intervals_);
+  t_exposure_ = t_exposure;
+  has_exposure_ = true;
+  return has_prior ? R : nullptr;
+}
+
 LocalizationFrameReport LocalizationStack::ProcessStereoFrame(double t_s, const cv::Mat& left,
                                                               const cv::Mat& right) {
   LocalizationFrameReport report;
-  // The gyro's rotation since the last frame, in the left camera's frame.
-  const Eigen::Matrix3d& R_bc = T_body_left_.linear();
-  const Eigen::Matrix3d R_prior = R_bc.transpose() * R_gyro_since_frame_ * R_bc;
-  report.vo = vo_->Process(left, right, t_s, gyro_since_frame_ ? &R_prior : nullptr);
+  Eigen::Matrix3d R_prior;
+  report.vo = vo_->Process(left, right, t_s, RotationPrior(t_s, &R_prior));
   R_gyro_since_frame_.setIdentity();
   gyro_since_frame_ = false;
   report.vo_valid = report.vo.status == VoStatus::kOk;
   std::optional<geometry::Pose2> vo_increment;
+  std::optional<Eigen::Matrix3d> vo_planar_covariance;
   if (report.vo_valid) {
     // The left camera's motion, expressed as the body's motion.
     const Eigen::Isometry3d T_body_motion =
         T_body_left_ * report.vo.T_prev_curr * T_body_left_.inverse();
+    report.vo_body_motion = T_body_motion;
     const geometry::Pose2 planar_before = geometry::PlanarPose(T_world_body_vo_);
+    if (report.vo.covariance_valid) {
+      report.vo_body_covariance = TransformMotionCovariance(report.vo.covariance, T_body_left_);
+      vo_planar_covariance = PlanarCovariance(report.vo_body_covariance, T_world_body_vo_,
+                                              planar_before.yaw, T_body_motion);
+    }
     T_world_body_vo_ = T_world_body_vo_ * T_body_motion;
     // The planar motion is the change of the 3-D pose's planar projection, not the
     // planar part of the 3-D increment: on tilted ground the body's x axis is not
@@ -227,7 +270,8 @@ LocalizationFrameReport LocalizationStack::ProcessStereoFrame(double t_s, const 
   }
   // Only a measured motion enters the EKF; after a failed or coasted frame the next
   // motion starts from here.
-  ekf_.AddCameraFrame(t_s, vo_increment, report.vo.inliers);
+  ekf_.AddCameraFrame(t_s, vo_increment, report.vo.inliers,
+                      vo_planar_covariance ? &*vo_planar_covariance : nullptr);
   report.slip = wheel_.slip();
   report.slip_velocity_mps = report.slip.max_abs_mps();
   report.features = report.vo.inliers;

@@ -51,6 +51,12 @@ void StereoVisualOdometryOptions::Validate() const {
   option_check::Positive("max_acceleration_mps2", max_acceleration_mps2);
   option_check::Positive("max_angular_acceleration_dps2", max_angular_acceleration_dps2);
   option_check::Positive("max_rotation_prior_error_deg", max_rotation_prior_error_deg);
+  option_check::NonNegative("rotation_prior_bias_std_radps", rotation_prior_bias_std_radps);
+  option_check::NonNegative("rotation_prior_noise_density", rotation_prior_noise_density);
+  if (!(rotation_prior_bias_std_radps > 0.0 || rotation_prior_noise_density > 0.0)) {
+    throw OptionError("rotation_prior_noise_density",
+                      "must be > 0 where rotation_prior_bias_std_radps is 0");
+  }
   option_check::Positive("disparity_offset_prior_std_px", disparity_offset_prior_std_px);
   option_check::Positive("disparity_offset_walk_px", disparity_offset_walk_px);
 }
@@ -277,6 +283,7 @@ VoFrameResult StereoVisualOdometry::Process(const cv::Mat& left, const cv::Mat& 
   if (std::optional<Failure> failure = VetMotion(frame, &result)) {
     return Fail(frame, std::move(*failure), &result);
   }
+  EstimateCovariance(frame, &result);
   AcceptMotion(frame, &result);
   // 5. Carry the inliers to the next frame; fill the grid's empty cells.
   CarryInliers();
@@ -443,6 +450,28 @@ std::optional<StereoVisualOdometry::Failure> StereoVisualOdometry::VetMotion(
   }
   result->dynamics_constrained = true;
   return std::nullopt;
+}
+
+void StereoVisualOdometry::EstimateCovariance(const Frame& frame, VoFrameResult* result) {
+  MotionCovariance covariance =
+      EstimateMotionCovariance(correspondences_, motion_.inlier_mask, camera_, motion_.T_curr_prev,
+                               options_.refinement.huber_px);
+  result->image_noise_px = covariance.image_noise_px;
+  if (!covariance.valid) return;
+  if (options_.rotation_prior_in_estimate && frame.R_prev_curr_prior) {
+    const double dt = frame.t_s - last_t_s_;
+    const double bias = options_.rotation_prior_bias_std_radps * dt;
+    const double noise = options_.rotation_prior_noise_density;
+    RotationPrior prior;
+    prior.R_prev_curr = *frame.R_prev_curr_prior;
+    prior.std_rad = std::sqrt(bias * bias + noise * noise * dt);
+    if (prior.std_rad > 0.0) {
+      AddRotationPrior(prior, &covariance, &motion_.T_curr_prev);
+      result->rotation_prior_applied = true;
+    }
+  }
+  result->covariance = covariance.covariance;
+  result->covariance_valid = true;
 }
 
 void StereoVisualOdometry::AcceptMotion(const Frame& frame, VoFrameResult* result) {

@@ -11,9 +11,10 @@
 namespace trackbed::robot {
 namespace {
 
-double Required(const char* field, const std::optional<double>& v) {
+// A value the realism profile's part fills in: set, and not negative.
+void CheckSetNonNegative(const char* field, const std::optional<double>& v) {
   if (!v) throw OptionError(field, "not set (WithImuPartResolved gives the profile's)");
-  return *v;
+  option_check::NonNegative(field, *v);
 }
 
 void CheckMarkov(const char* std_field, const char* tau_field,
@@ -37,18 +38,12 @@ void CheckMarkov(const char* std_field, const char* tau_field,
 
 void ImuOptions::Validate() const {
   option_check::InRange("rate_hz", rate_hz, 1.0, 10000.0);
-  option_check::NonNegative("gyro_noise_density",
-                            Required("gyro_noise_density", gyro_noise_density));
-  option_check::NonNegative("gyro_bias_random_walk",
-                            Required("gyro_bias_random_walk", gyro_bias_random_walk));
-  option_check::NonNegative("accel_noise_density",
-                            Required("accel_noise_density", accel_noise_density));
-  option_check::NonNegative("accel_bias_random_walk",
-                            Required("accel_bias_random_walk", accel_bias_random_walk));
-  option_check::NonNegative("gyro_initial_bias_std",
-                            Required("gyro_initial_bias_std", gyro_initial_bias_std));
-  option_check::NonNegative("accel_initial_bias_std",
-                            Required("accel_initial_bias_std", accel_initial_bias_std));
+  CheckSetNonNegative("gyro_noise_density", gyro_noise_density);
+  CheckSetNonNegative("gyro_bias_random_walk", gyro_bias_random_walk);
+  CheckSetNonNegative("accel_noise_density", accel_noise_density);
+  CheckSetNonNegative("accel_bias_random_walk", accel_bias_random_walk);
+  CheckSetNonNegative("gyro_initial_bias_std", gyro_initial_bias_std);
+  CheckSetNonNegative("accel_initial_bias_std", accel_initial_bias_std);
   CheckMarkov("gyro_bias_markov_std", "gyro_bias_markov_tau_s", gyro_bias_markov_std,
               gyro_bias_markov_tau_s);
   CheckMarkov("accel_bias_markov_std", "accel_bias_markov_tau_s", accel_bias_markov_std,

@@ -151,6 +151,11 @@ class RunLogs {
         dir / "fusion.csv",
         "t,slip_velocity_mps,features,w,vo_status,vo_tracked,camera_blackout,w_rule,"
         "vo_dynamics_constrained");
+    std::string header = "t,vo_status,x_m,y_m,z_m,rx_rad,ry_rad,rz_rad,image_noise_px";
+    for (int i = 0; i < 6; ++i) {
+      for (int j = i; j < 6; ++j) header += ",c" + std::to_string(i) + std::to_string(j);
+    }
+    vo_covariance_csv_ = std::make_unique<LogFile>(dir / "vo_covariance.csv", header);
   }
 
   // Every sample; the logs keep every decimate-th (outputs.decimate).
@@ -170,8 +175,8 @@ class RunLogs {
   }
   void Close() {
     for (LogFile* f : {&truth_, &twist_, &encoders_, &slip_, &tracks_, &imu_}) f->Close();
-    for (auto* f :
-         {&wheel_tum_, &noslip_tum_, &ekf_tum_, &fused_tum_, &vo_tum_, &fusion_csv_, &scan_csv_}) {
+    for (auto* f : {&wheel_tum_, &noslip_tum_, &ekf_tum_, &fused_tum_, &vo_tum_, &fusion_csv_,
+                    &scan_csv_, &vo_covariance_csv_}) {
       if (*f) (*f)->Close();
     }
     for (auto& [name, f] : external_tum_) f->Close();
@@ -180,12 +185,13 @@ class RunLogs {
  private:
   LogFile truth_, encoders_, slip_, tracks_, imu_, twist_;
   std::unique_ptr<LogFile> wheel_tum_, noslip_tum_, ekf_tum_, fused_tum_, vo_tum_, fusion_csv_,
-      scan_csv_;
+      scan_csv_, vo_covariance_csv_;
   std::map<std::string, std::unique_ptr<LogFile>> external_tum_;  // reported estimators
   long long decimate_ = 1, samples_ = 0, imu_samples_ = 0;
   char line_[512];
   void WriteSample(const RunSample& s);
   void WriteImu(const robot::ImuSample& s);
+  void WriteVoCovariance(const LocalizationFrame& f);
 };
 
 void RunLogs::WriteSample(const RunSample& s) {
@@ -237,6 +243,35 @@ void RunLogs::Frame(const LocalizationFrame& f) {
                 f.camera_blackout ? 1 : 0, f.report.w_rule,
                 f.report.vo.dynamics_constrained ? 1 : 0);
   fusion_csv_->Line(line_);
+  WriteVoCovariance(f);
+}
+
+// VO's body motion and its covariance (docs/run_folder.md, `vo_covariance.csv`); the
+// numbers empty on a frame without a motion.
+void RunLogs::WriteVoCovariance(const LocalizationFrame& f) {
+  std::string row(
+      line_, static_cast<std::size_t>(std::snprintf(line_, sizeof(line_), "%.6f,%s", f.t_s,
+                                                    estimation::ToString(f.report.vo.status))));
+  if (!f.report.vo_valid || !f.report.vo.covariance_valid) {
+    row += ",,,,,,,";
+    for (int k = 0; k < 21; ++k) row += ',';
+    vo_covariance_csv_->Line(row.c_str());
+    return;
+  }
+  const Eigen::Isometry3d& M = f.report.vo_body_motion;
+  const Eigen::AngleAxisd aa(M.linear());
+  const Eigen::Vector3d r = aa.angle() * aa.axis();
+  std::snprintf(line_, sizeof(line_), ",%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g", M.translation().x(),
+                M.translation().y(), M.translation().z(), r.x(), r.y(), r.z(),
+                f.report.vo.image_noise_px);
+  row += line_;
+  for (int i = 0; i < 6; ++i) {
+    for (int j = i; j < 6; ++j) {
+      std::snprintf(line_, sizeof(line_), ",%.6g", f.report.vo_body_covariance(i, j));
+      row += line_;
+    }
+  }
+  vo_covariance_csv_->Line(row.c_str());
 }
 
 void RunLogs::WriteImu(const robot::ImuSample& s) {

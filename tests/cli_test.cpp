@@ -173,6 +173,26 @@ TEST(CliTest, EstimatorsAreWrittenBesideGroundTruthAndScored) {
   std::getline(slip, row);
   EXPECT_NE(row.find("left_est_mps,right_est_mps"), std::string::npos);
   while (std::getline(slip, row)) ASSERT_EQ(std::count(row.begin(), row.end(), ','), 9) << row;
+  // vo_covariance.csv: VO's motion and covariance per stereo frame, 30 columns; on a
+  // frame with a motion a covariance with positive variances.
+  EXPECT_EQ(lines(out / "vo_covariance.csv"), 102);
+  std::istringstream covariance(Slurp(out / "vo_covariance.csv"));
+  std::getline(covariance, row);
+  EXPECT_EQ(row.rfind("t,vo_status,x_m,y_m,z_m,rx_rad,ry_rad,rz_rad,image_noise_px,c00,c01,", 0),
+            0u);
+  int with_covariance = 0;
+  while (std::getline(covariance, row)) {
+    ASSERT_EQ(std::count(row.begin(), row.end(), ','), 29) << row;
+    if (row.find(",ok,") == std::string::npos) continue;
+    std::vector<std::string> f;
+    std::istringstream cells(row);
+    for (std::string c; std::getline(cells, c, ',');) f.push_back(c);
+    ASSERT_EQ(f.size(), 30u) << row;
+    // c00, c11, …, c55: the diagonal of the upper triangle, row by row.
+    for (int k : {9, 15, 20, 24, 27, 29}) EXPECT_GT(std::stod(f[static_cast<std::size_t>(k)]), 0.0);
+    ++with_covariance;
+  }
+  EXPECT_GT(with_covariance, 80);
   const nlohmann::json m = Metrics(out);
   for (const char* name :
        {"wheel_odometry", "wheel_odometry_noslip", "visual_odometry", "fused", "ekf"}) {

@@ -28,6 +28,8 @@ struct Corruption {
   double wheel_yaw_scale = 1.0;  // skid: the wheels' yaw rate is this times the truth's
   double wheel_speed_scale = 1.0;
   double vo_noise = 0.0;                            // per frame, translation [m] and rotation [rad]
+  double vo_yaw_noise = 0.0;                        // per frame, more rotation noise [rad]
+  bool report_vo_covariance = false;                // each frame with its noise's covariance
   double vo_gap_from_s = -1.0, vo_gap_to_s = -1.0;  // frames without a motion
 };
 
@@ -38,8 +40,9 @@ struct Result {
   double wheel_only_yaw = 0.0;       // the wheels' yaw rate integrated alone [rad]
 };
 
-Result Simulate(const std::function<Twist(double)>& twist, double duration_s, const Corruption& c) {
-  EkfOdometry ekf({}, {});
+Result Simulate(const std::function<Twist(double)>& twist, double duration_s, const Corruption& c,
+                const EkfOdometryOptions& options = {}) {
+  EkfOdometry ekf(options, {});
   std::mt19937 rng(7);
   std::normal_distribution<double> unit(0.0, 1.0);
   Result r;
@@ -64,7 +67,12 @@ Result Simulate(const std::function<Twist(double)>& twist, double duration_s, co
       motion.x += c.vo_noise * unit(rng);
       motion.y += c.vo_noise * unit(rng);
       motion.yaw += c.vo_noise * unit(rng);
-      ekf.AddCameraFrame(t, gap ? std::nullopt : std::optional<geometry::Pose2>(motion), 150);
+      motion.yaw += c.vo_yaw_noise * unit(rng);
+      const double yaw_var = c.vo_noise * c.vo_noise + c.vo_yaw_noise * c.vo_yaw_noise;
+      const Eigen::Matrix3d covariance =
+          Eigen::Vector3d(c.vo_noise * c.vo_noise, c.vo_noise * c.vo_noise, yaw_var).asDiagonal();
+      ekf.AddCameraFrame(t, gap ? std::nullopt : std::optional<geometry::Pose2>(motion), 150,
+                         c.report_vo_covariance ? &covariance : nullptr);
       at_frame = r.truth;
     }
   }
@@ -145,6 +153,26 @@ TEST(EkfOdometryTest, BridgesACameraGapOnTheGyro) {
   ASSERT_GT(WheelOnlyHeadingErrorDeg(r), 90.0);
   EXPECT_LT(HeadingErrorDeg(r), 1.0);
   EXPECT_LT(PositionError(r), 0.3);
+}
+
+TEST(EkfOdometryTest, VisionsOwnCovarianceKeepsAPoorlyConditionedRotationOutOfTheBias) {
+  // VO's rotation 0.02 rad off per frame (few or far features), its translation fine;
+  // the inlier count (150) calls it good, and the gyro's bias state takes in its
+  // noise. With VO's own covariance the gyro's bias stays at the truth (0) and the
+  // position follows.
+  Corruption c;
+  c.gyro_noise = 2.4e-3;
+  c.vo_noise = 5e-4;
+  c.vo_yaw_noise = 0.02;
+  c.report_vo_covariance = true;
+  const Result by_inliers = Simulate(LeftLoops, 60.0, c);
+  EkfOdometryOptions own;
+  own.vo_covariance_from_vo = true;
+  const Result by_covariance = Simulate(LeftLoops, 60.0, c, own);
+  EXPECT_GT(std::abs(by_inliers.bias), 1e-3);
+  EXPECT_LT(std::abs(by_covariance.bias), 2e-4);
+  EXPECT_LT(PositionError(by_covariance), 0.5 * PositionError(by_inliers));
+  EXPECT_LT(HeadingErrorDeg(by_covariance), 0.5);
 }
 
 TEST(EkfOdometryTest, SideSlipThatVisionSeesEntersThePosition) {

@@ -55,6 +55,11 @@ struct EkfOdometryOptions {
   double vo_speed_std = 0.01;
   double vo_yaw_rate_std = 0.01;
   double vo_reference_inliers = 100.0;
+  /// Take a VO frame's noise from VO's own covariance (its planar part,
+  /// docs/localization.md "Covariance") where the frame has one, rather than from the
+  /// three figures above; a frame without one falls back on them. Off: the inlier-count
+  /// model above.
+  bool vo_covariance_from_vo = false;
 
   void Validate() const;
 
@@ -73,6 +78,7 @@ struct EkfOdometryOptions {
     a->Visit("vo_speed_std", &vo_speed_std);
     a->Visit("vo_yaw_rate_std", &vo_yaw_rate_std);
     a->Visit("vo_reference_inliers", &vo_reference_inliers);
+    a->Visit("vo_covariance_from_vo", &vo_covariance_from_vo);
   }
 };
 
@@ -89,8 +95,10 @@ class EkfOdometry {
   void AddGyro(double t_s, double yaw_rate_radps);
   /// A camera frame at t. `motion`: visual odometry's planar motion since the previous
   /// frame, in that frame's body axes, or none (a failed frame, or the first). Either
-  /// way the pose now is what the next frame's motion starts from.
-  void AddCameraFrame(double t_s, const std::optional<geometry::Pose2>& motion, int inliers);
+  /// way the pose now is what the next frame's motion starts from. `covariance`: the motion's own
+  /// covariance of (x, y, yaw) [m², m·rad, rad²], used with vo_covariance_from_vo (may be null).
+  void AddCameraFrame(double t_s, const std::optional<geometry::Pose2>& motion, int inliers,
+                      const Eigen::Matrix3d* covariance = nullptr);
 
   geometry::Pose2 pose() const { return {x_(0), x_(1), geometry::WrapAngle(x_(2))}; }
   double gyro_bias() const { return x_(6); }

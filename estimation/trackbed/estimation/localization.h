@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <optional>
 #include <string>
@@ -20,6 +21,7 @@
 #include "trackbed/estimation/ekf_odometry.h"
 #include "trackbed/estimation/fusion_weight_rise.h"
 #include "trackbed/estimation/fuzzy_fusion.h"
+#include "trackbed/estimation/gyro_rotation.h"
 #include "trackbed/estimation/imu_correction.h"
 #include "trackbed/estimation/stereo_visual_odometry.h"
 #include "trackbed/estimation/wheel_odometry.h"
@@ -47,6 +49,13 @@ struct LocalizationOptions {
   /// it holds at once. The fusion takes a failed frame's increment from the wheels
   /// whatever this is, and the slip estimate never sees a coasted motion.
   double vo_coast_time_s = 1.0;
+  /// Pair each stereo frame with the gyro at the instant it was exposed on the IMU's
+  /// clock, its stamp plus the given calibration's camera–IMU time offset
+  /// (imu.camera_time_offset_s, Kalibr's timeshift_cam_imu): VO's rotation prior is the
+  /// gyro's rotation between two frames' exposures (IntegrateGyro, gyro_rotation.h;
+  /// past the newest sample its rate is held). Off: the samples up to the frame's
+  /// stamp, as if the offset were 0.
+  bool apply_camera_time_offset = false;
   /// The EKF baseline (wheel odometry + gyro + visual odometry).
   EkfOdometryOptions ekf;
   /// The IMU's given calibration (imu_calibration.json): AddImuSample turns its
@@ -74,6 +83,7 @@ struct LocalizationOptions {
     a->Visit("fusion", &fusion);
     a->Visit("min_inliers_for_slip", &min_inliers_for_slip);
     a->Visit("vo_coast_time_s", &vo_coast_time_s);
+    a->Visit("apply_camera_time_offset", &apply_camera_time_offset);
     a->Visit("ekf", &ekf);
   }
 };
@@ -112,6 +122,13 @@ struct LocalizationFrameReport {
   double w = 1.0;                  ///< Weight of wheel odometry applied in this step.
   double w_rule = 1.0;             ///< The rule base's weight for this frame alone.
   TrackSlip slip;                  ///< Estimated slip of both tracks.
+  /// VO's motion as the body's: T_prev_curr of the body (p_prev = T · p_curr), and the
+  /// covariance of the left increment of its inverse (curr from prev) in the current
+  /// body's axes [m², m·rad, rad²] (VoFrameResult::covariance carried by the camera's
+  /// mounting, TransformMotionCovariance). Identity and zero unless vo_valid;
+  /// the covariance is zero also where VO's is not valid.
+  Eigen::Isometry3d vo_body_motion = Eigen::Isometry3d::Identity();
+  MotionCovarianceMatrix vo_body_covariance = MotionCovarianceMatrix::Zero();
 };
 
 /// Runs the estimators side by side. Every estimator starts at the robot's
@@ -164,6 +181,9 @@ class LocalizationStack {
                     const Eigen::Isometry3d& T_world_body0);
   // A rectified pair's frame.
   LocalizationFrameReport ProcessStereoFrame(double t_s, const cv::Mat& left, const cv::Mat& right);
+  // The gyro's rotation over the last frame interval in the left camera's frame, or
+  // null where there is none (into *R).
+  const Eigen::Matrix3d* RotationPrior(double t_s, Eigen::Matrix3d* R);
   // Why a frame at t_s with these images is set aside, or kUsed.
   InputStatus CheckStereoFrame(double t_s, const cv::Mat& left, const cv::Mat& right) const;
 
@@ -194,6 +214,11 @@ class LocalizationStack {
   Eigen::Matrix3d R_gyro_since_frame_ = Eigen::Matrix3d::Identity();
   double t_gyro_ = 0.0;
   bool has_gyro_ = false, gyro_since_frame_ = false;
+  // With apply_camera_time_offset: the gyro's samples not yet wholly before the last
+  // frame's exposure, and that exposure's time on the IMU's clock.
+  std::deque<GyroInterval> gyro_intervals_;
+  double t_exposure_ = 0.0;
+  bool has_exposure_ = false;
   // The last used encoder stamp; inputs set aside.
   double t_encoder_ = 0.0;
   bool has_encoder_ = false;

@@ -43,6 +43,7 @@
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
+#include "trackbed/estimation/motion_covariance.h"
 #include "trackbed/estimation/stereo_motion_estimation.h"
 #include "trackbed/perception/feature_tracker.h"
 #include "trackbed/perception/harris_corners.h"
@@ -115,10 +116,24 @@ struct StereoVisualOdometryOptions {
   /// With a rotation prior (a gyro's rotation over the frame interval, passed to
   /// Process), the frame's rotation is held to the prior instead, to within this [deg],
   /// > 0, also right after a failed frame; the angular acceleration bound is then not
-  /// used. The prior only vets consensuses: it never enters the motion estimate. (With
+  /// used. Unless rotation_prior_in_estimate, the prior only vets consensuses. (With
   /// a right consensus VO's rotation error stayed under 0.6 deg per frame in the
   /// simulated outdoor runs of seeds 3 and 6.)
   double max_rotation_prior_error_deg = 2.0;
+  /// Add the rotation prior to the refined motion (AddRotationPrior, motion_covariance.h:
+  /// the motion with its covariance from the inliers' geometry and the prior's rotation
+  /// combined in information form), so that where the images pin the rotation down
+  /// poorly the gyro's rotation — and with it the sideways motion it is tied to — takes
+  /// over. Off: the motion is the images' alone (Ham et al. 2012's VO).
+  bool rotation_prior_in_estimate = false;
+  /// The prior's spread per axis over a frame interval dt is
+  /// √((rotation_prior_bias_std_radps·dt)² + rotation_prior_noise_density²·dt) [rad]:
+  /// an unestimated gyro bias [rad/s], >= 0, and the gyro's white noise
+  /// [rad/s/√Hz], >= 0, not both 0. Defaults: the turn-on bias σ of every realism
+  /// profile's IMU, 1e-3 rad/s, and the largest gyro white noise among them, ideal's
+  /// 1.6968e-4 rad/s/√Hz (docs/calibration.md, "The IMU's noise").
+  double rotation_prior_bias_std_radps = 1e-3;
+  double rotation_prior_noise_density = 1.6968e-4;
   /// Reprojection refinement after the inlier refit.
   MotionRefinementOptions refinement;
   /// Start LK at the position the last motion predicts (constant velocity), rather than
@@ -180,6 +195,9 @@ struct StereoVisualOdometryOptions {
     a->Visit("max_acceleration_mps2", &max_acceleration_mps2);
     a->Visit("max_angular_acceleration_dps2", &max_angular_acceleration_dps2);
     a->Visit("max_rotation_prior_error_deg", &max_rotation_prior_error_deg);
+    a->Visit("rotation_prior_in_estimate", &rotation_prior_in_estimate);
+    a->Visit("rotation_prior_bias_std_radps", &rotation_prior_bias_std_radps);
+    a->Visit("rotation_prior_noise_density", &rotation_prior_noise_density);
     a->Visit("refinement", &refinement);
     a->Visit("use_motion_prior", &use_motion_prior);
     a->Visit("estimate_disparity_offset", &estimate_disparity_offset);
@@ -221,6 +239,16 @@ struct VoFrameResult {
   int inliers = 0;
   int features = 0;                  ///< features carried to the next frame (inliers + new corners)
   double reprojection_rms_px = 0.0;  ///< inliers' RMS residual after refinement
+  /// The motion's covariance from its inliers' geometry (motion_covariance.h): of the
+  /// left increment δ = (ρ, φ) [m, rad] of T_prev_curr⁻¹ (curr from prev), in the
+  /// current camera's axes; with rotation_prior_in_estimate and a prior, the combined
+  /// motion's. Valid only when ok and covariance_valid.
+  MotionCovarianceMatrix covariance = MotionCovarianceMatrix::Zero();
+  bool covariance_valid = false;
+  /// The image noise the inliers' residuals show [px] (MotionCovariance::image_noise_px).
+  double image_noise_px = 0.0;
+  /// Whether the rotation prior entered the motion (rotation_prior_in_estimate).
+  bool rotation_prior_applied = false;
   /// Whether RANSAC's consensus broke the dynamics bounds and the motion is the
   /// consensus of the other correspondences instead.
   bool dynamics_constrained = false;
@@ -305,6 +333,9 @@ class StereoVisualOdometry {
   /// constant-velocity prediction `predicted` beyond the dynamics bounds, if it does.
   std::optional<std::string> BreaksDynamics(const Eigen::Isometry3d& T, const Frame& frame,
                                             const Eigen::Isometry3d& predicted) const;
+  /// The motion's covariance from its inliers, and the rotation prior added to the
+  /// motion (rotation_prior_in_estimate), into result.
+  void EstimateCovariance(const Frame& frame, VoFrameResult* result);
   /// Takes motion_ as this frame's motion: result, pose, constant-velocity state.
   void AcceptMotion(const Frame& frame, VoFrameResult* result);
   /// 5. Moves motion_'s inliers into curr_, the next frame's features.
