@@ -79,6 +79,7 @@ struct Drawable {
   Eigen::AlignedBox3d box;               // world-frame bounds, for culling
   std::vector<FarVersion> far_versions;  // coarser and coarser
   bool curved = false;                   // a cylinder's outline: drawn antialiased
+  GLuint band_list = 0;                  // the band about a curved object's outline
   bool flat = false;                     // a box or the ceiling: read by footprint
 };
 
@@ -458,10 +459,11 @@ struct Renderer::Gl {
     }
   }
 
-  // The pixels the outlines of curved objects cross, far to near, blended over what
-  // is behind by the fraction of each pixel inside (surface_program.h).
-  void DrawOutlineFringes(const std::vector<std::pair<double, int>>& order, double focal_px,
-                          const Eigen::Vector2d& center_xy) {
+  // The pixels the outlines of curved objects cross: the bands about them, far to near,
+  // blended over what is behind by the fraction of each pixel inside; then their depth
+  // where more than half inside (surface_program.h).
+  void DrawOutlineFringes(const std::vector<std::pair<double, int>>& order) {
+    glDisable(GL_CULL_FACE);  // the bands' winding follows the view
     program->Use(SurfaceProgram::Kind::kOutlineFringe);
     glEnable(GL_BLEND);
     glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
@@ -469,11 +471,19 @@ struct Renderer::Gl {
     glDepthFunc(GL_LEQUAL);
     for (auto it = order.rbegin(); it != order.rend(); ++it) {
       const Drawable& d = drawables[static_cast<std::size_t>(it->second)];
-      if (d.curved) glCallList(ObjectList(d, focal_px, center_xy));
+      if (d.curved) glCallList(d.band_list);
     }
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
     glDisable(GL_BLEND);
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    program->Use(SurfaceProgram::Kind::kOutlineDepth);
+    for (const auto& [distance, k] : order) {
+      const Drawable& d = drawables[static_cast<std::size_t>(k)];
+      if (d.curved) glCallList(d.band_list);
+    }
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glEnable(GL_CULL_FACE);
   }
 
   // The version of an object to draw: the coarsest whose silhouette departs from
@@ -536,6 +546,49 @@ struct Renderer::Gl {
     return list;
   }
 
+  // The display list of the bands about a cylinder object's outlines (its trunk's and
+  // its crown's), in the vertices the band program reads (surface_program.cpp): each
+  // band's shape on texture unit 1, its texture's repeat and a cylinder's height on
+  // unit 2, where each vertex lies on the band on unit 0.
+  GLuint CompileBands(const sim::StaticObject& o) {
+    const GlTexture& tex = Texture(o.appearance);
+    const bool crown = DrawsCrown(o);
+    const GlTexture& leaves = crown ? Texture("leaves") : tex;
+    const GLuint list = glGenLists(1);
+    glNewList(list, GL_COMPILE);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, tex.name);
+    glPushMatrix();
+    glTranslated(o.center_m.x(), o.center_m.y(), o.base_z_m);
+    glMultiTexCoord4d(GL_TEXTURE1, 0, 0, 0, -o.radius_m);
+    glMultiTexCoord4d(GL_TEXTURE2, 1.0 / tex.meters_per_repeat, o.height_m, 0, 0);
+    glBegin(GL_QUADS);
+    for (double side : {-1.0, 1.0}) {
+      for (const auto& [end, edge] : {std::pair{-1.0, -1.0}, std::pair{-1.0, 1.0},
+                                      std::pair{1.0, 1.0}, std::pair{1.0, -1.0}}) {
+        glMultiTexCoord4d(GL_TEXTURE0, side, end, edge, 0);
+        glVertex3d(0, 0, end > 0 ? o.height_m : 0.0);
+      }
+    }
+    glEnd();
+    if (crown) {
+      glBindTexture(GL_TEXTURE_2D_ARRAY, leaves.name);
+      glMultiTexCoord4d(GL_TEXTURE1, 0, 0, o.height_m, TreeCrownRadius(o));
+      glMultiTexCoord4d(GL_TEXTURE2, 1.0 / leaves.meters_per_repeat, 0, 0, 0);
+      glBegin(GL_QUAD_STRIP);
+      for (int k = 0; k <= kOutlineRingSegments; ++k) {
+        const double a = 2 * M_PI * k / kOutlineRingSegments;
+        for (double edge : {-1.0, 1.0}) {
+          glMultiTexCoord4d(GL_TEXTURE0, std::cos(a), std::sin(a), edge, 0);
+          glVertex3d(0, 0, o.height_m);
+        }
+      }
+      glEnd();
+    }
+    glPopMatrix();
+    glEndList();
+    return list;
+  }
+
   // World-frame bounds of an object as drawn, crown included.
   Eigen::AlignedBox3d DrawnBounds(const sim::StaticObject& o) const {
     if (o.shape == sim::StaticObject::Shape::kBox) {
@@ -560,6 +613,7 @@ struct Renderer::Gl {
       d.list = CompileObject(o, kTreeLevels[0]);
       d.box = DrawnBounds(o);
       d.curved = o.shape == sim::StaticObject::Shape::kCylinder;
+      if (d.curved) d.band_list = CompileBands(o);
       d.flat = o.shape == sim::StaticObject::Shape::kBox;
       if (IsTree(o) && appearance.object_far_error_px > 0.0) {
         const double crown = DrawsCrown(o) ? TreeCrownRadius(o) : 0.0;
@@ -738,7 +792,7 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
   glLoadMatrixd(view.data());
   const Eigen::Vector3d sun_world =
       SunDirection(g.appearance.sun_azimuth_deg, g.appearance.sun_elevation_deg);
-  g.program->Begin(view, sun_world, g.lit ? g.exposure : 1.0, K.fx);
+  g.program->Begin(view, sun_world, g.lit ? g.exposure : 1.0, K);
 
   // Frustum culling in camera coordinates: a box is skipped when all its
   // corners are outside one of the six planes.
@@ -804,7 +858,7 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
     glCallList(g.occluder_lists[k]);
     glPopMatrix();
   }
-  g.DrawOutlineFringes(order, K.fx, center_xy);
+  g.DrawOutlineFringes(order);
   g.program->End();
   g.ReadBack(gray, depth);
 }

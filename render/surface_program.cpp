@@ -3,6 +3,7 @@
 
 #include "footprint_mips.h"
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -26,7 +27,6 @@ out vec2 albedo_st;
 out vec2 light_st;
 out float direct;
 #ifdef OUTLINE
-uniform float outline_px_per_depth;  // a pixel's width at unit depth (1 / f)
 flat out vec4 shape_eye;  // the shape's centre in eye coordinates, its signed radius
 flat out vec3 axis_eye;   // a cylinder's axis
 out vec3 position_eye;
@@ -39,12 +39,6 @@ void main() {
   vec4 shape = gl_MultiTexCoord1;
   shape_eye = vec4((gl_ModelViewMatrix * vec4(shape.xyz, 1.0)).xyz, shape.w);
   axis_eye = gl_NormalMatrix * vec3(0.0, 0.0, 1.0);
-#endif
-#ifdef OUTLINE_FRINGE
-  // A pixel outwards, and past the facets' chords (2 % of the radius at 16 facets).
-  eye.xyz += normal * (outline_px_per_depth * -eye.z + 0.02 * abs(shape.w));
-#endif
-#ifdef OUTLINE
   position_eye = eye.xyz;
 #endif
 #ifdef LIGHT_MAP
@@ -131,18 +125,8 @@ float OutlineDistance() {
 void main() {
   // First whether the pixel is this pass's: llvmpipe skips the rest for a block of
   // pixels all discarded.
-  float coverage = 1.0;
-#ifdef OUTLINE_CORE
-  if (OutlineDistance() < 0.5) discard;  // a pixel the outline crosses: the fringe's
-#endif
-#ifdef OUTLINE_FRINGE
-  // The object is drawn grown past its outline; the fraction of the pixel inside the
-  // outline, as for a straight edge; the pixels the core drew are left (up to the
-  // facets' chords inside the outline: 2 % of the radius).
-  float inside = OutlineDistance();
-  float core = 1.0 + 0.02 * abs(shape_eye.w) / (-position_eye.z * outline_px_per_depth);
-  if (inside <= -0.5 || inside >= core) discard;
-  coverage = clamp(0.5 + inside, 0.0, 1.0);
+#ifdef OUTLINE
+  if (OutlineDistance() < 0.5) discard;  // a pixel the outline crosses: the band's
 #endif
 #ifdef LIGHT_MAP
   vec2 l = texture(light, light_st).rg;
@@ -155,7 +139,166 @@ void main() {
 #else
   float albedo_mean = IsotropicMean();
 #endif
-  gl_FragColor = vec4(vec3(albedo_mean * shade * exposure), coverage);
+  gl_FragColor = vec4(vec3(albedo_mean * shade * exposure), 1.0);
+}
+)";
+
+// The band about a curved object's outline that the fringe and depth programs draw:
+// per vertex, from the shape (texture unit 1's coordinate: the centre of a sphere or
+// the base of an upright cylinder, and the signed radius) and where the vertex lies on
+// the band (unit 0's: a cylinder's side ±1 and end ±1, a sphere's direction (cos, sin)
+// about its outline; then −1 on the inner edge, +1 on the outer). A cylinder's band is
+// a quad along each of its two silhouette lines, a sphere's an annulus about its
+// outline circle, in the plane square to the ray to its centre: from 1.25 pixels and
+// the facets' chords (2 % of the radius) inside the outline to 0.75 pixels outside, so
+// that it holds the centre of every pixel the fringe draws (a pixel at distance d
+// from the vertex spans at least d / f of the view).
+constexpr const char* kBandVertexShader = R"(
+uniform float outline_px_per_depth;  // a pixel's width at unit depth (1 / f)
+flat out vec4 shape_eye;  // the shape's centre or base in eye coordinates, its signed radius
+flat out vec3 axis_eye;   // the object's z axis (a cylinder's), x and y in eye coordinates
+flat out vec3 east_eye;
+flat out vec3 north_eye;
+flat out vec3 band;       // 1 / metres per texture repeat, a cylinder's height, its side
+void main() {
+  vec4 shape = gl_MultiTexCoord1;
+  vec4 place = gl_MultiTexCoord0;
+  vec3 c = (gl_ModelViewMatrix * vec4(shape.xyz, 1.0)).xyz;
+  float radius = abs(shape.w);
+  axis_eye = gl_NormalMatrix * vec3(0.0, 0.0, 1.0);
+  east_eye = gl_NormalMatrix * vec3(1.0, 0.0, 0.0);
+  north_eye = gl_NormalMatrix * vec3(0.0, 1.0, 0.0);
+  shape_eye = vec4(c, shape.w);
+  band = vec3(gl_MultiTexCoord2.xy, place.x);
+  vec3 at = (gl_ModelViewMatrix * gl_Vertex).xyz;  // on the axis, or the centre
+  vec3 eye;
+  float width;
+  if (shape.w < 0.0) {
+    // The silhouette line on this side: where the plane through the camera touches
+    // the cylinder; its normal there is square to the ray.
+    vec3 across = -at - dot(-at, axis_eye) * axis_eye;  // from the axis to the camera
+    float distance = length(across);
+    float cs = min(radius / max(distance, 1e-9), 1.0);
+    vec3 n = cs * across / max(distance, 1e-9) +
+             place.x * sqrt(1.0 - cs * cs) * cross(axis_eye, across / max(distance, 1e-9));
+    vec3 touch = at + radius * n;
+    float pixel = length(touch) * outline_px_per_depth;
+    float inner = 1.25 * pixel + 0.02 * radius;
+    eye = touch + n * (place.z > 0.0 ? 0.75 * pixel : -inner) +
+          axis_eye * (place.y * 2.0 * pixel);
+    width = inner + 0.75 * pixel;
+  } else {
+    // The outline circle: where the cone from the camera touches the sphere.
+    float distance = length(c);
+    vec3 view = c / distance;
+    vec3 u = normalize(cross(view, abs(view.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0)));
+    vec3 v = cross(view, u);
+    float cs = min(radius / distance, 1.0);
+    float rho = radius * sqrt(1.0 - cs * cs);
+    float pixel = distance * outline_px_per_depth;
+    float inner = 1.25 * pixel + 0.02 * radius;
+    float ring = place.z > 0.0 ? (rho + 0.75 * pixel) / OUTLINE_RING_COS : max(rho - inner, 0.0);
+    eye = c * (1.0 - cs * cs) + ring * (place.x * u + place.y * v);
+    width = inner + 0.75 * pixel;
+  }
+  // Drawn nearer along each vertex's ray, where it covers the same pixels, by as much
+  // as the shape's near side can lie in front of the band (a circle's arc over a chord
+  // `width` from its end, and the width): the depth test then passes what the shape is
+  // in front of, and llvmpipe rejects the band's hidden parts before shading them.
+  eye *= max(1.0 - (sqrt(2.0 * radius * width) + width) / length(eye), 0.5);
+  gl_Position = gl_ProjectionMatrix * vec4(eye, 1.0);
+}
+)";
+
+// Per fragment of the band: how far the pixel centre's ray passes inside the true
+// shape's outline [px] (its distance from the centre or the axis against the radius, at
+// the depth of its closest approach) and the shape's point it sees (where it enters
+// the shape, or the nearest to it when it passes outside). The fringe program draws
+// the pixels less than one pixel and the chords inside, by the fraction inside (as for
+// a straight edge), with that point's texture and light; the depth program writes the
+// point's depth where the shape covers at least half the pixel.
+constexpr const char* kBandFragmentShader = R"(
+uniform sampler2DArray albedo;
+uniform sampler2D light;
+uniform float ambient;
+uniform float diffuse;
+uniform float exposure;
+uniform vec3 sun_eye;
+uniform mat4 world_from_eye;
+uniform vec2 light_origin;
+uniform vec2 light_per_m;
+uniform float outline_px_per_depth;
+uniform vec4 ray_from_window;  // the eye ray (x, y, -1) of window position (wx, wy): a wx + b, c wy + d
+flat in vec4 shape_eye;
+flat in vec3 axis_eye;
+flat in vec3 east_eye;
+flat in vec3 north_eye;
+flat in vec3 band;
+
+float Angle(vec3 n) {  // about the object's z axis from its x axis, in [0, 2 pi)
+  float a = atan(dot(n, north_eye), dot(n, east_eye));
+  return a < 0.0 ? a + 6.28318531 : a;
+}
+
+void main() {
+  vec3 r = normalize(vec3(gl_FragCoord.x * ray_from_window.x + ray_from_window.y,
+                          gl_FragCoord.y * ray_from_window.z + ray_from_window.w, -1.0));
+  vec3 c = shape_eye.xyz;
+  float radius = abs(shape_eye.w);
+  bool sphere = shape_eye.w > 0.0;
+  // First whether the pixel is the band's, before the rest (see kFragmentShader).
+  vec3 rp = sphere ? r : r - dot(r, axis_eye) * axis_eye;
+  vec3 cp = sphere ? c : c - dot(c, axis_eye) * axis_eye;
+  float rr = dot(rp, rp);
+  float t = dot(cp, rp) / rr;
+  float off = length(cp - t * rp);
+  float pixel = t * -r.z * outline_px_per_depth;
+  float inside = (radius - off) / pixel;
+#ifdef OUTLINE_DEPTH
+  if (inside < 0.0) discard;  // less than half covered: the depth of what is behind
+#else
+  if (inside <= -0.5) discard;
+#endif
+  if (inside >= 1.0 + 0.02 * radius / pixel) discard;  // the core's
+  vec3 point = (t - sqrt(max(radius * radius - off * off, 0.0) / rr)) * r;
+  vec3 d = point - c;
+  vec3 n;
+  vec2 st;
+  if (sphere) {
+    n = normalize(d);
+    st = vec2(Angle(n), asin(clamp(dot(n, axis_eye), -1.0, 1.0))) * (radius * band.x);
+  } else {
+    float z = dot(d, axis_eye);
+    n = normalize(d - z * axis_eye);
+    // Each side's quad draws the pixels on its side of the axis: none twice.
+    if (dot(n, cross(axis_eye, -cp)) * band.z < 0.0) discard;
+    if (z < 0.0) discard;  // below the base
+    if (z > band.y) {  // above the top: the cap, where the ray comes down through it
+      float down = dot(r, axis_eye);
+      if (down >= 0.0) discard;
+      point = r * ((band.y + dot(c, axis_eye)) / down);
+      d = point - c - band.y * axis_eye;
+      if (dot(d, d) > radius * radius) discard;
+      n = axis_eye;
+      st = vec2(dot(d, east_eye), dot(d, north_eye)) * band.x;
+    } else {
+      st = vec2(Angle(n) * radius, z) * band.x;
+    }
+  }
+#ifdef OUTLINE_DEPTH
+  vec4 clip = gl_ProjectionMatrix * vec4(point, 1.0);
+  gl_FragDepth = 0.5 + 0.5 * clip.z / clip.w;
+  gl_FragColor = vec4(0.0);
+#else
+#ifdef LIGHT_MAP
+  vec2 l = texture(light, ((world_from_eye * vec4(point, 1.0)).xy - light_origin) * light_per_m).rg;
+#else
+  vec2 l = vec2(1.0);
+#endif
+  float shade = min(ambient + diffuse * max(dot(n, sun_eye), 0.0) * l.r, 1.0) * l.g;
+  float albedo_mean = texture(albedo, vec3(st, 0.0)).r;
+  gl_FragColor = vec4(vec3(albedo_mean * shade * exposure), clamp(0.5 + inside, 0.0, 1.0));
+#endif
 }
 )";
 
@@ -209,7 +352,8 @@ GLuint UploadLightMap(const LightMap& map) {
 }  // namespace
 
 SurfaceProgram::SurfaceProgram(const LightMap* map, double ambient, double diffuse) {
-  for (Kind kind : {Kind::kFootprint, Kind::kIsotropic, Kind::kOutlineCore, Kind::kOutlineFringe}) {
+  for (Kind kind : {Kind::kFootprint, Kind::kIsotropic, Kind::kOutlineCore, Kind::kOutlineFringe,
+                    Kind::kOutlineDepth}) {
     programs_[static_cast<int>(kind)] = Link(kind, map, ambient, diffuse);
   }
   if (map) light_texture_ = UploadLightMap(*map);
@@ -217,19 +361,21 @@ SurfaceProgram::SurfaceProgram(const LightMap* map, double ambient, double diffu
 
 SurfaceProgram::Linked SurfaceProgram::Link(Kind kind, const LightMap* map, double ambient,
                                             double diffuse) {
-  const std::string defines =
-      std::string(map ? "#define LIGHT_MAP\n" : "") +
-      (kind == Kind::kFootprint ? "#define FOOTPRINT\n" : "") +
-      (kind == Kind::kOutlineCore     ? "#define OUTLINE\n#define OUTLINE_CORE\n"
-       : kind == Kind::kOutlineFringe ? "#define OUTLINE\n#define OUTLINE_FRINGE\n"
-                                      : "") +
-      "#define MAX_ANISOTROPY_LOG2 " + std::to_string(kMaxAnisotropyLog2) +
-      ".0\n#define LOD_BIAS " + kLodBias + "\n";
+  const std::string defines = std::string(map ? "#define LIGHT_MAP\n" : "") +
+                              (kind == Kind::kFootprint ? "#define FOOTPRINT\n" : "") +
+                              (kind == Kind::kOutlineCore ? "#define OUTLINE\n" : "") +
+                              (kind == Kind::kOutlineDepth ? "#define OUTLINE_DEPTH\n" : "") +
+                              "#define MAX_ANISOTROPY_LOG2 " + std::to_string(kMaxAnisotropyLog2) +
+                              ".0\n#define LOD_BIAS " + kLodBias + "\n#define OUTLINE_RING_COS " +
+                              std::to_string(std::cos(M_PI / kOutlineRingSegments)) + "\n";
+  const bool band = kind == Kind::kOutlineFringe || kind == Kind::kOutlineDepth;
   Linked out;
   out.program = glCreateProgram();
   const GLuint program_ = out.program;
-  glAttachShader(program_, Compile(GL_VERTEX_SHADER, defines, kVertexShader));
-  glAttachShader(program_, Compile(GL_FRAGMENT_SHADER, defines, kFragmentShader));
+  glAttachShader(program_,
+                 Compile(GL_VERTEX_SHADER, defines, band ? kBandVertexShader : kVertexShader));
+  glAttachShader(
+      program_, Compile(GL_FRAGMENT_SHADER, defines, band ? kBandFragmentShader : kFragmentShader));
   glLinkProgram(program_);
   GLint ok = GL_FALSE;
   glGetProgramiv(program_, GL_LINK_STATUS, &ok);
@@ -250,12 +396,13 @@ SurfaceProgram::Linked SurfaceProgram::Link(Kind kind, const LightMap* map, doub
   out.sun_eye = glGetUniformLocation(program_, "sun_eye");
   out.exposure = glGetUniformLocation(program_, "exposure");
   out.outline_px_per_depth = glGetUniformLocation(program_, "outline_px_per_depth");
+  out.ray_from_window = glGetUniformLocation(program_, "ray_from_window");
   glUseProgram(0);
   return out;
 }
 
 void SurfaceProgram::Begin(const Eigen::Matrix4d& view, const Eigen::Vector3d& sun, double exposure,
-                           double focal_px) {
+                           const geometry::PinholeCamera& K) {
   const Eigen::Matrix4f world_from_eye = view.inverse().cast<float>();
   const Eigen::Vector3f sun_eye = (view.topLeftCorner<3, 3>() * sun).cast<float>();
   for (const Linked& p : programs_) {
@@ -266,7 +413,12 @@ void SurfaceProgram::Begin(const Eigen::Matrix4d& view, const Eigen::Vector3d& s
     glUniform3f(p.sun_eye, sun_eye.x(), sun_eye.y(), sun_eye.z());
     glUniform1f(p.exposure, static_cast<float>(exposure));
     if (p.outline_px_per_depth >= 0) {
-      glUniform1f(p.outline_px_per_depth, static_cast<float>(1.0 / focal_px));
+      glUniform1f(p.outline_px_per_depth, static_cast<float>(1.0 / K.fx));
+    }
+    if (p.ray_from_window >= 0) {  // window (x, y) to the eye ray (pinhole.cpp's derivation)
+      glUniform4f(p.ray_from_window, static_cast<float>(1.0 / K.fx),
+                  static_cast<float>(-(K.cx + 0.5) / K.fx), static_cast<float>(1.0 / K.fy),
+                  static_cast<float>((K.cy + 0.5 - K.height_px) / K.fy));
     }
   }
   current_ = Kind::kIsotropic;

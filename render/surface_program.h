@@ -16,12 +16,16 @@
 // layer) at the level llvmpipe takes from the quad's derivatives (about the
 // footprint's length), trilinearly: a third of the footprint lookup's per-pixel cost.
 //
-// Outlines of cylinders and spheres (trunks, crowns), in two passes: the core program
-// leaves out the pixels whose centre lies less than half a pixel inside the outline of
-// the true shape (from its centre and radius, an attribute per shape, not the facets),
-// and after every other draw the fringe program draws the object grown a pixel outwards,
-// far to near and blended over what is behind by the fraction of each such pixel inside
-// the outline (as for a straight edge). The depth image there is what is behind.
+// Outlines of cylinders and spheres (trunks, crowns): the core program leaves out the
+// pixels whose centre lies less than half a pixel inside the outline of the true shape
+// (from its centre and radius, an attribute per shape, not the facets); after every
+// other draw the fringe program draws a band about each outline (two quads along an
+// upright cylinder's silhouette lines, an annulus about a sphere's outline circle; the
+// renderer's band lists), far to near, each pixel of it blended over what is behind by
+// the fraction inside the outline (as for a straight edge), shaded at the point of the
+// true shape its ray meets; then the depth program writes that point's depth where the
+// shape covers at least half the pixel, so that the depth image holds what most of
+// each pixel shows.
 //
 // The driver's anisotropic filtering (GL_EXT_texture_filter_anisotropic) is not used:
 // its sample pattern differs between Mesa versions. docs/rendering.md has what it gives
@@ -34,9 +38,13 @@
 
 #include <Eigen/Core>
 
+#include "trackbed/common/pinhole_camera.h"
 #include "trackbed/render/scene_lighting.h"
 
 namespace trackbed::render {
+
+/// Segments of the annulus drawn about a sphere's outline (the fringe's band).
+inline constexpr int kOutlineRingSegments = 24;
 
 class SurfaceProgram {
  public:
@@ -48,14 +56,21 @@ class SurfaceProgram {
 
   /// How a draw reads its texture: over the footprint from the layers (the ground's, a
   /// box's), or at the level llvmpipe takes from the quad's derivatives (a cylinder's, a
-  /// crown's); a curved object's core and, in a later pass, its outline's fringe.
-  enum class Kind { kFootprint = 0, kIsotropic = 1, kOutlineCore = 2, kOutlineFringe = 3 };
+  /// crown's); a curved object's core and, in later passes, the band about its outline:
+  /// its colour, then its depth.
+  enum class Kind {
+    kFootprint = 0,
+    kIsotropic = 1,
+    kOutlineCore = 2,
+    kOutlineFringe = 3,
+    kOutlineDepth = 4
+  };
 
   /// Draws with the programs until End, the isotropic one first: `view` maps world to
   /// OpenGL eye coordinates, `sun` is the unit vector towards the sun in the world,
   /// `exposure` scales the output (1 without a light map), `focal_px` the camera's.
   void Begin(const Eigen::Matrix4d& view, const Eigen::Vector3d& sun, double exposure,
-             double focal_px);
+             const geometry::PinholeCamera& K);
   /// Draws what follows with the program of `kind`.
   void Use(Kind kind);
   /// Back to no program.
@@ -64,11 +79,12 @@ class SurfaceProgram {
  private:
   struct Linked {
     GLuint program = 0;
-    GLint world_from_eye = -1, sun_eye = -1, exposure = -1, outline_px_per_depth = -1;
+    GLint world_from_eye = -1, sun_eye = -1, exposure = -1, outline_px_per_depth = -1,
+          ray_from_window = -1;
   };
   static Linked Link(Kind kind, const LightMap* map, double ambient, double diffuse);
 
-  Linked programs_[4];
+  Linked programs_[5];
   GLuint light_texture_ = 0;
   Kind current_ = Kind::kIsotropic;
 };

@@ -3,8 +3,10 @@
 // drawn 4 × 4 times as finely and averaged over each pixel. A pixel the outline crosses
 // takes the fraction of it the post covers (renderer's outline pass, surface_program.h),
 // not all or nothing: on the pixels the reference shows partly covered, the difference
-// stays under a tenth of the post's grey level RMS (8 %; without the outline pass 45 %),
-// and the posts keep their width within 2 % (0.04 %; without it 8 % wider).
+// stays under a tenth of the post's grey level RMS (8.5 %; without the outline pass
+// 45 %), and the posts keep their width within 2 % (0.05 %; without it 8 % wider). The
+// depth image holds the post's depth where the post covers most of the pixel, the
+// sky's where it covers little.
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -98,6 +100,48 @@ TEST(OutlineCoverageTest, PixelsOnAPostsOutlineTakeTheFractionItCovers) {
   EXPECT_GT(edge_pixels, kPosts * (bottom - top));  // at least one a post and row
   EXPECT_LT(rms, 0.1 * post_grey);
   EXPECT_NEAR(image_sum / reference_sum, 1.0, 0.02);
+}
+
+TEST(OutlineCoverageTest, APixelTakesTheDepthOfWhatCoversMostOfIt) {
+  const sim::World world = test::FlatWorld(Posts(), {-2, -8, 20, 8});
+  const geometry::PinholeCamera K = robot::StereoRig(robot::StereoRigOptions{}).intrinsics();
+  const geometry::PinholeCamera fine = Supersampled(K, kFactor);
+  Renderer coarse(world, test::AmbientOnly(), {}, 1, K.width_px, K.height_px, 0.05, 120.0);
+  Renderer sharp(world, test::AmbientOnly(), {}, 1, fine.width_px, fine.height_px, 0.05, 120.0);
+  GrayImage image, big;
+  DepthImage depth, big_depth;
+  coarse.Render(K, CameraPose(), 0.0, &image, &depth);
+  sharp.Render(fine, CameraPose(), 0.0, &big, &big_depth);
+
+  // The rows against the sky, as above; each pixel's covered fraction from the
+  // reference's 16 samples (a post's depth is finite, the sky's infinite).
+  const int top = static_cast<int>(K.cy - K.fy * 0.6 / 4.0);
+  const int bottom = static_cast<int>(K.cy - K.fy * 0.1 / 4.0);
+  int mostly = 0, mostly_post = 0, little = 0, little_sky = 0;
+  for (int y = top; y <= bottom; ++y) {
+    for (int x = 0; x < K.width_px; ++x) {
+      int covered = 0;
+      for (int j = 0; j < kFactor; ++j) {
+        for (int i = 0; i < kFactor; ++i) {
+          covered += std::isfinite(big_depth.at(kFactor * x + i, kFactor * y + j));
+        }
+      }
+      const bool post = std::isfinite(depth.at(x, y));
+      if (covered >= 11 && covered < kFactor * kFactor) {
+        ++mostly;
+        mostly_post += post;
+      } else if (covered > 0 && covered <= 5) {
+        ++little;
+        little_sky += !post;
+      }
+    }
+  }
+  std::printf("mostly covered: %d of %d with the post's depth; little: %d of %d the sky's\n",
+              mostly_post, mostly, little_sky, little);
+  EXPECT_GT(mostly, kPosts * (bottom - top) / 4);  // a side of a post every other row
+  EXPECT_GT(little, kPosts * (bottom - top) / 4);
+  EXPECT_EQ(mostly_post, mostly);
+  EXPECT_EQ(little_sky, little);
 }
 
 }  // namespace
