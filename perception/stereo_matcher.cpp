@@ -316,6 +316,45 @@ StereoMatcher::Search StereoMatcher::SearchRow(const cv::Mat& ref, const cv::Mat
   return result;
 }
 
+namespace {
+
+using Vector5d = Eigen::Matrix<double, 5, 1>;
+using Matrix5d = Eigen::Matrix<double, 5, 5>;
+
+/// One window row's sums for RefineDisparity: of q², q²i, q²i², qo, qoi, q, qi, o², o,
+/// and of q·e, q·e·i, o·e, e.
+struct RowSums {
+  float qq = 0, qqi = 0, qqii = 0, qo = 0, qoi = 0, q1 = 0, qi1 = 0, oo = 0, o1 = 0;
+  float qe = 0, qei = 0, oe = 0, e1 = 0;
+};
+
+/// Adds row j's sums (j constant along the row, `w` samples) to Σ J Jᵀ (upper triangle)
+/// and Σ J e with J = (q, q·i, q·j, o, 1).
+void AddRow(const RowSums& r, double dj, int w, Matrix5d* H, Vector5d* g) {
+  (*H)(0, 0) += r.qq;
+  (*H)(0, 1) += r.qqi;
+  (*H)(0, 2) += r.qq * dj;
+  (*H)(0, 3) += r.qo;
+  (*H)(0, 4) += r.q1;
+  (*H)(1, 1) += r.qqii;
+  (*H)(1, 2) += r.qqi * dj;
+  (*H)(1, 3) += r.qoi;
+  (*H)(1, 4) += r.qi1;
+  (*H)(2, 2) += r.qq * dj * dj;
+  (*H)(2, 3) += r.qo * dj;
+  (*H)(2, 4) += r.q1 * dj;
+  (*H)(3, 3) += r.oo;
+  (*H)(3, 4) += r.o1;
+  (*H)(4, 4) += w;
+  (*g)(0) += r.qe;
+  (*g)(1) += r.qei;
+  (*g)(2) += r.qe * dj;
+  (*g)(3) += r.oe;
+  (*g)(4) += r.e1;
+}
+
+}  // namespace
+
 float StereoMatcher::RefineDisparity(const cv::Mat& other, float u, float v, int sign, float d0) {
   // Gauss–Newton (Lucas & Kanade 1981, in one dimension) on
   //   e_ij = a·O(u + sign·(d + g_x·i + g_y·j) + i, v + j) + b − P_ij
@@ -330,12 +369,17 @@ float StereoMatcher::RefineDisparity(const cv::Mat& other, float u, float v, int
   const int n = w * w;
   const float max_x = static_cast<float>(other.cols - 3);  // x − 1 >= 0, x + 2 <= cols − 1
   const float max_y = static_cast<float>(other.rows - 2);
-  using Vector5d = Eigen::Matrix<double, 5, 1>;
-  using Matrix5d = Eigen::Matrix<double, 5, 5>;
+  // Each row interpolated vertically (its y is the same in every iteration) once, in the
+  // first iteration, over the columns later ones reach while |d − d0| <= 1 and
+  // |g_x|, |g_y| < 0.5 (within 2h + 1 of u + sign·d0, and the taps beside them); a
+  // column outside these is interpolated where it is needed.
+  const int centre = static_cast<int>(std::floor(u + static_cast<float>(sign) * d0));
+  const int lo = std::max(0, centre - 2 * h - 4);
+  const int hi = std::min(other.cols - 1, centre + 2 * h + 4);
+  const int span = std::max(hi - lo + 1, 0);
+  rows_.resize(static_cast<std::size_t>(w) * static_cast<std::size_t>(span));
   double d = d0, gx = 0.0, gy = 0.0, a = 1.0, b = 0.0;
   for (int iteration = 0; iteration < options_.refinement_iterations; ++iteration) {
-    // Σ J Jᵀ and Σ J e with J = (q, q·i, q·j, o, 1), q = a·sign·O_x, accumulated per row
-    // in the moments of i (j is constant along a row).
     double so = 0.0, soo = 0.0, sop = 0.0;  // Σo, Σo², Σo·P (first pass: gain/offset)
     Matrix5d H = Matrix5d::Zero();
     Vector5d g = Vector5d::Zero();
@@ -349,18 +393,26 @@ float StereoMatcher::RefineDisparity(const cv::Mat& other, float u, float v, int
       const auto at = [&](int x) {  // the row interpolated vertically at column x
         return (1.0f - fy) * static_cast<float>(r0[x]) + fy * static_cast<float>(r1[x]);
       };
+      float* row = rows_.data() + static_cast<std::ptrdiff_t>(j + h) * span;
+      if (iteration == 0) {
+        for (int x = lo; x <= hi; ++x) row[x - lo] = at(x);
+      }
       const float* prow = patch_.data() + static_cast<std::ptrdiff_t>(j + h) * w;
       const double base = u + sign * (d + gy * j);
       const double slope = 1.0 + sign * gx;
-      // Row sums: of q², q²i, q²i², qo, qoi, q, qi, o², o, and of q·e, q·e·i, o·e, e.
-      float qq = 0, qqi = 0, qqii = 0, qo = 0, qoi = 0, q1 = 0, qi1 = 0, oo = 0, o1 = 0;
-      float qe = 0, qei = 0, oe = 0, e1 = 0;
+      RowSums r;
       for (int i = -h; i <= h; ++i) {
         const float x = static_cast<float>(base + slope * i);
         if (!(x >= 1.0f && x <= max_x)) return d0;
         const int x0 = static_cast<int>(x);
         const float fx = x - static_cast<float>(x0);
-        const float cm = at(x0 - 1), c0 = at(x0), c1 = at(x0 + 1), c2 = at(x0 + 2);
+        float cm, c0, c1, c2;
+        if (x0 - 1 >= lo && x0 + 2 <= hi) {
+          const float* c = row + (x0 - lo);
+          cm = c[-1], c0 = c[0], c1 = c[1], c2 = c[2];
+        } else {
+          cm = at(x0 - 1), c0 = at(x0), c1 = at(x0 + 1), c2 = at(x0 + 2);
+        }
         const float o = c0 + fx * (c1 - c0);
         const float p = prow[i + h];
         if (iteration == 0) {
@@ -374,42 +426,21 @@ float StereoMatcher::RefineDisparity(const cv::Mat& other, float u, float v, int
         const float q = static_cast<float>(a * sign) * ox;
         const float e = static_cast<float>(a) * o + static_cast<float>(b) - p;
         const float fi = static_cast<float>(i);
-        qq += q * q;
-        qqi += q * q * fi;
-        qqii += q * q * fi * fi;
-        qo += q * o;
-        qoi += q * o * fi;
-        q1 += q;
-        qi1 += q * fi;
-        oo += o * o;
-        o1 += o;
-        qe += q * e;
-        qei += q * e * fi;
-        oe += o * e;
-        e1 += e;
+        r.qq += q * q;
+        r.qqi += q * q * fi;
+        r.qqii += q * q * fi * fi;
+        r.qo += q * o;
+        r.qoi += q * o * fi;
+        r.q1 += q;
+        r.qi1 += q * fi;
+        r.oo += o * o;
+        r.o1 += o;
+        r.qe += q * e;
+        r.qei += q * e * fi;
+        r.oe += o * e;
+        r.e1 += e;
       }
-      if (iteration == 0) continue;
-      const double dj = j;
-      H(0, 0) += qq;
-      H(0, 1) += qqi;
-      H(0, 2) += qq * dj;
-      H(0, 3) += qo;
-      H(0, 4) += q1;
-      H(1, 1) += qqii;
-      H(1, 2) += qqi * dj;
-      H(1, 3) += qoi;
-      H(1, 4) += qi1;
-      H(2, 2) += qq * dj * dj;
-      H(2, 3) += qo * dj;
-      H(2, 4) += q1 * dj;
-      H(3, 3) += oo;
-      H(3, 4) += o1;
-      H(4, 4) += w;
-      g(0) += qe;
-      g(1) += qei;
-      g(2) += qe * dj;
-      g(3) += oe;
-      g(4) += e1;
+      if (iteration > 0) AddRow(r, j, w, &H, &g);
     }
     if (iteration == 0) {
       // Gain and offset start at the least-squares fit of the values (Σ P = 0).

@@ -53,6 +53,11 @@ StereoRectifier::StereoRectifier(const calibration::StereoCalibration& given) {
   UndistortRectifyMap(left, R1, P1, &map_left_x_, &map_left_y_);
   UndistortRectifyMap(right, R2, P2, &map_right_x_, &map_right_y_);
   interpolation_ = RemapInterpolation(!left.distortion.is_zero() || !right.distortion.is_zero());
+  if (interpolation_ == cv::INTER_CUBIC) {
+    // Maps decoded once: cv::remap's bytes at about a quarter of its cost (bicubic_remap.h).
+    remaps_.emplace_back(map_left_x_, map_left_y_, size);
+    remaps_.emplace_back(map_right_x_, map_right_y_, size);
+  }
   camera_.left.width_px = given.width_px;
   camera_.left.height_px = given.height_px;
   camera_.left.fx = P1.at<double>(0, 0);
@@ -74,6 +79,11 @@ void StereoRectifier::Rectify(const cv::Mat& left, const cv::Mat& right, cv::Mat
   if (identity_) {
     *left_out = left;
     *right_out = right;
+    return;
+  }
+  if (!remaps_.empty()) {
+    remaps_[0].Apply(left, left_out);
+    remaps_[1].Apply(right, right_out);
     return;
   }
   // RemapInterpolation (lens_undistorter.h says why).

@@ -3,6 +3,7 @@
 
 #include <utility>
 
+#include "trackbed/assets/dem_reader.h"
 #include "trackbed/common/split_mix.h"
 #include "trackbed/common/units.h"
 #include "trackbed/robot/as_built.h"
@@ -49,9 +50,11 @@ Plant BuildPlant(const scenario::Scenario& scenario, const RobotBuild& robot, bo
   const scenario::RobotSpec& rs = scenario.robot;
   const double gravity = scenario.scene.world.gravity_mps2;
   Plant p;
+  const sim::TerrainOptions& terrain = scenario.scene.terrain;
+  std::shared_ptr<const sim::ElevationGrid> dem;
+  if (terrain.dem.enabled()) dem = assets::ReadDem(terrain.dem, terrain.grid_extent_m());
   p.world = std::make_unique<sim::World>(
-      scenario.scene.world,
-      sim::Terrain(scenario.scene.terrain, split_mix::Stream(scenario.seed, 0)),
+      scenario.scene.world, sim::Terrain(terrain, split_mix::Stream(scenario.seed, 0), dem),
       scenario::SceneObjects(scenario));
   if (pose_path) {
     auto carrier = std::make_unique<robot::PosePathCarrier>(

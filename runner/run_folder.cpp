@@ -21,6 +21,7 @@
 #include "trackbed/perception/stereo_rectifier.h"
 #include "trackbed/plot/plots.h"
 #include "trackbed/runner/camera_frame_log.h"
+#include "trackbed/runner/input_files.h"
 #include "trackbed/runner/log_file.h"
 #include "trackbed/runner/navigation_log.h"
 #include "trackbed/runner/navigation_scenario.h"
@@ -434,6 +435,7 @@ RunFolderWriter::RunFolderWriter(const scenario::Scenario& scenario, const fs::p
   WriteFileAtomically(dir / "scenario.yaml",
                       scenario::ScenarioToYaml(scenario::WithBuiltinMaterialsResolved(
                           scenario::WithRealismResolved(scenario))));
+  WriteInputsJson(scenario, dir);
   files_ = std::make_unique<Files>(dir, scenario);
   if (scenario.navigation.enabled) {
     files_->navigation_csv =

@@ -6,6 +6,7 @@
 
 #include "trackbed/common/durable_file.h"
 #include "trackbed/runner/closed_loop.h"
+#include "trackbed/runner/input_files.h"
 #include "trackbed/runner/kinematic_navigation_run.h"
 #include "trackbed/runner/log_file.h"
 #include "trackbed/runner/run_bag.h"
@@ -28,6 +29,7 @@ RunMetrics RunKinematicToFolder(const scenario::Scenario& scenario, const fs::pa
   WriteFileAtomically(dir / "scenario.yaml",
                       scenario::ScenarioToYaml(scenario::WithBuiltinMaterialsResolved(
                           scenario::WithRealismResolved(scenario))));
+  WriteInputsJson(scenario, dir);
   RunMetrics metrics;
   try {
     metrics = RunKinematicNavigation(scenario, dir, observers);

@@ -21,6 +21,7 @@
 #include <utility>
 #include <vector>
 
+#include "trackbed/assets/dem_reader.h"
 #include "trackbed/common/archive.h"
 #include "trackbed/common/option_error.h"
 #include "trackbed/common/units.h"
@@ -233,6 +234,31 @@ std::string KeyOfField(const std::string& field) {
   return key;
 }
 
+// An elevation model must reach past the terrain's grid (its header says how far):
+// checked when the scenario is read, so that the error names the scenario's key.
+void CheckDemCoversTerrain(const std::string& path, const sim::TerrainOptions& terrain) {
+  if (!terrain.dem.enabled()) return;
+  const char* key = "scene.terrain.dem.file";
+  assets::DemHeader h;
+  try {
+    h = assets::ReadDemHeader(terrain.dem);
+  } catch (const assets::AssetError& e) {
+    throw ScenarioError(path, key, e.what());
+  }
+  const Eigen::Vector4d g = terrain.grid_extent_m();
+  const auto m = [](double v) { return option_check::Describe(v); };
+  if (g[0] < h.first_m.x() || g[1] < h.first_m.y() || g[2] > h.last_m.x() || g[3] > h.last_m.y()) {
+    throw ScenarioError(path, key,
+                        terrain.dem.file + ": its pixel centres span x " + m(h.first_m.x()) +
+                            " to " + m(h.last_m.x()) + " m and y " + m(h.first_m.y()) + " to " +
+                            m(h.last_m.y()) +
+                            " m around scene.terrain.dem.origin, short of the "
+                            "terrain's grid [" +
+                            m(g[0]) + ", " + m(g[1]) + ", " + m(g[2]) + ", " + m(g[3]) +
+                            "] (scene.terrain.extent_m)");
+  }
+}
+
 }  // namespace
 
 Override ParseOverride(const std::string& key_equals_value) {
@@ -312,6 +338,8 @@ Scenario LoadScenario(const std::string& path, const std::vector<Override>& over
           false);
   resolve("teach_repeat.map", &scenario.teach_repeat.map, true);
   resolve("robot.calibration_dir", &scenario.robot.calibration_dir, true);
+  resolve("scene.terrain.dem.file", &scenario.scene.terrain.dem.file, false);
+  CheckDemCoversTerrain(path, scenario.scene.terrain);
   return scenario;
 }
 

@@ -9,7 +9,7 @@ packages=(
   g++ cmake ninja-build ccache pkg-config python3
   libbullet-dev libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libopencv-dev libosmesa6-dev libfuzzylite-dev libboost-math-dev
-  pybind11-dev python3-dev python3-numpy libzstd-dev zlib1g-dev
+  pybind11-dev python3-dev python3-numpy libzstd-dev zlib1g-dev libgdal-dev
 )
 # `--tests`: what the test suite needs beyond the build (node and npm run the
 # independent MCAP readers, tests/mcap/; xmllint checks JUnit XML), each unless its
@@ -30,6 +30,26 @@ if ((${#missing[@]})); then
   "${sudo_cmd[@]}" apt-get update -qq
   DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends \
     "${missing[@]}" >/dev/null
+fi
+
+# The example elevation model of scenes/olinda_dem.yaml: the Olinda DEM and Landsat
+# image Debian's r-cran-stars ships (Apache-2.0), taken from the package without
+# installing R; its test skips where it is absent (no network to the archive).
+stars=/usr/local/share/trackbed/r-cran-stars
+if [ ! -f "$stars/tif/olinda_dem_utm25s.tif" ]; then
+  sudo_cmd=()
+  [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+  tmp=$(mktemp -d)
+  if (cd "$tmp" && { apt-get download r-cran-stars >/dev/null 2>&1 ||
+        { "${sudo_cmd[@]}" apt-get update -qq && apt-get download r-cran-stars >/dev/null 2>&1; }; }); then
+    dpkg-deb -x "$tmp"/r-cran-stars_*.deb "$tmp/x"
+    "${sudo_cmd[@]}" mkdir -p "$stars"
+    "${sudo_cmd[@]}" cp -r "$tmp/x/usr/lib/R/site-library/stars/tif" \
+      "$tmp/x/usr/share/doc/r-cran-stars/copyright" "$stars/"
+  else
+    echo "setup: r-cran-stars could not be downloaded: scenes/olinda_dem.yaml will not run"
+  fi
+  rm -rf "$tmp"
 fi
 
 launcher=()

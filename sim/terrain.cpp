@@ -6,6 +6,7 @@
 #include <cassert>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 #include "trackbed/common/option_error.h"
 #include "trackbed/common/split_mix.h"
@@ -37,8 +38,18 @@ void MaterialRegion::Validate() const {
   }
 }
 
+void DemOptions::Validate() const {
+  if (!origin_m.allFinite()) throw OptionError("origin", "must be two finite numbers [m]");
+}
+
 double TerrainOptions::cells() const {
   return (extent_m[2] - extent_m[0]) * (extent_m[3] - extent_m[1]) / (cell_size_m * cell_size_m);
+}
+
+Eigen::Vector4d TerrainOptions::grid_extent_m() const {
+  const double x0 = extent_m[0], y0 = extent_m[1];
+  return {x0, y0, x0 + cell_size_m * std::ceil((extent_m[2] - x0) / cell_size_m),
+          y0 + cell_size_m * std::ceil((extent_m[3] - y0) / cell_size_m)};
 }
 
 void TerrainOptions::Validate() const {
@@ -62,6 +73,7 @@ void TerrainOptions::Validate() const {
     option_check::Nested("materials[" + std::to_string(k) + "]", materials[k]);
   }
   option_check::Nested("soil_variation", soil_variation);
+  option_check::Nested("dem", dem);
   for (std::size_t k = 0; k < regions.size(); ++k) {
     option_check::Nested("regions[" + std::to_string(k) + "]", regions[k]);
   }
@@ -96,7 +108,8 @@ std::uint64_t HeightStream(std::uint64_t seed, std::uint64_t octave) {
 
 }  // namespace
 
-Terrain::Terrain(const TerrainOptions& options, std::uint64_t seed)
+Terrain::Terrain(const TerrainOptions& options, std::uint64_t seed,
+                 std::shared_ptr<const ElevationGrid> base)
     : options_(Validated(options)),
       // Two octaves for each of undulation and bumps, each a lattice noise of
       // the seed alone, so a point's height does not depend on the extent nor
@@ -105,6 +118,7 @@ Terrain::Terrain(const TerrainOptions& options, std::uint64_t seed)
       hills2_(HeightStream(seed, 1), options.roughness.undulation_wavelength_m / 2.0),
       bumps_(HeightStream(seed, 2), options.roughness.bump_wavelength_m),
       bumps2_(HeightStream(seed, 3), options.roughness.bump_wavelength_m / 2.0),
+      base_(std::move(base)),
       soil_variation_(options.soil_variation, split_mix::Stream(seed, kSoilVariationStream)) {
   cell_ = options.cell_size_m;
   x0_ = options.extent_m[0];
@@ -117,8 +131,11 @@ Terrain::Terrain(const TerrainOptions& options, std::uint64_t seed)
   const double plane_hi = std::max(r.slope_x * x0_, r.slope_x * x_max()) +
                           std::max(r.slope_y * y0_, r.slope_y * y_max());
   const double reach = r.undulation_amplitude_m + r.bump_amplitude_m;
-  min_bound_ = plane_lo - reach;
-  max_bound_ = plane_hi + reach;
+  min_bound_ = plane_lo - reach + (base_ ? base_->min_height_m() : 0.0);
+  max_bound_ = plane_hi + reach + (base_ ? base_->max_height_m() : 0.0);
+  if (base_ && !base_->Covers(x0_, y0_, x_max(), y_max())) {
+    throw OptionError("dem", "the elevation model does not cover the terrain's grid");
+  }
   ResolveMaterials(options);
 }
 
@@ -156,6 +173,7 @@ double Terrain::VertexHeight(int i, int j) const {
   const double x = x0_ + i * cell_, y = y0_ + j * cell_;
   const TerrainRoughness& r = options_.roughness;
   double z = r.slope_x * x + r.slope_y * y;
+  if (base_) z += base_->Height(x, y);
   if (r.undulation_amplitude_m > 0.0) {
     z += r.undulation_amplitude_m * (0.75 * hills_(x, y) + 0.25 * hills2_(x, y));
   }

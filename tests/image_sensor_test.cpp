@@ -4,11 +4,15 @@
 // reproducible from (seed, frame, camera).
 #include "trackbed/robot/image_sensor.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
 
 #include <gtest/gtest.h>
+
+#include "trackbed/common/random.h"
+#include "trackbed/common/split_mix.h"
 
 namespace trackbed::robot {
 namespace {
@@ -152,6 +156,88 @@ TEST(ImageSensorTest, AClippedRenderReadsAsAFullWell) {
   sensor.Apply(1.0, 7, 1, &a, 1.0, true);
   sensor.Apply(1.0, 7, 1, &b, 1.0, false);
   EXPECT_EQ(a.pixels, b.pixels);
+}
+
+// The sensor written pixel by pixel from its description in image_sensor.h and .cpp:
+// the fixed pattern drawn per pixel in raster order (PRNU, then DSNU) from the camera's
+// generator, the noise one of 65536 standard normals picked by the 16-bit quarters of
+// a xorshift64* stream keyed by (seed, frame, camera), rounding ties to even.
+void Reference(const PhotometricOptions& o, std::uint64_t pattern_seed, int camera, double exposure,
+               std::uint64_t seed, std::uint64_t frame, double gain, bool clipped_render,
+               GrayImage* image) {
+  std::vector<float> normals(1 << 16);
+  random::Generator table(0x5e4503ULL);
+  for (float& v : normals) v = static_cast<float>(table.Gaussian());
+  random::Generator g(
+      split_mix::Mix(pattern_seed ^ (0xf1c3d0ULL + static_cast<std::uint64_t>(camera))));
+  const double cx = 0.5 * (image->width - 1), cy = 0.5 * (image->height - 1);
+  const float full_well = static_cast<float>(*o.full_well_e);
+  const float signal_per_grey = static_cast<float>(exposure / 255.0) * full_well;
+  const float read2 = static_cast<float>(*o.read_noise_e * *o.read_noise_e);
+  const float dn_max = static_cast<float>((1 << *o.adc_bits) - 1);
+  const float dn_per_e = static_cast<float>(*o.gain * gain) * dn_max / full_well;
+  const float grey_per_dn = 255.0f / dn_max;
+  std::uint64_t x =
+      split_mix::Mix(seed ^ split_mix::Mix(frame * 2 + static_cast<std::uint64_t>(camera))) | 1;
+  std::uint64_t bits = 0;
+  for (int v = 0; v < image->height; ++v) {
+    for (int u = 0; u < image->width; ++u) {
+      const double r2 = ((u - cx) * (u - cx) + (v - cy) * (v - cy)) / (cx * cx + cy * cy);
+      const double prnu = g.Gaussian(), dsnu = g.Gaussian();
+      const float gain_px = static_cast<float>((1.0 + (*o.vignetting_corner - 1.0) * r2) *
+                                               (1.0 + *o.prnu_std * prnu));
+      const float offset_px = static_cast<float>(*o.dsnu_std_e * dsnu);
+      const std::size_t i = static_cast<std::size_t>(v) * image->width + u;
+      if (i % 4 == 0) {
+        x ^= x >> 12;
+        x ^= x << 25;
+        x ^= x >> 27;
+        bits = x * 0x2545f4914f6cdd1dULL;
+      }
+      const float n = normals[bits & 0xffff];
+      bits >>= 16;
+      std::uint8_t& p = image->pixels[i];
+      const float signal = signal_per_grey * static_cast<float>(p) * gain_px;
+      const float sigma = std::sqrt(std::max(signal, 0.0f) + read2);
+      const float charge = clipped_render && p == 255 ? full_well : signal + offset_px + sigma * n;
+      const float dn = std::nearbyint(std::min(std::max(charge * dn_per_e, 0.0f), dn_max));
+      p = static_cast<std::uint8_t>(std::nearbyint(dn * grey_per_dn));
+    }
+  }
+}
+
+// Every byte as the description gives it, over sizes that leave partial blocks and
+// draws, the fixed pattern on, gains, exposures and a clipped render.
+TEST(ImageSensorTest, GivesTheBytesOfItsDescription) {
+  PhotometricOptions o = Sensor(32691.0, 6.83);
+  o.vignetting_corner = 0.71;
+  o.prnu_std = 0.01;
+  o.dsnu_std_e = 12.0;
+  const struct {
+    int width, height, camera;
+    double exposure, gain;
+    bool clipped;
+    std::uint64_t frame;
+  } cases[] = {{640, 480, 0, 1.0, 1.0, false, 3}, {640, 480, 1, 0.8, 2.5, true, 4},
+               {37, 23, 0, 1.7, 1.0, false, 11},  {61, 5, 1, 0.3, 4.0, true, 0},
+               {3, 1, 0, 1.0, 1.0, false, 9},     {129, 67, 1, 2.0, 1.0, true, 12}};
+  for (const auto& c : cases) {
+    for (const int bits : {8, 12, 16}) {
+      o.adc_bits = bits;
+      const ImageSensor sensor(o, c.width, c.height, 5, c.camera);
+      GrayImage a;
+      a.width = c.width;
+      a.height = c.height;
+      a.pixels.resize(static_cast<std::size_t>(c.width) * c.height);
+      for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+        a.pixels[i] = static_cast<std::uint8_t>(i % 7 == 0 ? 255 : (i * 37 + i / 5) % 256);
+      }
+      GrayImage b = a;
+      sensor.Apply(c.exposure, 9, c.frame, &a, c.gain, c.clipped);
+      Reference(o, 5, c.camera, c.exposure, 9, c.frame, c.gain, c.clipped, &b);
+      EXPECT_EQ(a.pixels, b.pixels) << c.width << " x " << c.height << ", " << bits << " bits";
+    }
+  }
 }
 
 TEST(ImageSensorTest, BadOptionsNameTheirKey) {

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <random>
 #include <string>
 
@@ -147,6 +148,12 @@ TEST(ScenarioYamlTest, RepositoryScenesLoadAndRoundTrip) {
   for (const auto& entry :
        std::filesystem::directory_iterator(std::string(TRACKBED_SOURCE_DIR) + "/scenes")) {
     if (entry.path().extension() != ".yaml") continue;
+    // The example on a real elevation model needs the file scripts/setup.sh installs.
+    const char* olinda = "/usr/local/share/trackbed/r-cran-stars/tif/olinda_dem_utm25s.tif";
+    if (entry.path().filename() == "olinda_dem.yaml" && !std::filesystem::exists(olinda)) {
+      std::cout << "not loaded: " << entry.path() << " (" << olinda << " absent)\n";
+      continue;
+    }
     ++scenes;
     const std::string first = ScenarioToYaml(LoadScenario(entry.path().string()));
     EXPECT_EQ(RoundTrip(first), first) << entry.path();

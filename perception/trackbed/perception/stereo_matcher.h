@@ -151,6 +151,7 @@ class StereoMatcher {
   StereoMatcherOptions options_;
   // Scratch, reused between calls.
   std::vector<float> patch_, strip_, scores_, col_sum_, col_sum_sq_, grad_strip_;
+  std::vector<float> rows_;  // RefineDisparity's rows, interpolated vertically
 };
 
 }  // namespace trackbed::perception

@@ -8,11 +8,14 @@
 // lives with (docs/calibration.md).
 #pragma once
 
+#include <vector>
+
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
 #include "trackbed/common/robot_calibration.h"
 #include "trackbed/common/stereo_camera.h"
+#include "trackbed/perception/bicubic_remap.h"
 
 namespace trackbed::perception {
 
@@ -39,7 +42,8 @@ class StereoRectifier {
   geometry::StereoCamera camera_;
   Eigen::Isometry3d T_body_left_ = Eigen::Isometry3d::Identity();
   cv::Mat map_left_x_, map_left_y_, map_right_x_, map_right_y_;
-  int interpolation_ = 0;  // cv::InterpolationFlags
+  int interpolation_ = 0;             // cv::InterpolationFlags
+  std::vector<BicubicRemap> remaps_;  // left and right, when bicubic
 };
 
 }  // namespace trackbed::perception

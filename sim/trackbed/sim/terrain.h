@@ -18,6 +18,7 @@
 
 #include <Eigen/Core>
 
+#include "trackbed/sim/elevation_grid.h"
 #include "trackbed/sim/lattice_noise.h"
 #include "trackbed/sim/soil_variation.h"
 #include "trackbed/sim/terrain_material.h"
@@ -52,6 +53,29 @@ struct TerrainRoughness {
     a->Visit("bump_wavelength_m", &bump_wavelength_m);
     a->Visit("slope_x", &slope_x);
     a->Visit("slope_y", &slope_y);
+  }
+};
+
+/// A digital elevation model under the terrain: its file (read by
+/// assets/trackbed/assets/dem_reader.h) and the point of it that becomes the world's
+/// origin. Its heights are the terrain's, less the height at that point, plus the
+/// roughness above (which may add relief to a coarse model).
+struct DemOptions {
+  /// The raster file (GeoTIFF, ESRI ASCII grid, ...), relative to the scenario's
+  /// folder; empty for none. Its coordinate system must be projected, in metres.
+  std::string file;
+  /// Easting and northing [m] in the file's coordinate system that become x = y = 0.
+  Eigen::Vector2d origin_m = Eigen::Vector2d::Zero();
+
+  bool enabled() const { return !file.empty(); }
+  void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md), read and
+  /// written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("file", &file);
+    a->Visit("origin", &origin_m);
   }
 };
 
@@ -102,6 +126,8 @@ struct TerrainOptions {
   std::vector<MaterialRegion> regions;
   /// Seeded point-to-point variation of the soil parameters (off by default).
   SoilVariationOptions soil_variation;
+  /// A digital elevation model for the heights (off by default).
+  DemOptions dem;
 
   /// Longest side a terrain may have [m]; it must also lie within this of the origin.
   static constexpr double kMaxSideM = 10000.0;
@@ -109,6 +135,9 @@ struct TerrainOptions {
   void Validate() const;
   /// Grid cells over the extent (about).
   double cells() const;
+  /// The box the terrain's grid points span [m] (x_min, y_min, x_max, y_max): the
+  /// extent, its far sides moved out to the next whole cell.
+  Eigen::Vector4d grid_extent_m() const;
   /// Index of the region that covers (x, y): the last one containing it; -1 for none.
   int RegionAt(double x, double y) const;
   /// Name of the material at (x, y): RegionAt's, else the default (Terrain gives a
@@ -126,6 +155,7 @@ struct TerrainOptions {
     a->Visit("materials", &materials);
     a->Visit("regions", &regions);
     a->Visit("soil_variation", &soil_variation);
+    a->Visit("dem", &dem);
   }
 };
 
@@ -145,8 +175,11 @@ class Terrain {
   static constexpr std::size_t kResidentTiles = 16;
 
   /// Checks the options and the materials; tiles are generated when first queried.
-  /// `seed` drives the roughness noise. Throws OptionError on bad options.
-  Terrain(const TerrainOptions& options, std::uint64_t seed);
+  /// `seed` drives the roughness noise; `base`, the elevation model read for
+  /// options.dem (null without one), gives the heights under the roughness and must
+  /// cover the extent. Throws OptionError on bad options.
+  Terrain(const TerrainOptions& options, std::uint64_t seed,
+          std::shared_ptr<const ElevationGrid> base = nullptr);
 
   /// Height of the surface at (x, y) [m], on the triangulated surface.
   double Height(double x, double y) const;
@@ -181,8 +214,9 @@ class Terrain {
   double y_min() const { return y0_; }
   double x_max() const { return x0_ + cell_ * (cols_ - 1); }
   double y_max() const { return y0_ + cell_ * (rows_ - 1); }
-  /// Bounds no height can leave [m]: the slope's plane over the extent, less
-  /// and plus the roughness amplitudes (not the heights reached).
+  /// Bounds no height can leave [m]: the slope's plane over the extent and the
+  /// elevation model's range, less and plus the roughness amplitudes (not the
+  /// heights reached).
   double min_height_bound_m() const { return min_bound_; }
   double max_height_bound_m() const { return max_bound_; }
   /// All materials the terrain uses or defines (built-ins first).
@@ -215,6 +249,7 @@ class Terrain {
   double min_bound_ = 0.0, max_bound_ = 0.0;
   // The heights' four octaves: undulation and half its wavelength, bumps and half theirs.
   LatticeNoise hills_, hills2_, bumps_, bumps2_;
+  std::shared_ptr<const ElevationGrid> base_;  // the elevation model, or null
   std::vector<TerrainMaterial> materials_;
   std::vector<SoilPoint> soils_;  // SoilOf(materials_[k])
   std::uint8_t default_material_ = 0;
