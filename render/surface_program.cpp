@@ -215,8 +215,9 @@ void main() {
 // the depth of its closest approach) and the shape's point it sees (where it enters
 // the shape, or the nearest to it when it passes outside). The fringe program draws
 // the pixels less than one pixel and the chords inside, by the fraction inside (as for
-// a straight edge), with that point's texture and light; the depth program writes the
-// point's depth where the shape covers at least half the pixel.
+// a straight edge), shaded where the ray meets the shape grown by a pixel and the
+// chords; the depth program writes the true point's depth where the shape covers at
+// least half the pixel.
 constexpr const char* kBandFragmentShader = R"(
 uniform sampler2DArray albedo;
 uniform sampler2D light;
@@ -290,6 +291,30 @@ void main() {
   gl_FragDepth = 0.5 + 0.5 * clip.z / clip.w;
   gl_FragColor = vec4(0.0);
 #else
+  // Shaded where the ray meets the shape grown by a pixel and the chords (a sphere's or
+  // the side's radius, a cylinder's top raised), whose outline lies beyond every pixel
+  // drawn: its texture coordinates and normal there, and the texture at the level their
+  // derivatives give (the true shape, grazing at its outline, gives a coarser one).
+  float grown = pixel + 0.02 * radius;
+  float rg = radius + grown;
+  point = (t - sqrt(max(rg * rg - off * off, 0.0) / rr)) * r;
+  d = point - c;
+  if (sphere) {
+    n = normalize(d);
+    st = vec2(Angle(n), asin(clamp(dot(n, axis_eye), -1.0, 1.0))) * (radius * band.x);
+  } else {
+    float z = dot(d, axis_eye);
+    float down = dot(r, axis_eye);
+    if (z > band.y && down < 0.0) {  // the raised top
+      point = r * ((band.y + grown + dot(c, axis_eye)) / down);
+      d = point - c - (band.y + grown) * axis_eye;
+      n = axis_eye;
+      st = vec2(dot(d, east_eye), dot(d, north_eye)) * band.x;
+    } else {
+      n = normalize(d - z * axis_eye);
+      st = vec2(Angle(n) * radius, clamp(z, 0.0, band.y)) * band.x;
+    }
+  }
 #ifdef LIGHT_MAP
   vec2 l = texture(light, ((world_from_eye * vec4(point, 1.0)).xy - light_origin) * light_per_m).rg;
 #else

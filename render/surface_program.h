@@ -22,10 +22,10 @@
 // other draw the fringe program draws a band about each outline (two quads along an
 // upright cylinder's silhouette lines, an annulus about a sphere's outline circle; the
 // renderer's band lists), far to near, each pixel of it blended over what is behind by
-// the fraction inside the outline (as for a straight edge), shaded at the point of the
-// true shape its ray meets; then the depth program writes that point's depth where the
-// shape covers at least half the pixel, so that the depth image holds what most of
-// each pixel shows.
+// the fraction inside the outline (as for a straight edge), shaded where its ray meets
+// the shape grown by a pixel and the facets' chords; then the depth program writes the
+// depth of the true shape's point where the shape covers at least half the pixel, so
+// that the depth image holds what most of each pixel shows.
 //
 // The driver's anisotropic filtering (GL_EXT_texture_filter_anisotropic) is not used:
 // its sample pattern differs between Mesa versions. docs/rendering.md has what it gives
