@@ -105,7 +105,8 @@ int Run(const std::string& scenario_path, const std::string& out_dir,
   std::cerr << "trackbed run: " << scenario_path << " (scene " << scenario.scene.name << ", seed "
             << scenario.seed << ") -> " << out_dir << "\n";
   // Progress on stderr, beside the run's messages (the report goes to stdout).
-  RunProgress progress(ProgressModeOf(progress_mode), scenario.duration_s, stderr);
+  RunProgress progress(ProgressModeOf(progress_mode), scenario.RunDuration(DriveSource::kScenario),
+                       stderr);
   const auto start = std::chrono::steady_clock::now();
   RunObservers observers;
   observers.on_sample = [&progress, start](const RunSample& s) {

@@ -76,6 +76,9 @@ OpenDem Open(const sim::DemOptions& o) {
   const GDALDatasetH ds = d.dataset.get();
   if (GDALGetRasterCount(ds) < 1) Fail(o, "has no raster band");
   if (GDALGetGeoTransform(ds, d.gt) != CE_None) Fail(o, "has no georeferencing (geotransform)");
+  for (const double g : d.gt) {
+    if (!std::isfinite(g)) Fail(o, "has a georeferencing that is not finite");
+  }
   if (d.gt[2] != 0.0 || d.gt[4] != 0.0)
     Fail(o, "is rotated or sheared: only north-up grids are read");
   if (!(d.gt[1] > 0.0) || d.gt[5] == 0.0) Fail(o, "has a degenerate pixel size");
@@ -130,8 +133,10 @@ bool Window(const OpenDem& d, const sim::DemOptions& o, const Eigen::Vector2d& l
   const double c_lo = std::min(ca, cb), c_hi = std::max(ca, cb);
   const double r_lo = std::min(ra, rb), r_hi = std::max(ra, rb);
   const double tolerance = 1e-9;
-  if (c_lo < -tolerance || r_lo < -tolerance || c_hi > d.header.cols - 1 + tolerance ||
-      r_hi > d.header.rows - 1 + tolerance) {
+  // Written so that a NaN fails it: an origin or box beyond what a double resolves
+  // lies outside the file, not at some index.
+  if (!(c_lo >= -tolerance && r_lo >= -tolerance && c_hi <= d.header.cols - 1 + tolerance &&
+        r_hi <= d.header.rows - 1 + tolerance)) {
     return false;
   }
   win[0] = std::max(0, static_cast<int>(std::floor(c_lo + tolerance)) - 1);

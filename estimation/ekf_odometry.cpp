@@ -28,6 +28,7 @@ void EkfOdometryOptions::Validate() const {
   option_check::Positive("vo_speed_std", vo_speed_std);
   option_check::Positive("vo_yaw_rate_std", vo_yaw_rate_std);
   option_check::Positive("vo_reference_inliers", vo_reference_inliers);
+  option_check::Positive("zero_velocity_std", zero_velocity_std);
 }
 
 EkfOdometry::EkfOdometry(const EkfOdometryOptions& options, const geometry::Pose2& initial_pose)
@@ -112,6 +113,17 @@ void EkfOdometry::AddWheelTwist(double t_s, double forward_mps, double yaw_rate_
                               options_.wheel_yaw_rate_std);
   const Eigen::Matrix3d R = sigma.cwiseAbs2().asDiagonal();
   Update<3>(z - H * x_, H, R);
+}
+
+void EkfOdometry::AddZeroVelocity(double t_s) {
+  PredictTo(t_s);
+  Eigen::Matrix<double, 3, kN> H = Eigen::Matrix<double, 3, kN>::Zero();
+  H(0, kVx) = 1.0;
+  H(1, kVy) = 1.0;
+  H(2, kOmega) = 1.0;
+  const double var = options_.zero_velocity_std * options_.zero_velocity_std;
+  const Eigen::Matrix3d R = Eigen::Vector3d::Constant(var).asDiagonal();
+  Update<3>(-H * x_, H, R);
 }
 
 void EkfOdometry::AddGyro(double t_s, double yaw_rate_radps) {

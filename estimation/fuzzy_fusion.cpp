@@ -15,6 +15,12 @@ namespace trackbed::estimation {
 
 void FusionOptions::Validate() const {
   option_check::NonNegative("weight_rise_time_s", weight_rise_time_s);
+  option_check::Positive("wheel_speed_std_mps", wheel_speed_std_mps);
+  option_check::Positive("wheel_lateral_speed_std_mps", wheel_lateral_speed_std_mps);
+  if (!(gate_probability > 0.0 && gate_probability < 1.0)) {
+    throw OptionError("gate_probability",
+                      "must be in (0, 1) (got " + option_check::Describe(gate_probability) + ")");
+  }
 }
 
 FuzzyFusionWeight::FuzzyFusionWeight(const std::string& fll_text, const std::string& source) {

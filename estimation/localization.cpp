@@ -29,6 +29,8 @@ void LocalizationOptions::Validate() const {
   option_check::Nested("ekf", ekf);
   option_check::Nested("imu", imu);
   option_check::Nested("fusion", fusion);
+  option_check::Nested("gyro", gyro);
+  option_check::Nested("gyro_model", gyro_model);
   if (min_inliers_for_slip < 0) {
     throw OptionError("min_inliers_for_slip",
                       "must be >= 0 (got " + std::to_string(min_inliers_for_slip) + ")");
@@ -52,8 +54,21 @@ LocalizationStack::LocalizationStack(const LocalizationOptions& options,
       weight_(options.fusion.weight_rise_time_s),
       imu_(options.imu),
       T_world_body_vo_(T_world_body0),
-      wheel_at_frame_(geometry::PlanarPose(T_world_body0)) {
+      wheel_at_frame_(geometry::PlanarPose(T_world_body0)),
+      zupt_(options.gyro_model, options.gyro.standstill_window_s),
+      wheel_gyro_at_frame_(geometry::PlanarPose(T_world_body0)) {
   options_.Validate();
+  const bool covariance = options_.fusion.method == FusionOptions::Method::kCovariance;
+  if (options_.gyro.wheel_rotation || options_.gyro.fusion_rotation || covariance) {
+    wheel_gyro_ = std::make_unique<WheelOdometry>(WithSlip(options_.wheel, true),
+                                                  geometry::PlanarPose(T_world_body0));
+    gate_1dof_ = ChiSquareQuantile(1, options_.fusion.gate_probability);
+  }
+  if (covariance) {
+    covariance_fused_ =
+        std::make_unique<CovarianceFusion>(geometry::PlanarPose(T_world_body0),
+                                           ChiSquareQuantile(3, options_.fusion.gate_probability));
+  }
 }
 
 LocalizationStack::LocalizationStack(const LocalizationOptions& options,
@@ -124,6 +139,18 @@ InputStatus LocalizationStack::AddImuSample(double t_s, const Eigen::Vector3d& g
     ++rejected_.gyro;
     return InputStatus::kValueNotFinite;
   }
+  if (wheel_gyro_ && std::isfinite(t_s)) {
+    // The vertical in the body's axes: the specific force low-passed (at rest it points up).
+    const Eigen::Vector3d force = imu_.BodySpecificForce(accel_mps2);
+    if (!has_accel_) {
+      up_body_ = force;
+    } else if (t_s > t_accel_) {
+      const double a = 1.0 - std::exp(-(t_s - t_accel_) / options_.gyro.vertical_filter_time_s);
+      up_body_ += a * (force - up_body_);
+    }
+    has_accel_ = true;
+    t_accel_ = t_s;
+  }
   return AddGyroSample(t_s, imu_.BodyRate(gyro_radps, accel_mps2));
 }
 
@@ -139,6 +166,15 @@ InputStatus LocalizationStack::AddEncoderSample(double t_s, std::int64_t left_ti
   wheel_.AddEncoderSample(t_s, left_ticks, right_ticks);
   wheel_noslip_.AddEncoderSample(t_s, left_ticks, right_ticks);
   ekf_.AddWheelTwist(t_s, wheel_noslip_.forward_mps(), wheel_noslip_.yaw_rate_radps());
+  zupt_.AddEncoderSample(t_s, left_ticks, right_ticks);
+  if (options_.ekf.zero_velocity_updates && zupt_.standstill()) ekf_.AddZeroVelocity(t_s);
+  if (wheel_gyro_) {
+    wheel_gyro_->AddEncoderSample(
+        t_s, left_ticks, right_ticks,
+        gyro_yaw_pending_ ? std::optional<double>(gyro_yaw_since_encoder_) : std::nullopt);
+    gyro_yaw_since_encoder_ = 0.0;
+    gyro_yaw_pending_ = false;
+  }
   return InputStatus::kUsed;
 }
 
@@ -152,12 +188,28 @@ InputStatus LocalizationStack::AddGyroSample(double t_s, const Eigen::Vector3d& 
     return status;
   }
   ekf_.AddGyro(t_s, rate_radps.z());
+  zupt_.AddGyroSample(t_s, rate_radps);
+  // VO's rotation prior: the rate less the standstills' bias where it is estimated.
+  const Eigen::Vector3d rate_for_prior =
+      options_.gyro.zero_velocity_bias ? Eigen::Vector3d(rate_radps - zupt_.bias()) : rate_radps;
+  if (wheel_gyro_ && has_gyro_) {
+    // The heading's change: the bias-corrected rate about the vertical.
+    const Eigen::Vector3d bias =
+        options_.gyro.zero_velocity_bias ? zupt_.bias() : Eigen::Vector3d::Zero();
+    const double up_norm = up_body_.norm();
+    const Eigen::Vector3d up = up_norm > 0.0 ? Eigen::Vector3d(up_body_ / up_norm)
+                                             : Eigen::Vector3d(Eigen::Vector3d::UnitZ());
+    // Standing still (zero-velocity updates on), the robot does not turn.
+    const bool still = options_.gyro.zero_velocity_bias && zupt_.standstill();
+    if (!still) gyro_yaw_since_encoder_ += up.dot(rate_radps - bias) * (t_s - t_gyro_);
+    gyro_yaw_pending_ = true;
+  }
   if (options_.apply_camera_time_offset && vo_ && has_gyro_) {
-    gyro_intervals_.push_back({t_gyro_, t_s, rate_radps});
+    gyro_intervals_.push_back({t_gyro_, t_s, rate_for_prior});
   }
   if (has_gyro_) {
     // The rate held over the interval since the last sample (body frame: right-multiplied).
-    const Eigen::Vector3d phi = rate_radps * (t_s - t_gyro_);
+    const Eigen::Vector3d phi = rate_for_prior * (t_s - t_gyro_);
     const double angle = phi.norm();
     if (angle > 0.0) {
       R_gyro_since_frame_ = R_gyro_since_frame_ * geometry::ExpSO3(phi);
@@ -272,11 +324,11 @@ LocalizationFrameReport LocalizationStack::ProcessStereoFrame(double t_s, const 
   // motion starts from here.
   ekf_.AddCameraFrame(t_s, vo_increment, report.vo.inliers,
                       vo_planar_covariance ? &*vo_planar_covariance : nullptr);
-  report.slip = wheel_.slip();
-  report.slip_velocity_mps = report.slip.max_abs_mps();
+  report.slip = wheel_led().slip();
+  report.slip_velocity_mps = wheel_for_fusion().slip().max_abs_mps();
   report.features = report.vo.inliers;
   if (has_frame_) {
-    const geometry::Pose2 wheel_increment = Between(wheel_at_frame_, wheel_.pose());
+    const geometry::Pose2 wheel_increment = Between(wheel_at_frame_, wheel_for_fusion().pose());
     // A frame without VO counts as w = 1: the weight climbs back toward the wheels.
     report.w_rule =
         report.vo_valid ? fuzzy_.Weight(report.slip_velocity_mps, report.features) : 1.0;
@@ -284,14 +336,66 @@ LocalizationFrameReport LocalizationStack::ProcessStereoFrame(double t_s, const 
     report.w = report.vo_valid ? w : 1.0;
     fused_.Add(wheel_increment, vo_increment, report.w);
   }
-  wheel_at_frame_ = wheel_.pose();
+  if (wheel_gyro_) {
+    GyroLedFrame(t_s, report, vo_increment, vo_planar_covariance);
+    wheel_gyro_at_frame_ = wheel_gyro_->pose();
+  }
+  wheel_at_frame_ = wheel_for_fusion().pose();
   t_frame_ = t_s;
   has_frame_ = true;
   return report;
 }
 
+void LocalizationStack::GyroLedFrame(double t_s, const LocalizationFrameReport& report,
+                                     const std::optional<geometry::Pose2>& vo_increment,
+                                     const std::optional<Eigen::Matrix3d>& vo_covariance) {
+  if (!has_frame_ || !(t_s > t_frame_)) return;
+  const double dt = t_s - t_frame_;
+  const geometry::Pose2 prediction = Between(wheel_gyro_at_frame_, wheel_gyro_->pose());
+  const double var_gyro = options_.gyro_model.RotationVariance(dt, GyroBiasVarianceZ());
+  const std::optional<geometry::Pose2> measured =
+      vo_increment && vo_covariance ? vo_increment : std::nullopt;
+  double yaw = prediction.yaw;
+  if (measured) {
+    // VO's rotation weighed by its variance against the gyro's over the interval.
+    const double var_vo = (*vo_covariance)(2, 2);
+    const double nu = geometry::WrapAngle(measured->yaw - prediction.yaw);
+    if (nu * nu <= gate_1dof_ * (var_gyro + var_vo)) {
+      const double correction = var_gyro / (var_gyro + var_vo) * nu;
+      wheel_gyro_->Rotate(correction);
+      yaw += correction;
+    }
+  }
+  if (vo_increment && report.vo.inliers >= options_.min_inliers_for_slip) {
+    wheel_gyro_->AddMeasuredVelocity(t_frame_, t_s, vo_increment->x / dt, yaw / dt);
+  }
+  if (covariance_fused_) {
+    // The wheels' forward speed is as good as the slip estimate it carries: σ the
+    // encoders' own plus the estimate's size.
+    const double sf =
+        (options_.fusion.wheel_speed_std_mps + wheel_gyro_->slip().max_abs_mps()) * dt;
+    const double sl = options_.fusion.wheel_lateral_speed_std_mps * dt;
+    const Eigen::Matrix3d Q = Eigen::Vector3d(sf * sf, sl * sl, var_gyro).asDiagonal();
+    covariance_fused_->Add(prediction, Q, measured,
+                           measured ? *vo_covariance : Eigen::Matrix3d(Eigen::Matrix3d::Zero()));
+  }
+}
+
+double LocalizationStack::GyroBiasVarianceZ() const {
+  if (options_.gyro.zero_velocity_bias) return zupt_.variance().z();
+  return options_.gyro_model.turn_on_bias_std * options_.gyro_model.turn_on_bias_std;
+}
+
+const WheelOdometry& LocalizationStack::wheel_led() const {
+  return options_.gyro.wheel_rotation && wheel_gyro_ ? *wheel_gyro_ : wheel_;
+}
+
+const WheelOdometry& LocalizationStack::wheel_for_fusion() const {
+  return options_.gyro.fusion_rotation && wheel_gyro_ ? *wheel_gyro_ : wheel_;
+}
+
 Eigen::Isometry3d LocalizationStack::wheel_odometry() const {
-  return ToIsometry(wheel_.pose(), z0_);
+  return ToIsometry(wheel_led().pose(), z0_);
 }
 
 Eigen::Isometry3d LocalizationStack::wheel_odometry_noslip() const {
@@ -304,7 +408,19 @@ Eigen::Isometry3d LocalizationStack::visual_odometry() const { return T_world_bo
 
 Eigen::Isometry3d LocalizationStack::fused() const {
   // The fused pose at the last frame, carried forward by the wheels since.
-  return ToIsometry(Compose(fused_.pose(), Between(wheel_at_frame_, wheel_.pose())), z0_);
+  if (covariance_fused_) {
+    return ToIsometry(
+        Compose(covariance_fused_->pose(), Between(wheel_gyro_at_frame_, wheel_gyro_->pose())),
+        z0_);
+  }
+  return ToIsometry(Compose(fused_.pose(), Between(wheel_at_frame_, wheel_for_fusion().pose())),
+                    z0_);
+}
+
+std::optional<Eigen::Isometry3d> LocalizationStack::fused_ham2012() const {
+  if (!covariance_fused_) return std::nullopt;
+  return ToIsometry(Compose(fused_.pose(), Between(wheel_at_frame_, wheel_for_fusion().pose())),
+                    z0_);
 }
 
 }  // namespace trackbed::estimation

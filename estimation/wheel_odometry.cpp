@@ -34,8 +34,8 @@ double WheelOdometry::Angle(std::int64_t ticks) const {
   return static_cast<double>(ticks) * 2.0 * M_PI / options_.ticks_per_rev;
 }
 
-void WheelOdometry::AddEncoderSample(double t_s, std::int64_t left_ticks,
-                                     std::int64_t right_ticks) {
+void WheelOdometry::AddEncoderSample(double t_s, std::int64_t left_ticks, std::int64_t right_ticks,
+                                     std::optional<double> yaw_increment_rad) {
   const double left = Angle(left_ticks), right = Angle(right_ticks);
   hist_t_[hist_next_] = t_s;
   hist_l_[hist_next_] = left;
@@ -64,7 +64,7 @@ void WheelOdometry::AddEncoderSample(double t_s, std::int64_t left_ticks,
   // lateral speed −d·ω from the ICR's longitudinal offset d.
   const double v_l = r_l * w_l + slip_.left_mps, v_r = r_r * w_r + slip_.right_mps;
   forward_mps_ = 0.5 * (v_r + v_l);
-  yaw_rate_radps_ = (v_r - v_l) / gauge;
+  yaw_rate_radps_ = yaw_increment_rad ? *yaw_increment_rad / dt : (v_r - v_l) / gauge;
   const double lateral = -options_.icr_offset_m * yaw_rate_radps_;
   // Eq. 6, integrated exactly for constant body velocities over the step.
   const double dyaw = yaw_rate_radps_ * dt;

@@ -44,6 +44,7 @@ EstimateSample EstimateAfterEncoders(estimation::LocalizationStack& stack, const
   e.wheel_odometry = stack.wheel_odometry();
   e.wheel_odometry_noslip = stack.wheel_odometry_noslip();
   e.fused = stack.fused();
+  e.fused_ham2012 = stack.fused_ham2012();
   e.ekf = stack.ekf();
   e.has_camera = has_camera;
   e.slip = stack.slip();
@@ -111,9 +112,9 @@ class ClosedLoop::Impl {
       throw;
     }
   }
-  scenario::DriveSource drive_source() const {
-    return options_.commander ? scenario::DriveSource::kExternal : scenario::DriveSource::kScenario;
-  }
+  // Whether a commander was given from outside (BuildSoftware later sets the scenario's
+  // own in options_.commander).
+  scenario::DriveSource drive_source() const { return drive_source_; }
 
  private:
   using ImagePair = std::pair<GrayImage, GrayImage>;
@@ -141,6 +142,8 @@ class ClosedLoop::Impl {
 
   scenario::Scenario scenario_;
   ClosedLoopOptions options_;
+  scenario::DriveSource drive_source_ =
+      options_.commander ? scenario::DriveSource::kExternal : scenario::DriveSource::kScenario;
   RobotBuild robot_;
   std::unique_ptr<RunFolderWriter> folder_;
   bool started_ = false, finished_ = false, done_ = false, failed_ = false, time_ran_out_ = false;
@@ -232,8 +235,8 @@ void ClosedLoop::Impl::BuildSchedule() {
   if (commander_->trigger() == Commander::Trigger::kPeriodic) {
     schedule_.control = clock_->StepsPerPeriod(1.0 / commander_->period_s());
   }
-  schedule_.end_step =
-      static_cast<std::int64_t>(std::llround(scenario_.duration_s / clock_->step_s()));
+  schedule_.end_step = static_cast<std::int64_t>(
+      std::llround(scenario_.RunDuration(drive_source()) / clock_->step_s()));
   v_at_last_imu_ = plant_->vehicle->chassis().v_world;
 }
 

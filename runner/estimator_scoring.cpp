@@ -18,6 +18,10 @@ void EstimatorScoring::Add(const RunSample& truth, const EstimateSample& e) {
     has_camera_ = true;
     fused_.Add(T_true, e.fused);
   }
+  if (e.fused_ham2012) {
+    has_fused_ham2012_ = true;
+    fused_ham2012_.Add(T_true, *e.fused_ham2012);
+  }
   for (int side = 0; side < 2; ++side) {
     const double estimated = side == 0 ? e.slip.left_mps : e.slip.right_mps;
     const double err = estimated - truth.tracks[side].slip_velocity_mps;
@@ -43,7 +47,9 @@ void EstimatorScoring::AddExternal(const ExternalEstimate& e) {
 
 std::size_t EstimatorScoring::window_size() const {
   std::size_t n = 0;
-  for (const Running* s : {&wheel_, &wheel_noslip_, &fused_, &ekf_, &vo_}) n += s->window_size();
+  for (const Running* s : {&wheel_, &wheel_noslip_, &fused_, &ekf_, &vo_, &fused_ham2012_}) {
+    n += s->window_size();
+  }
   for (const auto& [name, s] : external_) n += s.window_size();
   return n;
 }
@@ -77,6 +83,7 @@ std::map<std::string, EstimatorMetrics> EstimatorScoring::Metrics(double distanc
     m["fused"] = Score(fused_, distance_m);
     m["visual_odometry"] = Score(vo_, distance_m);
   }
+  if (has_fused_ham2012_) m["fused_ham2012"] = Score(fused_ham2012_, distance_m);
   return m;
 }
 

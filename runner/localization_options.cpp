@@ -1,6 +1,10 @@
 // The localization stack's options for a run (see localization_options.h).
 #include "trackbed/runner/localization_options.h"
 
+#include <cmath>
+
+#include "trackbed/robot/imu_parts.h"
+
 namespace trackbed::runner {
 
 estimation::LocalizationOptions LocalizationOptionsOf(const scenario::Scenario& scenario,
@@ -12,6 +16,15 @@ estimation::LocalizationOptions LocalizationOptionsOf(const scenario::Scenario& 
   lo.wheel.icr_expansion = given.vehicle.icr_expansion.value_or(scenario.estimation.icr_expansion);
   lo.wheel.ticks_per_rev = scenario.robot.encoders.ticks_per_rev;
   lo.imu = given.imu;
+  // The gyro's data sheet: the robot.imu keys, else the realism profile's part.
+  const robot::ImuOptions imu =
+      robot::WithImuPartResolved(scenario.robot.imu, scenario.robot.realism);
+  lo.gyro_model.noise_density = *imu.gyro_noise_density;
+  lo.gyro_model.bias_random_walk = *imu.gyro_bias_random_walk;
+  lo.gyro_model.turn_on_bias_std = *imu.gyro_initial_bias_std;
+  double markov_var = 0.0;
+  for (const double s : *imu.gyro_bias_markov_std) markov_var += s * s;
+  lo.gyro_model.bias_instability_std = std::sqrt(markov_var);
   return lo;
 }
 

@@ -15,6 +15,9 @@ PathDriver::PathDriver(const scenario::DriveSpec& spec, double nominal_gauge_m,
 
 ControlOutput PathDriver::Update(const ControlInput& input) {
   ControlOutput out;
+  // The start standstill: zero track speeds, then the drive on a clock started at its end.
+  if (input.t_s < spec_.start_standstill_s - 1e-9) return out;
+  const double t_drive = input.t_s - spec_.start_standstill_s;
   if (spec_.mode == scenario::DriveSpec::Mode::kPosePath) {
     if (input.t_s >= pose_path_end_s_) out.stop_reason = "path finished";
     return out;
@@ -28,7 +31,7 @@ ControlOutput PathDriver::Update(const ControlInput& input) {
     out.tracks = kinematics::TrackSpeedsFromTwist(c.twist, gauge_);
     return out;
   }
-  while (next_ < spec_.script.size() && spec_.script[next_].t_s <= input.t_s + 1e-9) ++next_;
+  while (next_ < spec_.script.size() && spec_.script[next_].t_s <= t_drive + 1e-9) ++next_;
   if (next_ == 0) return out;
   const scenario::DriveCommand& c = spec_.script[next_ - 1];
   out.tracks = c.track_speeds

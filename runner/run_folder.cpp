@@ -68,6 +68,7 @@ struct PlotData {
     estimates["wheel_odometry_noslip"].Add(s.t_s, e.wheel_odometry_noslip);
     estimates["ekf"].Add(s.t_s, e.ekf);
     if (e.has_camera) estimates["fused"].Add(s.t_s, e.fused);
+    if (e.fused_ham2012) estimates["fused_ham2012"].Add(s.t_s, *e.fused_ham2012);
     slip_left_true.Add(s.t_s, s.tracks[0].slip_velocity_mps);
     slip_right_true.Add(s.t_s, s.tracks[1].slip_velocity_mps);
     slip_left_est.Add(s.t_s, e.slip.left_mps);
@@ -148,6 +149,10 @@ class RunLogs {
     if (!scenario.robot.stereo.enabled) return;
     fused_tum_ = std::make_unique<LogFile>(dir / "fused.tum", "");
     vo_tum_ = std::make_unique<LogFile>(dir / "visual_odometry.tum", "");
+    if (scenario.estimation.localization.fusion.method ==
+        estimation::FusionOptions::Method::kCovariance) {
+      fused_ham2012_tum_ = std::make_unique<LogFile>(dir / "fused_ham2012.tum", "");
+    }
     fusion_csv_ = std::make_unique<LogFile>(
         dir / "fusion.csv",
         "t,slip_velocity_mps,features,w,vo_status,vo_tracked,camera_blackout,w_rule,"
@@ -177,7 +182,7 @@ class RunLogs {
   void Close() {
     for (LogFile* f : {&truth_, &twist_, &encoders_, &slip_, &tracks_, &imu_}) f->Close();
     for (auto* f : {&wheel_tum_, &noslip_tum_, &ekf_tum_, &fused_tum_, &vo_tum_, &fusion_csv_,
-                    &scan_csv_, &vo_covariance_csv_}) {
+                    &scan_csv_, &vo_covariance_csv_, &fused_ham2012_tum_}) {
       if (*f) (*f)->Close();
     }
     for (auto& [name, f] : external_tum_) f->Close();
@@ -186,7 +191,7 @@ class RunLogs {
  private:
   LogFile truth_, encoders_, slip_, tracks_, imu_, twist_;
   std::unique_ptr<LogFile> wheel_tum_, noslip_tum_, ekf_tum_, fused_tum_, vo_tum_, fusion_csv_,
-      scan_csv_, vo_covariance_csv_;
+      scan_csv_, vo_covariance_csv_, fused_ham2012_tum_;
   std::map<std::string, std::unique_ptr<LogFile>> external_tum_;  // reported estimators
   long long decimate_ = 1, samples_ = 0, imu_samples_ = 0;
   char line_[512];
@@ -219,6 +224,10 @@ void RunLogs::WriteSample(const RunSample& s) {
     ekf_tum_->Line(estimation::FormatTumLine({s.t_s, s.estimate->ekf}).c_str());
     if (fused_tum_) {
       fused_tum_->Line(estimation::FormatTumLine({s.t_s, s.estimate->fused}).c_str());
+    }
+    if (fused_ham2012_tum_ && s.estimate->fused_ham2012) {
+      fused_ham2012_tum_->Line(
+          estimation::FormatTumLine({s.t_s, *s.estimate->fused_ham2012}).c_str());
     }
   }
   std::snprintf(line_, sizeof(line_), "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%d", s.t_s,

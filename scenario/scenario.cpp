@@ -153,6 +153,10 @@ void DriveSpec::Validate() const {
   if (laps < 1) throw OptionError("laps", "must be >= 1 (got " + std::to_string(laps) + ")");
   pursuit.Validate();  // its keys are this map's
   option_check::Positive("rate_hz", rate_hz);
+  option_check::InRange("start_standstill_s", start_standstill_s, 0.0, 1e6);
+  if (mode == Mode::kPosePath && start_standstill_s > 0.0) {
+    throw OptionError("start_standstill_s", "must be 0 with mode pose_path (nothing drives it)");
+  }
   if (mode == Mode::kPath || mode == Mode::kPosePath) {
     const char* name = mode == Mode::kPath ? "path" : "pose_path";
     if (waypoints.size() < 2) {
@@ -288,6 +292,11 @@ void OutputsSpec::Validate() const {
   if (decimate < 1) {
     throw OptionError("decimate", "must be >= 1 (got " + std::to_string(decimate) + ")");
   }
+}
+
+double Scenario::RunDuration(DriveSource drive_source) const {
+  const bool drives = drive_source == DriveSource::kScenario && !navigation.enabled;
+  return duration_s + (drives ? drive.start_standstill_s : 0.0);
 }
 
 bool Scenario::CarriedOnPosePath(DriveSource drive_source) const {

@@ -19,6 +19,7 @@
 #include "trackbed/navigation/navigator_factory.h"
 #include "trackbed/navigation/pure_pursuit.h"
 #include "trackbed/runner/navigation_scenario.h"
+#include "trackbed/runner/path_driver.h"
 #include "trackbed/runner/teach_repeat_run.h"
 #include "trackbed/scenario/scenario_yaml.h"
 
@@ -265,6 +266,30 @@ TEST(StackKeysTest, DriveKeysReachThePathFollower) {
       }
     }
   }
+}
+
+// drive.start_standstill_s: the tracks at zero for its length, then the script on a clock
+// started at its end; the run lasts duration_s plus it when the scenario drives, not when
+// a commander from outside or navigation does.
+TEST(StackKeysTest, TheStartStandstillHoldsTheTracksAndLengthensTheRun) {
+  Scenario s = Parse({{"drive.start_standstill_s", "2"}, {"duration_s", "30"}});
+  s.drive.mode = DriveSpec::Mode::kScript;
+  s.drive.script.resize(2);
+  s.drive.script[0].v_mps = 0.3;
+  s.drive.script[1].t_s = 1.0;
+  s.drive.script[1].v_mps = 0.5;
+  runner::PathDriver driver(s.drive, 0.5);
+  runner::ControlInput in;
+  in.t_s = 1.5;
+  EXPECT_EQ(driver.Update(in).tracks.left_mps, 0.0);
+  in.t_s = 2.5;  // 0.5 s into the script: its first command
+  EXPECT_DOUBLE_EQ(driver.Update(in).tracks.left_mps, 0.3);
+  in.t_s = 3.0;  // 1 s into the script: its second
+  EXPECT_DOUBLE_EQ(driver.Update(in).tracks.left_mps, 0.5);
+  EXPECT_EQ(s.RunDuration(DriveSource::kScenario), 32.0);
+  EXPECT_EQ(s.RunDuration(DriveSource::kExternal), 30.0);
+  s.navigation.enabled = true;
+  EXPECT_EQ(s.RunDuration(DriveSource::kScenario), 30.0);
 }
 
 }  // namespace

@@ -60,6 +60,13 @@ struct EkfOdometryOptions {
   /// three figures above; a frame without one falls back on them. Off: the inlier-count
   /// model above.
   bool vo_covariance_from_vo = false;
+  /// While the robot stands still (both encoders unchanged, gyro_bias.h), a
+  /// measurement of zero velocity and yaw rate, so that the gyro's samples observe its
+  /// bias (zero-velocity updates). Off: the wheels' twist only.
+  bool zero_velocity_updates = false;
+  /// The zero-velocity measurement's standard deviation, speeds [m/s] and yaw rate
+  /// [rad/s], > 0.
+  double zero_velocity_std = 1e-4;
 
   void Validate() const;
 
@@ -79,6 +86,8 @@ struct EkfOdometryOptions {
     a->Visit("vo_yaw_rate_std", &vo_yaw_rate_std);
     a->Visit("vo_reference_inliers", &vo_reference_inliers);
     a->Visit("vo_covariance_from_vo", &vo_covariance_from_vo);
+    a->Visit("zero_velocity_updates", &zero_velocity_updates);
+    a->Visit("zero_velocity_std", &zero_velocity_std);
   }
 };
 
@@ -93,6 +102,9 @@ class EkfOdometry {
   void AddWheelTwist(double t_s, double forward_mps, double yaw_rate_radps);
   /// Gyro z rate at t [rad/s].
   void AddGyro(double t_s, double yaw_rate_radps);
+  /// The robot stands still at t: zero forward, lateral and yaw rate, each with
+  /// σ = zero_velocity_std.
+  void AddZeroVelocity(double t_s);
   /// A camera frame at t. `motion`: visual odometry's planar motion since the previous
   /// frame, in that frame's body axes, or none (a failed frame, or the first). Either
   /// way the pose now is what the next frame's motion starts from. `covariance`: the motion's own

@@ -35,6 +35,25 @@ struct FusionOptions {
   /// to the wheels as fast as the estimated slip fades would keep one half of each such
   /// pair.
   double weight_rise_time_s = 3.0;
+  /// Which method is the `fused` estimator: kHam2012, the paper's fuzzy weight
+  /// (eq. 9); kCovariance, the gyro-led wheel odometry as the prediction and VO's
+  /// planar motion as a measurement weighed by its covariance (CovarianceFusion), with
+  /// the paper's beside it as `fused_ham2012`.
+  enum class Method { kHam2012, kCovariance };
+  Method method = Method::kHam2012;
+  /// kCovariance: the standard deviation of the wheels' forward speed over a frame
+  /// interval on ground that does not slip [m/s], > 0: about a tick of the encoders (0.15
+  /// mm) per 0.1 s frame. The prediction's forward σ is this plus the slip estimate's
+  /// size (the larger track's), times the interval.
+  double wheel_speed_std_mps = 0.002;
+  /// kCovariance: the wheels' lateral speed σ [m/s], > 0 (they assume none; the tracks'
+  /// side slip reaches 0.08 m/s on slopes, docs/localization.md "The EKF baseline").
+  double wheel_lateral_speed_std_mps = 0.05;
+  /// kCovariance: the probability inside the innovation gate, in (0, 1): a VO motion
+  /// whose Mahalanobis distance from the prediction lies beyond this quantile of χ²
+  /// (3 degrees of freedom; 1 for the gyro-led wheel odometry's rotation alone) is not
+  /// used.
+  double gate_probability = 0.999;
 
   /// Throws OptionError naming the first invalid field.
   void Validate() const;
@@ -46,6 +65,11 @@ struct FusionOptions {
   void Serialize(Archive* a) {
     a->Visit("rules_file", &rules_file);
     a->Visit("weight_rise_time_s", &weight_rise_time_s);
+    a->VisitEnum("method", &method,
+                 {{"ham2012", Method::kHam2012}, {"covariance", Method::kCovariance}});
+    a->Visit("wheel_speed_std_mps", &wheel_speed_std_mps);
+    a->Visit("wheel_lateral_speed_std_mps", &wheel_lateral_speed_std_mps);
+    a->Visit("gate_probability", &gate_probability);
   }
 };
 

@@ -15,7 +15,8 @@ class ImuCorrection {
   explicit ImuCorrection(const calibration::ImuCalibration& given)
       : identity_(given.IsIdentity()),
         rate_from_gyro_(given.R_body_imu * given.gyro_axes.inverse()),
-        gyro_from_accel_(given.gyro_g_sensitivity * given.accel_axes.inverse()) {}
+        gyro_from_accel_(given.gyro_g_sensitivity * given.accel_axes.inverse()),
+        force_from_accel_(given.R_body_imu * given.accel_axes.inverse()) {}
 
   /// Whether readings pass unchanged (a perfect IMU aligned with the body).
   bool identity() const { return identity_; }
@@ -25,10 +26,16 @@ class ImuCorrection {
     if (identity_) return gyro;
     return rate_from_gyro_ * (gyro - gyro_from_accel_ * accel);
   }
+  /// The specific force [m/s²] in the body's axes from an accelerometer reading in the
+  /// IMU's (its bias left in).
+  Eigen::Vector3d BodySpecificForce(const Eigen::Vector3d& accel) const {
+    if (identity_) return accel;
+    return force_from_accel_ * accel;
+  }
 
  private:
   bool identity_;
-  Eigen::Matrix3d rate_from_gyro_, gyro_from_accel_;
+  Eigen::Matrix3d rate_from_gyro_, gyro_from_accel_, force_from_accel_;
 };
 
 }  // namespace trackbed::estimation

@@ -18,9 +18,11 @@
 #include "trackbed/common/pose2.h"
 #include "trackbed/common/robot_calibration.h"
 #include "trackbed/common/stereo_camera.h"
+#include "trackbed/estimation/covariance_fusion.h"
 #include "trackbed/estimation/ekf_odometry.h"
 #include "trackbed/estimation/fusion_weight_rise.h"
 #include "trackbed/estimation/fuzzy_fusion.h"
+#include "trackbed/estimation/gyro_bias.h"
 #include "trackbed/estimation/gyro_rotation.h"
 #include "trackbed/estimation/imu_correction.h"
 #include "trackbed/estimation/stereo_visual_odometry.h"
@@ -58,9 +60,14 @@ struct LocalizationOptions {
   bool apply_camera_time_offset = false;
   /// The EKF baseline (wheel odometry + gyro + visual odometry).
   EkfOdometryOptions ekf;
+  /// The gyro as a rotation source: its bias from standstills, the gyro-led wheel
+  /// odometry and fusion (gyro_bias.h).
+  GyroHeadingOptions gyro;
   /// The IMU's given calibration (imu_calibration.json): AddImuSample turns its
   /// readings into body rates with it. Known at run time, no key (see Serialize).
   calibration::ImuCalibration imu;
+  /// The gyro's data-sheet noise (the IMU part's). Known at run time, no key.
+  GyroModel gyro_model;
 
   void Validate() const;
 
@@ -74,8 +81,9 @@ struct LocalizationOptions {
 
   /// The keys of the fields that are knobs (e.g. the scenario's `estimation.*`,
   /// docs/scenario_format.md), read and written by the config archive
-  /// (trackbed/common/archive.h). Not visited: `imu`, the given calibration, and the
-  /// wheels' geometry (WheelOdometryOptions::Serialize).
+  /// (trackbed/common/archive.h). Not visited: `imu`, the given calibration,
+  /// `gyro_model`, the IMU's data sheet, and the wheels' geometry
+  /// (WheelOdometryOptions::Serialize).
   template <class Archive>
   void Serialize(Archive* a) {
     a->Visit("wheel", &wheel);
@@ -85,6 +93,7 @@ struct LocalizationOptions {
     a->Visit("vo_coast_time_s", &vo_coast_time_s);
     a->Visit("apply_camera_time_offset", &apply_camera_time_offset);
     a->Visit("ekf", &ekf);
+    a->Visit("gyro", &gyro);
   }
 };
 
@@ -170,8 +179,14 @@ class LocalizationStack {
   Eigen::Isometry3d wheel_odometry_noslip() const;
   Eigen::Isometry3d visual_odometry() const;
   Eigen::Isometry3d fused() const;
+  /// Ham et al.'s fusion when `fused` is another method (FusionOptions::method); none
+  /// otherwise.
+  std::optional<Eigen::Isometry3d> fused_ham2012() const;
   Eigen::Isometry3d ekf() const;
-  const TrackSlip& slip() const { return wheel_.slip(); }
+  /// The zero-velocity estimate of the gyro's bias.
+  const ZeroVelocityGyroBias& gyro_bias() const { return zupt_; }
+  /// The slip estimate of the `wheel_odometry` estimator.
+  const TrackSlip& slip() const { return wheel_led().slip(); }
   /// Inputs set aside so far.
   const RejectedInputs& rejected() const { return rejected_; }
 
@@ -184,6 +199,16 @@ class LocalizationStack {
   // The gyro's rotation over the last frame interval in the left camera's frame, or
   // null where there is none (into *R).
   const Eigen::Matrix3d* RotationPrior(double t_s, Eigen::Matrix3d* R);
+  // The gyro-led wheel odometry's step at a frame: VO's rotation weighed against the
+  // gyro's, the slip estimate, the covariance fusion.
+  void GyroLedFrame(double t_s, const LocalizationFrameReport& report,
+                    const std::optional<geometry::Pose2>& vo_increment,
+                    const std::optional<Eigen::Matrix3d>& vo_covariance);
+  // The wheel odometry reported as `wheel_odometry`, and the one Ham's fusion takes.
+  const WheelOdometry& wheel_led() const;
+  const WheelOdometry& wheel_for_fusion() const;
+  // The gyro's bias variance about z now.
+  double GyroBiasVarianceZ() const;
   // Why a frame at t_s with these images is set aside, or kUsed.
   InputStatus CheckStereoFrame(double t_s, const cv::Mat& left, const cv::Mat& right) const;
 
@@ -223,6 +248,21 @@ class LocalizationStack {
   double t_encoder_ = 0.0;
   bool has_encoder_ = false;
   RejectedInputs rejected_;
+  // The gyro as a rotation source (GyroHeadingOptions): the bias from standstills; the
+  // gyro-led wheel odometry (null unless a key needs it), the heading the gyro turned
+  // since its last encoder sample, the vertical in the body's axes (low-passed specific
+  // force); the covariance fusion (null unless it is the method) and the gyro-led
+  // wheels' pose at the last frame.
+  ZeroVelocityGyroBias zupt_;
+  std::unique_ptr<WheelOdometry> wheel_gyro_;
+  double gyro_yaw_since_encoder_ = 0.0;
+  bool gyro_yaw_pending_ = false;
+  Eigen::Vector3d up_body_ = Eigen::Vector3d::UnitZ();
+  double t_accel_ = 0.0;
+  bool has_accel_ = false;
+  std::unique_ptr<CovarianceFusion> covariance_fused_;
+  geometry::Pose2 wheel_gyro_at_frame_;
+  double gate_1dof_ = 0.0;
 };
 
 }  // namespace trackbed::estimation

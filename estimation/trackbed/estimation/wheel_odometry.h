@@ -88,8 +88,13 @@ class WheelOdometry {
   WheelOdometry& operator=(const WheelOdometry&) = delete;
 
   /// One encoder sample (counts since start) at time `t_s`. The first sample
-  /// only sets the reference.
-  void AddEncoderSample(double t_s, std::int64_t left_ticks, std::int64_t right_ticks);
+  /// only sets the reference. `yaw_increment_rad`: the heading's change since the last
+  /// sample from another source (the gyro's), taken instead of the tracks' speed
+  /// difference; the slip estimate still comes from both tracks (eqs. 1–2).
+  void AddEncoderSample(double t_s, std::int64_t left_ticks, std::int64_t right_ticks,
+                        std::optional<double> yaw_increment_rad = std::nullopt);
+  /// Turns the pose's heading by `yaw_rad` in place (a correction from a measurement).
+  void Rotate(double yaw_rad) { pose_.yaw = geometry::WrapAngle(pose_.yaw + yaw_rad); }
 
   /// An independent measurement of the body's forward speed [m/s] and yaw rate
   /// [rad/s] averaged over (t0_s, t1_s] — visual odometry over its last frame

@@ -67,6 +67,8 @@ class EstimatorScoring {
  private:
   using Running = estimation::RunningTrajectoryScore;
   Running wheel_, wheel_noslip_, fused_, ekf_, vo_;
+  Running fused_ham2012_;  // scored when the samples carry it
+  bool has_fused_ham2012_ = false;
   std::map<std::string, Running> external_;  // name → its estimates against the truth then
   bool has_camera_ = false;
   long long vo_failures_ = 0, vo_constrained_ = 0, vo_coasted_ = 0, blackout_frames_ = 0;

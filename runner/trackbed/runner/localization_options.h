@@ -12,8 +12,9 @@ namespace trackbed::runner {
 /// The scenario's estimation.localization with the robot as the software knows it:
 /// the wheels' sprocket radii and gauge, and the IMU's calibration, from `given`; the
 /// ICR expansion χ from `given` when it has one, else the scenario's
-/// estimation.icr_expansion; the encoders' resolution from robot.encoders. Every other
-/// field is the scenario's.
+/// estimation.icr_expansion; the encoders' resolution from robot.encoders; the gyro's
+/// data-sheet noise (`gyro_model`) from robot.imu, its unset keys the realism profile's
+/// part. Every other field is the scenario's.
 estimation::LocalizationOptions LocalizationOptionsOf(const scenario::Scenario& scenario,
                                                       const calibration::RobotCalibration& given);
 

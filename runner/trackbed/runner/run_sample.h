@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include <Eigen/Geometry>
@@ -20,6 +21,9 @@ struct EstimateSample {
   double t_s = 0.0;
   Eigen::Isometry3d wheel_odometry, wheel_odometry_noslip, fused, ekf;
   bool has_camera = false;  ///< fused (and visual odometry) exist
+  /// Ham et al.'s fusion beside a `fused` of another method
+  /// (estimation.fusion.method: covariance); none otherwise.
+  std::optional<Eigen::Isometry3d> fused_ham2012;
   estimation::TrackSlip slip;
 };
 

@@ -198,6 +198,12 @@ struct DriveSpec {
   navigation::PurePursuitOptions pursuit;
   /// Rate of the driver [Hz], > 0.
   double rate_hz = 20.0;
+  /// How long the robot stands still before the drive starts [s], >= 0: the tracks are
+  /// commanded to zero, so the stack can take the gyro's bias from the standstill
+  /// (estimation.gyro.zero_velocity_bias); a script's times and the path count from its
+  /// end, and the run's duration is `duration_s` plus it (Scenario::RunDuration). Not
+  /// with a pose path, which is carried without a drive.
+  double start_standstill_s = 0.0;
 
   void Validate() const;
 
@@ -214,6 +220,7 @@ struct DriveSpec {
     pursuit.Serialize(a);
     a->Visit("rate_hz", &rate_hz);
     a->Visit("script", &script);
+    a->Visit("start_standstill_s", &start_standstill_s);
   }
 };
 
@@ -493,7 +500,8 @@ enum class DriveSource { kScenario, kExternal };
 
 struct Scenario {
   std::uint64_t seed = 1;
-  /// Simulated time limit [s], > 0. A path drive may end sooner.
+  /// Simulated time limit [s], > 0, not counting the drive's start standstill
+  /// (RunDuration). A path drive may end sooner.
   double duration_s = 60.0;
   SceneSpec scene;
   RobotSpec robot;
@@ -510,6 +518,9 @@ struct Scenario {
   /// Whether a run driven from `drive_source` carries the robot along a pose path
   /// (drive.mode pose_path, not navigating) instead of simulating its vehicle.
   bool CarriedOnPosePath(DriveSource drive_source) const;
+  /// The run's simulated length [s]: duration_s, plus drive.start_standstill_s when the
+  /// scenario's own drive drives the robot (drive_source kScenario, not navigating).
+  double RunDuration(DriveSource drive_source) const;
 
   /// The scenario file's keys for these fields (docs/scenario_format.md), read and
   /// written by the config archive (trackbed/common/archive.h).
