@@ -204,7 +204,7 @@ TEST(MotionCovarianceTest, ASharedDisparityOffsetIsConsistentOnlyWhenConsidered)
   // The offset scales the depths: the forward translation's spread grows, the more so
   // the farther the points.
   EXPECT_GT(spread_on.mean_translation_std_m, spread_off.mean_translation_std_m);
-  // Points 10–16 m away (disparities of 3.6–6 px): an offset of 0.58 px is a tenth of
+  // Points 10–16 m away (disparities of 3.8–6 px): an offset of 0.58 px is a tenth of
   // the disparity and the depth's error is no longer linear in it, so the considered
   // covariance is somewhat optimistic (mean NEES 7.04 on seed 16), far less than the
   // pixels' alone (29.0; on the 2–15 m points 21.5 ignored, 5.90 considered).
