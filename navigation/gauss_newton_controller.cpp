@@ -26,10 +26,10 @@ namespace {
 /// final phase begun and held within its radius until its turn is done (the file
 /// comment of the header).
 bool InFinalPhase(const NavigationSetup& setup, const GaussNewtonOptions& options,
-                  const GoalError& own, bool final_begun) {
-  if (own.position_m <= options.epsilon_m) return true;
+                  double position_error_m, const GoalError& own, bool final_begun) {
+  if (!(position_error_m > options.epsilon_m)) return true;  // eq. (4)
   if (!(options.final_approach_radius_m > 0.0) || !final_begun) return false;
-  if (own.position_m > options.final_approach_radius_m) return false;
+  if (position_error_m > options.final_approach_radius_m) return false;
   const bool turned = std::abs(own.heading_rad) <= units::Radians(setup.stop_heading_tolerance_deg);
   return !turned;
 }
@@ -55,7 +55,7 @@ GaussNewtonStep ComputeGaussNewtonStep(const NavigationSetup& setup,
 
   // Eq. (4): the bearing replaces the target heading while far from the target.
   double position_weight = 1.0;
-  if (!InFinalPhase(setup, options, own, final_begun)) {
+  if (!InFinalPhase(setup, options, step.position_error_m, own, final_begun)) {
     step.target_heading_rad = std::atan2(delta.y(), delta.x());
     double off = geometry::WrapAngle(step.target_heading_rad - pose.yaw);
     if (options.final_approach_radius_m > 0.0 &&
