@@ -32,7 +32,8 @@ Eigen::Matrix3d TriangulationJacobian(const geometry::StereoCamera& camera,
 MotionCovariance EstimateMotionCovariance(const std::vector<MotionCorrespondence>& correspondences,
                                           const std::vector<unsigned char>& mask,
                                           const geometry::StereoCamera& camera,
-                                          const Eigen::Isometry3d& T_curr_prev, double huber_px) {
+                                          const Eigen::Isometry3d& T_curr_prev, double huber_px,
+                                          double disparity_offset_std_px) {
   if (!mask.empty() && mask.size() != correspondences.size()) {
     throw std::invalid_argument("EstimateMotionCovariance: mask has " +
                                 std::to_string(mask.size()) + " entries for " +
@@ -43,6 +44,7 @@ MotionCovariance EstimateMotionCovariance(const std::vector<MotionCorrespondence
   // unit image variance, Σ w²·JᵀSJ.
   MotionCovarianceMatrix normal = MotionCovarianceMatrix::Zero();
   MotionCovarianceMatrix gradient_cov = MotionCovarianceMatrix::Zero();
+  Eigen::Matrix<double, 6, 1> offset_gradient = Eigen::Matrix<double, 6, 1>::Zero();
   double weighted_sq = 0.0;
   Eigen::Matrix<double, 3, 6> J;
   const Eigen::Matrix3d& R = T_curr_prev.linear();
@@ -61,12 +63,17 @@ MotionCovariance EstimateMotionCovariance(const std::vector<MotionCorrespondence
     const double w = linear ? huber_px / e : 1.0;
     // The Huber cost's Hessian in r: I inside, (k/e)·(I − r̂r̂ᵀ) beyond (no curvature
     // along the residual where the cost grows linearly).
+    Eigen::Matrix3d hessian = Eigen::Matrix3d::Identity();
     if (linear) {
       const Eigen::Vector3d u = r / e;
       normal.noalias() += w * J.transpose() * (Eigen::Matrix3d::Identity() - u * u.transpose()) * J;
+      hessian = w * (Eigen::Matrix3d::Identity() - u * u.transpose());
     } else {
       normal.noalias() += J.transpose() * J;
     }
+    // ∂r/∂δ: the offset shifts the right column of both observations.
+    const Eigen::Vector3d b = Eigen::Vector3d::UnitZ() - A.col(2);
+    offset_gradient.noalias() += J.transpose() * (hessian * b);
     gradient_cov.noalias() += (w * w) * J.transpose() * S * J;
     weighted_sq += r.dot(S.llt().solve(r));
     ++out.points;
@@ -82,6 +89,12 @@ MotionCovariance EstimateMotionCovariance(const std::vector<MotionCorrespondence
   const MotionCovarianceMatrix normal_inv = ldlt.solve(MotionCovarianceMatrix::Identity());
   MotionCovarianceMatrix unit = normal_inv * gradient_cov * normal_inv;
   unit = 0.5 * (unit + unit.transpose()).eval();
+  if (disparity_offset_std_px > 0.0 && sigma2 > 0.0) {
+    // The shared offset as a consider parameter (file comment of the header).
+    const Eigen::Matrix<double, 6, 1> g = normal_inv * offset_gradient;
+    const double ratio = disparity_offset_std_px * disparity_offset_std_px / sigma2;
+    unit.noalias() += ratio * g * g.transpose();
+  }
   out.image_noise_px = std::sqrt(sigma2);
   out.unit_information = unit.ldlt().solve(MotionCovarianceMatrix::Identity());
   out.covariance = sigma2 * unit;

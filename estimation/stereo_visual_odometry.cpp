@@ -59,6 +59,8 @@ void StereoVisualOdometryOptions::Validate() const {
   }
   option_check::Positive("disparity_offset_prior_std_px", disparity_offset_prior_std_px);
   option_check::Positive("disparity_offset_walk_px", disparity_offset_walk_px);
+  option_check::NonNegative("calibration_disparity_offset_std_px",
+                            calibration_disparity_offset_std_px);
 }
 
 const char* ToString(VoStatus status) {
@@ -453,9 +455,15 @@ std::optional<StereoVisualOdometry::Failure> StereoVisualOdometry::VetMotion(
 }
 
 void StereoVisualOdometry::EstimateCovariance(const Frame& frame, VoFrameResult* result) {
+  double offset_std_px = 0.0;  // the disparity offset's spread as a consider parameter
+  if (options_.covariance_disparity_offset) {
+    offset_std_px = options_.estimate_disparity_offset
+                        ? std::sqrt(disparity_offset_var_px2_)
+                        : options_.calibration_disparity_offset_std_px;
+  }
   MotionCovariance covariance =
       EstimateMotionCovariance(correspondences_, motion_.inlier_mask, camera_, motion_.T_curr_prev,
-                               options_.refinement.huber_px);
+                               options_.refinement.huber_px, offset_std_px);
   result->image_noise_px = covariance.image_noise_px;
   if (!covariance.valid) return;
   if (options_.rotation_prior_in_estimate && frame.R_prev_curr_prior) {

@@ -14,11 +14,31 @@ void GaussNewtonOptions::Validate() const {
   option_check::InRange("heading_band_rad", heading_band_rad, 1e-6, M_PI - 1e-6);
   option_check::Positive("damping", damping);
   option_check::InRange("turn_position_weight", turn_position_weight, 0.0, 1.0);
+  option_check::NonNegative("final_approach_radius_m", final_approach_radius_m);
+  if (final_approach_radius_m > 0.0 && !(final_approach_radius_m > epsilon_m)) {
+    throw OptionError("final_approach_radius_m", "must be 0 (off) or larger than epsilon_m");
+  }
 }
+
+namespace {
+
+/// Whether the step is in the final phase: within ε, or, with the final approach, the
+/// final phase begun and held within its radius until its turn is done (the file
+/// comment of the header).
+bool InFinalPhase(const NavigationSetup& setup, const GaussNewtonOptions& options,
+                  double position_error_m, const GoalError& own, bool final_begun) {
+  if (!(position_error_m > options.epsilon_m)) return true;  // eq. (4)
+  if (!(options.final_approach_radius_m > 0.0) || !final_begun) return false;
+  if (position_error_m > options.final_approach_radius_m) return false;
+  const bool turned = std::abs(own.heading_rad) <= units::Radians(setup.stop_heading_tolerance_deg);
+  return !turned;
+}
+
+}  // namespace
 
 GaussNewtonStep ComputeGaussNewtonStep(const NavigationSetup& setup,
                                        const GaussNewtonOptions& options, const Pose2& pose,
-                                       const Pose2& target) {
+                                       const Pose2& target, bool final_begun) {
   GaussNewtonStep step;
   const Eigen::Vector2d delta(target.x - pose.x, target.y - pose.y);
   step.position_error_m = delta.norm();
@@ -35,9 +55,16 @@ GaussNewtonStep ComputeGaussNewtonStep(const NavigationSetup& setup,
 
   // Eq. (4): the bearing replaces the target heading while far from the target.
   double position_weight = 1.0;
-  if (step.position_error_m > options.epsilon_m) {
+  if (!InFinalPhase(setup, options, step.position_error_m, own, final_begun)) {
     step.target_heading_rad = std::atan2(delta.y(), delta.x());
-    const double off = geometry::WrapAngle(step.target_heading_rad - pose.yaw);
+    double off = geometry::WrapAngle(step.target_heading_rad - pose.yaw);
+    if (options.final_approach_radius_m > 0.0 &&
+        step.position_error_m <= options.final_approach_radius_m && std::abs(off) > M_PI / 2) {
+      // The target is behind and near: back up along the bearing's line.
+      step.reverse = true;
+      step.target_heading_rad = geometry::WrapAngle(step.target_heading_rad + M_PI);
+      off = geometry::WrapAngle(step.target_heading_rad - pose.yaw);
+    }
     if (std::abs(off) > options.heading_band_rad) {
       step.phase = GaussNewtonPhase::kTurn;
       step.rho = 1.0;

@@ -25,10 +25,15 @@ void GaussNewtonSubgoalNavigator::Drive(const Pose2& pose, const std::vector<Cir
   const ActiveTarget target = switcher_.Update(pose, obstacles);
   command->target = {target.pose.x, target.pose.y};
   command->subgoal_active = target.subgoal_active;
+  const bool was_subgoal = last_target_subgoal_;
+  last_target_subgoal_ = target.subgoal_active;
   if (target.no_way_around) {
     last_step_ = GaussNewtonStep{};  // hold still: every way is blocked
   } else {
-    last_step_ = ComputeGaussNewtonStep(setup_, controller_, pose, target.pose);
+    // The final phase holds only toward the goal itself (a sub-goal is passed through).
+    const bool final_begun =
+        !target.subgoal_active && !was_subgoal && last_step_.phase == GaussNewtonPhase::kFinal;
+    last_step_ = ComputeGaussNewtonStep(setup_, controller_, pose, target.pose, final_begun);
     command->wheels = last_step_.wheels;
     command->twist = last_step_.twist;
   }

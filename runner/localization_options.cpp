@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "trackbed/robot/as_built.h"
 #include "trackbed/robot/imu_parts.h"
 
 namespace trackbed::runner {
@@ -25,6 +26,15 @@ estimation::LocalizationOptions LocalizationOptionsOf(const scenario::Scenario& 
   double markov_var = 0.0;
   for (const double s : *imu.gyro_bias_markov_std) markov_var += s * s;
   lo.gyro_model.bias_instability_std = std::sqrt(markov_var);
+  // The disparity offset's spread the stereo calibration states: the two principal
+  // points' columns independently, and the pair's relative yaw (about the left camera's
+  // y axis) through fx.
+  if (given.stereo) {
+    const robot::Imperfections imp = scenario.robot.imperfections.Resolve(scenario.robot.realism);
+    const double pp = *imp.principal_point_calibration_std_px;
+    const double yaw = given.stereo->left.fx * imp.stereo_rotation_calibration_std_mrad->y() * 1e-3;
+    lo.vo.calibration_disparity_offset_std_px = std::sqrt(2.0 * pp * pp + yaw * yaw);
+  }
   return lo;
 }
 

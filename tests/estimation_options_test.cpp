@@ -2,6 +2,7 @@
 // every key reaches the options the runner builds, the fields the robot's given
 // calibration decides come from it, and the presets hold the tracked robot's and
 // KITTI's car's values.
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -82,7 +83,7 @@ TEST(EstimationOptionsTest, WalkCoversTheWholeStack) {
                           "estimation.wheel.estimate_slip", "estimation.imu"}) {
     EXPECT_EQ(paths.count(key), 0u) << key;
   }
-  EXPECT_EQ(paths.size(), 85u);
+  EXPECT_EQ(paths.size(), 86u);
 }
 
 // Each key set alone through --set to a valid value other than its default reaches the
@@ -130,6 +131,17 @@ TEST(EstimationOptionsTest, CalibrationFieldsComeFromTheGivenCalibration) {
   given.vehicle.icr_expansion = 1.1;
   built = runner::LocalizationOptionsOf(s, given);
   EXPECT_EQ(built.wheel.icr_expansion, 1.1);
+  // The disparity offset's spread the stereo calibration states (no camera: none):
+  // `typical`'s principal points 0.3 px each and relative yaw 1.03 mrad at fx.
+  EXPECT_EQ(built.vo.calibration_disparity_offset_std_px, 0.0);
+  given.stereo = calibration::StereoCalibration{};
+  given.stereo->left.fx = 400.0;
+  built = runner::LocalizationOptionsOf(s, given);
+  EXPECT_NEAR(built.vo.calibration_disparity_offset_std_px,
+              std::sqrt(2 * 0.3 * 0.3 + (400.0 * 1.03e-3) * (400.0 * 1.03e-3)), 1e-12);
+  s.robot.realism = robot::Realism::kIdeal;
+  built = runner::LocalizationOptionsOf(s, given);
+  EXPECT_EQ(built.vo.calibration_disparity_offset_std_px, 0.0);
 }
 
 TEST(EstimationOptionsTest, PresetsHoldTheRobotsAndTheCarsBounds) {

@@ -47,13 +47,16 @@ PointSource Spread(double z0, double z1) {
 }
 
 /// `n` correspondences of points from `source` moved by `truth`, every pixel coordinate
-/// with Gaussian noise of kSigmaPx, both points triangulated from the noisy pixels.
+/// with Gaussian noise of kSigmaPx, both points triangulated from the noisy pixels; the
+/// right image's columns shifted by `offset_px` in both frames (a rig's disparity
+/// offset, which every point shares).
 std::vector<MotionCorrespondence> Measure(const Eigen::Isometry3d& truth, int n,
-                                          const PointSource& source, random::Generator& rng) {
+                                          const PointSource& source, random::Generator& rng,
+                                          double offset_px = 0.0) {
   const geometry::StereoCamera c = TestCamera();
   const auto measure = [&](const Eigen::Vector3d& p) {
     const Eigen::Vector3d e(rng.Gaussian(), rng.Gaussian(), rng.Gaussian());
-    return Eigen::Vector3d(c.Project(p) + kSigmaPx * e);
+    return Eigen::Vector3d(c.Project(p) + kSigmaPx * e + Eigen::Vector3d(0.0, 0.0, offset_px));
   };
   std::vector<MotionCorrespondence> out;
   while (static_cast<int>(out.size()) < n) {
@@ -96,20 +99,29 @@ struct TrialStats {
   double mean_correlation_x_yaw = 0.0;  ///< correlation of ρ_x and φ_y
 };
 
+/// A rig's disparity offset drawn per trial, common to its points, with the spread
+/// `std_px` (0: none), and whether the covariance considers it.
+struct SharedOffset {
+  double std_px = 0.0;
+  bool considered = false;
+};
+
 /// kTrials refinements of `n` points from `source`, each started at the truth, scored
 /// against it with their own covariance (and the prior, if its std > 0).
 TrialStats RunTrials(const PointSource& source, int n, std::uint64_t seed,
-                     double prior_std_rad = 0.0) {
+                     double prior_std_rad = 0.0, SharedOffset offset = {}) {
   const geometry::StereoCamera c = TestCamera();
   const Eigen::Isometry3d truth = FrameMotion();
   random::Generator rng(seed);
   TrialStats s;
   double sq_x = 0.0;
   for (int trial = 0; trial < kTrials; ++trial) {
-    const std::vector<MotionCorrespondence> corr = Measure(truth, n, source, rng);
+    const double offset_px = offset.std_px > 0.0 ? offset.std_px * rng.Gaussian() : 0.0;
+    const std::vector<MotionCorrespondence> corr = Measure(truth, n, source, rng, offset_px);
     Eigen::Isometry3d T = RefineMotionReprojection(corr, {}, c, truth, {}).T_curr_prev;
     MotionCovariance cov =
-        EstimateMotionCovariance(corr, {}, c, T, MotionRefinementOptions{}.huber_px);
+        EstimateMotionCovariance(corr, {}, c, T, MotionRefinementOptions{}.huber_px,
+                                 offset.considered ? offset.std_px : 0.0);
     EXPECT_TRUE(cov.valid);
     if (prior_std_rad > 0.0) {
       RotationPrior prior;
@@ -177,6 +189,30 @@ TEST(MotionCovarianceTest, AFrontalWallTiesTheSidewaysTranslationToTheYaw) {
   EXPECT_LT(with_gyro.mean_nees, kMeanNeesHigh);
   EXPECT_LT(with_gyro.rms_error_x_m, 0.5 * s.rms_error_x_m);
   EXPECT_LT(with_gyro.mean_translation_std_m, s.mean_translation_std_m);
+}
+
+TEST(MotionCovarianceTest, ASharedDisparityOffsetIsConsistentOnlyWhenConsidered) {
+  // The rig's offset drawn per trial with a calibration's stated spread, 0.58 px
+  // (docs/calibration.md, `typical`: principal points 0.3 px each, relative yaw
+  // 1.03 mrad at fx 381 px); the test rig's fx is 500 px.
+  const SharedOffset ignored{0.58, false}, considered{0.58, true};
+  const TrialStats spread_off = RunTrials(Spread(2.0, 15.0), 100, 16, 0.0, ignored);
+  const TrialStats spread_on = RunTrials(Spread(2.0, 15.0), 100, 16, 0.0, considered);
+  EXPECT_GT(spread_off.mean_nees, kMeanNeesHigh);  // the pixels' noise alone: optimistic
+  EXPECT_GT(spread_on.mean_nees, kMeanNeesLow);
+  EXPECT_LT(spread_on.mean_nees, kMeanNeesHigh);
+  // The offset scales the depths: the forward translation's spread grows, the more so
+  // the farther the points.
+  EXPECT_GT(spread_on.mean_translation_std_m, spread_off.mean_translation_std_m);
+  // Points 10–16 m away (disparities of 3.8–6 px): an offset of 0.58 px is a tenth of
+  // the disparity and the depth's error is no longer linear in it, so the considered
+  // covariance is somewhat optimistic (mean NEES 7.04 on seed 16), far less than the
+  // pixels' alone (29.0; on the 2–15 m points 21.5 ignored, 5.90 considered).
+  const TrialStats middle_off = RunTrials(Spread(10.0, 16.0), 100, 16, 0.0, ignored);
+  const TrialStats middle_on = RunTrials(Spread(10.0, 16.0), 100, 16, 0.0, considered);
+  EXPECT_GT(middle_on.mean_nees, kMeanNeesLow);
+  EXPECT_LT(middle_on.mean_nees, 1.25 * kMeanNeesHigh);
+  EXPECT_GT(middle_off.mean_nees, 2.0 * middle_on.mean_nees);
 }
 
 TEST(MotionCovarianceTest, TooFewPointsOrAWrongMaskGiveNoCovariance) {

@@ -180,6 +180,80 @@ TEST(GaussNewtonTest, WithinEpsilonItTurnsToTheGoalsOwnHeading) {
   EXPECT_EQ(done.wheels.right_radps, 0.0);
 }
 
+TEST(GaussNewtonTest, WithoutTheFinalApproachANearTargetBehindIsTurnedTo) {
+  // The paper's rule: 8 cm short of ε's circle behind the robot, the bearing is the
+  // target heading, a turn of 180°.
+  const GaussNewtonStep step =
+      ComputeGaussNewtonStep({}, {}, {5.08, 5, 0.0}, {5, 5, 90 * kDeg}, true);
+  EXPECT_EQ(step.phase, GaussNewtonPhase::kTurn);
+  EXPECT_FALSE(step.reverse);
+  EXPECT_NEAR(std::abs(step.heading_error_rad), 180 * kDeg, 1e-12);
+}
+
+TEST(GaussNewtonTest, TheFinalApproachBacksUpToANearTargetBehind) {
+  GaussNewtonOptions options;
+  options.final_approach_radius_m = 0.2;
+  // The target 8 cm behind, 10° off the robot's axis: back up along the bearing's line.
+  const Pose2 pose{5.0 + 0.08 * std::cos(10 * kDeg), 5.0 + 0.08 * std::sin(10 * kDeg), 0.0};
+  const GaussNewtonStep turn = ComputeGaussNewtonStep({}, options, pose, {5, 5, 90 * kDeg});
+  EXPECT_TRUE(turn.reverse);
+  EXPECT_EQ(turn.phase, GaussNewtonPhase::kTurn);
+  EXPECT_NEAR(turn.heading_error_rad, 10 * kDeg, 1e-9);
+  // Aligned with the line: the step drives backwards onto the target (deadbeat).
+  const Pose2 aligned{5.08, 5.0, 0.0};
+  const GaussNewtonStep back = ComputeGaussNewtonStep({}, options, aligned, {5, 5, 90 * kDeg});
+  EXPECT_TRUE(back.reverse);
+  EXPECT_EQ(back.phase, GaussNewtonPhase::kDrive);
+  EXPECT_LT(back.twist.v_mps, 0.0);
+  EXPECT_NEAR(back.twist.v_mps * 0.1, -0.08, 1e-6);
+  // Beyond the radius the paper's rule again: turn round.
+  const GaussNewtonStep far = ComputeGaussNewtonStep({}, options, {5.3, 5, 0.0}, {5, 5, 0.0});
+  EXPECT_FALSE(far.reverse);
+  EXPECT_NEAR(std::abs(far.heading_error_rad), 180 * kDeg, 1e-12);
+}
+
+TEST(GaussNewtonTest, TheFinalPhaseHoldsWithinTheRadiusUntilItsTurnIsDone) {
+  GaussNewtonOptions options;
+  options.final_approach_radius_m = 0.2;
+  const Pose2 target{5, 5, 90 * kDeg};
+  // A skid carried the robot 8 cm off, beyond ε, in the middle of its final turn.
+  const Pose2 skidded{5.08, 5.0, 30 * kDeg};
+  const GaussNewtonStep held = ComputeGaussNewtonStep({}, options, skidded, target, true);
+  EXPECT_EQ(held.phase, GaussNewtonPhase::kFinal);
+  EXPECT_NEAR(held.target_heading_rad, 90 * kDeg, 1e-12);
+  EXPECT_GT(held.twist.yaw_rate_radps, 0.0);  // on toward the goal's heading
+  // Not begun (or off): the bearing's line.
+  const GaussNewtonStep fresh = ComputeGaussNewtonStep({}, options, skidded, target, false);
+  EXPECT_NE(fresh.phase, GaussNewtonPhase::kFinal);
+  EXPECT_NE(ComputeGaussNewtonStep({}, {}, skidded, target, true).phase, GaussNewtonPhase::kFinal);
+  // Beyond the radius the final phase ends.
+  EXPECT_NE(ComputeGaussNewtonStep({}, options, {5.25, 5.0, 30 * kDeg}, target, true).phase,
+            GaussNewtonPhase::kFinal);
+  // The turn done and 8 cm of cross-track error left: a new approach along the
+  // bearing's line (backwards or forwards, within 90°), not the final phase.
+  NavigationSetup outdoor;  // nav_outdoor.yaml's stop tolerances
+  outdoor.stop_position_tolerance_m = 0.04;
+  outdoor.stop_heading_tolerance_deg = 1.0;
+  const GaussNewtonStep again =
+      ComputeGaussNewtonStep(outdoor, options, {5.08, 5.0, 90.5 * kDeg}, target, true);
+  EXPECT_FALSE(again.at_goal);
+  EXPECT_NE(again.phase, GaussNewtonPhase::kFinal);
+  EXPECT_LE(std::abs(again.heading_error_rad), 90 * kDeg + 1e-9);
+}
+
+TEST(GaussNewtonTest, TheFinalApproachRadiusMustExceedEpsilon) {
+  GaussNewtonOptions options;
+  options.final_approach_radius_m = options.epsilon_m;
+  try {
+    options.Validate();
+    FAIL() << "expected OptionError";
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.field(), "final_approach_radius_m");
+  }
+  options.final_approach_radius_m = 0.0;
+  EXPECT_NO_THROW(options.Validate());
+}
+
 TEST(GaussNewtonTest, TheLiteralUnitWeightDrivesWhileTurning) {
   // Our reading (gauss_newton_controller.h): diag(1, 1, 1) in the turn phase reverses
   // toward the target instead of turning in place.

@@ -22,6 +22,16 @@
 // points pin down the rotation and little else, and a motion seen only in far points
 // has a large translational covariance.
 //
+// Errors every point shares. A rectification whose principal points or relative yaw
+// are slightly off offsets every disparity by the same δ [px] (stereo_motion_estimation.h,
+// MeasureDisparityOffset): it moves the motion without leaving a residual, so σ above
+// cannot show it, and it is common to every frame of the run. Given the calibration's
+// stated spread of δ, σ_δ, it enters as a consider parameter (Schmidt's): with
+// b_i = ∂r_i/∂δ = e₃ − A_i e₃ (δ shifts the right image's column in both observations)
+// and g = N⁻¹ Σ_i H_i-weighted J_iᵀ b_i the refined motion's sensitivity to it (H_i the
+// Huber cost's Hessian in r_i, as in N), Σ gains σ_δ²·g gᵀ: along the translation's
+// scale, growing with the points' depth.
+//
 // Frames as in stereo_motion_estimation.h.
 #pragma once
 
@@ -59,11 +69,14 @@ struct MotionCovariance {
 /// Huber threshold `huber_px` (MotionRefinementOptions; <= 0: no Huber weights). Points
 /// behind the
 /// current or the previous camera, or with a disparity <= 0 in the previous frame, are
-/// left out. Throws std::invalid_argument for a mask of the wrong size.
+/// left out. `disparity_offset_std_px` [px], >= 0: σ_δ of the rig's disparity offset as
+/// its calibration states it, a consider parameter (file comment); 0: none. Throws
+/// std::invalid_argument for a mask of the wrong size.
 MotionCovariance EstimateMotionCovariance(const std::vector<MotionCorrespondence>& correspondences,
                                           const std::vector<unsigned char>& mask,
                                           const geometry::StereoCamera& camera,
-                                          const Eigen::Isometry3d& T_curr_prev, double huber_px);
+                                          const Eigen::Isometry3d& T_curr_prev, double huber_px,
+                                          double disparity_offset_std_px = 0.0);
 
 /// A rotation of the camera over the frame interval from another sensor (a gyro's
 /// integrated rate) and its spread.

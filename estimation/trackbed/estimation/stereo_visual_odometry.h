@@ -149,6 +149,15 @@ struct StereoVisualOdometryOptions {
   /// its random walk per frame [px], both > 0.
   double disparity_offset_prior_std_px = 1.0;
   double disparity_offset_walk_px = 0.005;
+  /// Fold the rig's disparity offset into each frame's covariance as a consider
+  /// parameter (motion_covariance.h, "Errors every point shares"): its spread is the
+  /// offset filter's own where `estimate_disparity_offset`, else
+  /// `calibration_disparity_offset_std_px`. Off: the pixels' noise alone.
+  bool covariance_disparity_offset = false;
+  /// The spread of the disparity offset the given calibration states [px], >= 0. No key:
+  /// a scenario's run sets it from the calibration's stated spreads
+  /// (runner/localization_options.h); 0 elsewhere.
+  double calibration_disparity_offset_std_px = 0.0;
 
   /// Throws OptionError naming the first invalid field (dotted for nested structs,
   /// e.g. "tracker.window_px").
@@ -203,6 +212,7 @@ struct StereoVisualOdometryOptions {
     a->Visit("estimate_disparity_offset", &estimate_disparity_offset);
     a->Visit("disparity_offset_prior_std_px", &disparity_offset_prior_std_px);
     a->Visit("disparity_offset_walk_px", &disparity_offset_walk_px);
+    a->Visit("covariance_disparity_offset", &covariance_disparity_offset);
   }
 };
 

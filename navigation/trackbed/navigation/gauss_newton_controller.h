@@ -40,6 +40,18 @@
 // The step is deadbeat: an unsaturated step removes the weighted error in one control
 // period (the robot stops on the point of its heading line nearest the target, or
 // finishes a turn), which is why no further gain appears.
+//
+// * A final approach (`final_approach_radius_m` > 0; off at 0, the paper's rule). On a
+//   robot that skids, each turn in place near the target moves it by centimetres, so
+//   the position error crosses ε back and forth: eq. (4)'s target heading then flips
+//   between the target's own and the bearing to the target, which near the target can
+//   point anywhere (behind the robot: a turn of up to 180°, then a turn back). Within
+//   the radius the approach takes the bearing's line in the direction nearer the
+//   robot's heading (it backs up to a target behind it, turning by at most 90°), and
+//   the final phase, once begun, holds while the position error stays within the
+//   radius (a hysteresis on ε), ending early only when its turn is done (heading
+//   within the stop tolerance) and the position is not: a cross-track error the final
+//   phase cannot remove, which a new approach along the bearing's line does.
 #pragma once
 
 #include "trackbed/common/units.h"
@@ -61,6 +73,10 @@ struct GaussNewtonOptions {
   /// Weight of the position error during the turn phase, in [0, 1]; see the file
   /// comment (0 = turn in place, the paper's behaviour; 1 = literal diag(1, 1, 1)).
   double turn_position_weight = 0.0;
+  /// Final-approach radius [m], >= 0; 0 = off (eq. (4) as the paper has it). Within
+  /// it a target behind the robot is backed up to, and the final phase holds once
+  /// begun (see the file comment). Larger than `epsilon_m` when set.
+  double final_approach_radius_m = 0.0;
 
   /// Throws OptionError naming the first invalid field.
   void Validate() const;
@@ -74,6 +90,7 @@ struct GaussNewtonOptions {
     a->Visit("heading_band_rad", &heading_band_rad);
     a->Visit("damping", &damping);
     a->Visit("turn_position_weight", &turn_position_weight);
+    a->Visit("final_approach_radius_m", &final_approach_radius_m);
   }
 };
 
@@ -89,6 +106,7 @@ struct GaussNewtonStep {
   double target_heading_rad = 0.0;  ///< Modified target heading of eq. (4).
   double position_error_m = 0.0;    ///< Distance to the target.
   double heading_error_rad = 0.0;   ///< target_heading − yaw, wrapped.
+  bool reverse = false;             ///< The final approach backs up to the target (file comment).
   /// Distance within the goal position tolerance and the heading within the goal
   /// heading tolerance *of the target's own heading* (the run's success criterion).
   bool at_goal = false;
@@ -97,9 +115,10 @@ struct GaussNewtonStep {
 
 /// One Gauss–Newton step from `pose` toward `target` (a pose: position and heading).
 /// Pure; `setup` and `options` are assumed validated. Returns zero wheel speeds when
-/// at_goal.
+/// at_goal. `final_begun`: the previous step toward the same target was in the final
+/// phase (read only with `final_approach_radius_m` > 0).
 GaussNewtonStep ComputeGaussNewtonStep(const NavigationSetup& setup,
                                        const GaussNewtonOptions& options, const Pose2& pose,
-                                       const Pose2& target);
+                                       const Pose2& target, bool final_begun = false);
 
 }  // namespace trackbed::navigation

@@ -41,6 +41,7 @@ class GaussNewtonSubgoalNavigator final : public Navigator {
   SubgoalSwitcher switcher_;
   NavigationChecks checks_;
   GaussNewtonStep last_step_;
+  bool last_target_subgoal_ = false;  ///< The previous step's target was a sub-goal.
 };
 
 }  // namespace trackbed::navigation
