@@ -13,13 +13,15 @@
 // - Tones: grey = 255 × reflectance (the textures' scale: grass, sand, soil have
 //   about 255 × their material's albedo). Binder-rich mastic 0.05 (new asphalt, as
 //   above) with its sand's speckle; stone 0.22 ± 0.04 (authored: a grey crushed rock).
-//   The surface's mean reflectance is then that of aged asphalt (0.10–0.15, as above).
+//   The surface's mean reflectance comes out at about 0.09, a little under aged
+//   asphalt's 0.10–0.15 (as above).
 // - Per variant: hairline cracks 1–6 mm wide (low severity: under 6 mm, FHWA's LTPP
-//   Distress Identification Manual, 2003), sometimes one sealed with a band of
-//   sealant, drip stains, a saw-cut patch of newer mix, a fragment of a worn white
-//   marking 0.12 m wide (the narrow line of RMS, Richtlinien für die Markierung von
-//   Straßen) whose paint reflects 0.40 (EN 1436's class B3 for white markings). How
-//   many of each, their sizes beyond those and the wear are authored.
+//   Distress Identification Manual, 2003) and drip stains; and one variant in four
+//   each a crack sealed with a band of sealant, a saw-cut patch of newer mix, or a
+//   fragment of a worn white marking 0.12 m wide (the narrow line of RMS, Richtlinien
+//   für die Markierung von Straßen) whose paint reflects 0.40 (EN 1436's class B3 for
+//   white markings). How many of each, their sizes beyond those and the wear are
+//   authored.
 //
 // Bit-exact as procedural_texture.cpp: no floating-point contraction, no libm.
 #if defined(__clang__)
@@ -244,26 +246,23 @@ void AsphaltFeatures(Field& f, std::uint64_t seed, int variant) {
     PaintCrack(f, rng, order[0], rng.Uniform(0.1, 0.35), width_px,
                kGreyPerReflectance * kCrackReflectance);
   }
-  if (rng.Chance(0.5)) {  // a crack sealed under a band of binder 4–8 cm wide
-    PaintCrack(f, rng, order[1], rng.Uniform(0.15, 0.35), rng.Uniform(0.04, 0.08) / texel,
-               kGreyPerReflectance * 0.04);
-  }
   const int stains = 1 + static_cast<int>(rng.Uniform() * 3.0);
   for (int k = 0; k < stains; ++k) {
     const double radius = rng.Uniform(0.03, 0.1);
     const Eigen::Vector2d c = InQuarter(rng, order[2], radius * 1.3 + 0.03);
     PaintStain(f, c, radius, rng.Uniform(0.55, 0.8), edge);
   }
-  if (rng.Chance(0.5)) {
-    const double hu = rng.Uniform(0.07, 0.17);
-    const double hv = rng.Uniform(0.07, 0.17);
-    const Eigen::Vector2d c = QuarterCorner(order[3]) + Eigen::Vector2d(0.25, 0.25);
-    PaintPatch(f, c, std::min(hu, 0.22), std::min(hv, 0.22));
-  } else {
+  // One rarer feature per variant, in turn: none, a crack sealed under a band of binder
+  // 4–8 cm wide, a patch, a worn marking (each on a quarter of the tiles).
+  const Eigen::Vector2d centre = QuarterCorner(order[3]) + Eigen::Vector2d(0.25, 0.25);
+  if (variant % 4 == 1) {
+    PaintCrack(f, rng, order[1], rng.Uniform(0.15, 0.35), rng.Uniform(0.04, 0.08) / texel,
+               kGreyPerReflectance * 0.04);
+  } else if (variant % 4 == 2) {
+    PaintPatch(f, centre, rng.Uniform(0.07, 0.17), rng.Uniform(0.07, 0.17));
+  } else if (variant % 4 == 3) {
     const double length = rng.Uniform(0.15, 0.35);
-    const Eigen::Vector2d dir = rng.Direction();
-    const Eigen::Vector2d c = QuarterCorner(order[3]) + Eigen::Vector2d(0.25, 0.25);
-    PaintMarking(f, c, dir, 0.12, length, wear);
+    PaintMarking(f, centre, rng.Direction(), 0.12, length, wear);
   }
 }
 

@@ -1,7 +1,7 @@
 // Dense asphalt concrete seen from above (the `asphalt` texture; ground_asphalt.cpp):
 // coarse aggregate chips graded as a stone mastic asphalt SMA 11 S, their worn tops
-// bright between the dark binder-rich mastic, and, per tile variant, cracks, a sealed
-// crack, stains, a patch and a worn paint marking. Private to the renderer; the tests
+// bright between the dark binder-rich mastic, and, per tile variant, cracks and stains
+// and a sealed crack, a patch or a worn paint marking. Private to the renderer; the tests
 // read the grading and the chips.
 #pragma once
 
@@ -56,8 +56,9 @@ inline constexpr int kAsphaltVariants = 4;
 /// The variants' common surface: mastic and aggregate (grey = 255 × reflectance).
 void AsphaltSurface(texture_blocks::Field& f, std::uint64_t seed);
 
-/// Adds variant `variant`'s cracks, stains, patch and paint, each inside one quarter of
-/// the tile clear of its edges (the tiling shifts tiles by half a tile).
+/// Adds variant `variant`'s cracks and stains and, in three variants of four, a sealed
+/// crack, a patch or a worn marking, each inside one quarter of the tile clear of its
+/// edges (the tiling shifts tiles by half a tile).
 void AsphaltFeatures(texture_blocks::Field& f, std::uint64_t seed, int variant);
 
 }  // namespace trackbed::render
