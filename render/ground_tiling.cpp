@@ -80,9 +80,8 @@ Eigen::Vector2d TiledCoordinates(const Eigen::Vector2d& st, const TileChoice& c)
   return Eigen::Vector2d(cs * f.x() - sn * f.y(), sn * f.x() + cs * f.y()) + c.offset;
 }
 
-bool DetailedLook(const SceneAppearance& appearance, const std::string& name) {
-  const std::vector<std::string>& classic = appearance.classic_look_materials;
-  return appearance.ground_look == GroundLook::kDetailed && HasTexture(name) &&
+bool DetailedLook(bool detailed, const std::vector<std::string>& classic, const std::string& name) {
+  return detailed && HasTexture(name) &&
          std::find(classic.begin(), classic.end(), name) == classic.end();
 }
 

@@ -9,11 +9,11 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
 #include "trackbed/render/procedural_texture.h"
-#include "trackbed/render/renderer.h"
 
 namespace trackbed::render {
 
@@ -34,8 +34,8 @@ TileChoice ChooseTile(std::uint32_t seed, int i, int j, const TileVariation& v);
 Eigen::Vector2d TiledCoordinates(const Eigen::Vector2d& st, const TileChoice& c);
 
 /// Whether the terrain material `name` is drawn tiled (its texture's variants): under
-/// the detailed look, a material with a texture not listed among the classic ones.
-bool DetailedLook(const SceneAppearance& appearance, const std::string& name);
+/// the detailed look (`detailed`), a material with a texture not among `classic`.
+bool DetailedLook(bool detailed, const std::vector<std::string>& classic, const std::string& name);
 
 /// A material's tiling seed from its texture's seed.
 std::uint32_t TilingSeed(std::uint64_t texture_seed);

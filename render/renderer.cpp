@@ -249,10 +249,12 @@ struct Renderer::Gl {
     return it->second;
   }
 
-  // A terrain material's texture: under the detailed look (SceneAppearance::ground_look)
-  // its variants, tiled stochastically; else Texture's.
+  // A terrain material's texture: its variants, tiled, under the detailed look; else Texture's.
   const GlTexture& GroundTexture(const sim::TerrainMaterial& m) {
-    if (!DetailedLook(appearance, m.name)) return Texture(m.name, m.albedo, true);
+    const bool detailed = appearance.ground_look == GroundLook::kDetailed;
+    if (!DetailedLook(detailed, appearance.classic_look_materials, m.name)) {
+      return Texture(m.name, m.albedo, true);
+    }
     auto it = tiled_textures.find(m.name);
     if (it != tiled_textures.end()) return it->second;
     const std::uint64_t s = seed ^ TextureNameHash(m.name);
