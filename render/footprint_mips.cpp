@@ -113,4 +113,18 @@ FootprintMips MakeFootprintMips(const Texture& t, int directions) {
   return out;
 }
 
+FootprintMips MakeFootprintMips(const std::vector<Texture>& variants, int directions) {
+  FootprintMips out = MakeFootprintMips(variants.at(0), directions);
+  const int layers_each = out.layers;
+  for (std::size_t k = 1; k < variants.size(); ++k) {
+    const FootprintMips more = MakeFootprintMips(variants[k], directions);
+    for (std::size_t lod = 0; lod < out.levels.size(); ++lod) {
+      out.levels[lod].insert(out.levels[lod].end(), more.levels[lod].begin(),
+                             more.levels[lod].end());
+    }
+    out.layers += layers_each;
+  }
+  return out;
+}
+
 }  // namespace trackbed::render

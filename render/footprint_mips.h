@@ -32,4 +32,8 @@ struct FootprintMips {
 /// The chain of `t` with `directions` directions (0, or a power of two ≥ 4).
 FootprintMips MakeFootprintMips(const Texture& t, int directions);
 
+/// The chains of a texture's variants (one size) in one array: each level holds every
+/// layer of the first variant, then of the next; `layers` counts them all.
+FootprintMips MakeFootprintMips(const std::vector<Texture>& variants, int directions);
+
 }  // namespace trackbed::render

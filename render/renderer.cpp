@@ -25,6 +25,7 @@
 #include <stdexcept>
 
 #include "footprint_mips.h"
+#include "ground_tiling.h"
 #include "surface_program.h"
 #include "trackbed/common/option_error.h"
 #include "trackbed/common/units.h"
@@ -46,6 +47,11 @@ void SceneAppearance::Validate() const {
   option_check::NonNegative("object_far_error_px", object_far_error_px);
   option_check::NonNegative("ceiling_height_m", ceiling_height_m);
   if (lighting) option_check::Nested("lighting", *lighting);
+  for (const std::string& name : classic_look_materials) {
+    if (!HasTexture(name)) {
+      throw OptionError("classic_look_materials", "'" + name + "' has no texture of its own");
+    }
+  }
   if (texture_size_px < 16 || texture_size_px > 2048 ||
       (texture_size_px & (texture_size_px - 1)) != 0) {
     throw OptionError("texture_size_px", "must be a power of two in [16, 2048] (got " +
@@ -88,6 +94,9 @@ struct GlTexture {
   GLuint name = 0;
   double meters_per_repeat = 1.0;
   bool ground = false;  // with the layers for long footprints
+  bool tiled = false;   // a ground's variants, drawn tiled stochastically (ground_tiling.h)
+  TileVariation tiling;
+  std::uint32_t tiling_seed = 0;
 };
 
 // Directions of the footprint layers of a ground's texture (footprint_mips.h).
@@ -147,6 +156,7 @@ struct Renderer::Gl {
   std::vector<std::uint8_t> grey;  // read back, bottom row first
   std::vector<float> depth;
   std::map<std::string, GlTexture> textures;
+  std::map<std::string, GlTexture> tiled_textures;  // grounds of the detailed look
   std::vector<Drawable> drawables;
   std::unique_ptr<TerrainWindow> window;              // which part of the grid is near
   std::optional<TerrainWindow::Placement> placement;  // where it is now
@@ -235,14 +245,33 @@ struct Renderer::Gl {
                                                : MakePlainTexture(fallback_albedo, s, 64);
     it->second.meters_per_repeat = t.meters_per_repeat;
     it->second.ground = ground;
-    UploadTexture(it->second, t);
+    UploadTexture(it->second, {t});
     return it->second;
   }
 
-  // Puts `t` into texture `g` as an array of its footprint layers (footprint_mips.h),
-  // each with its mip chain, filtered trilinearly.
-  static void UploadTexture(const GlTexture& g, const render::Texture& t) {
-    const FootprintMips mips = MakeFootprintMips(t, g.ground ? kFootprintDirections : 0);
+  // A terrain material's texture: its variants, tiled, under the detailed look; else Texture's.
+  const GlTexture& GroundTexture(const sim::TerrainMaterial& m) {
+    const bool detailed = appearance.ground_look == GroundLook::kDetailed;
+    if (!DetailedLook(detailed, appearance.classic_look_materials, m.name)) {
+      return Texture(m.name, m.albedo, true);
+    }
+    auto it = tiled_textures.find(m.name);
+    if (it != tiled_textures.end()) return it->second;
+    const std::uint64_t s = seed ^ TextureNameHash(m.name);
+    const auto variants = MakeTextureVariants(m.name, s, appearance.texture_size_px);
+    GlTexture g{0,    variants.front().meters_per_repeat, true,
+                true, GroundTileVariation(m.name),        TilingSeed(s)};
+    glGenTextures(1, &g.name);
+    UploadTexture(g, variants);
+    return tiled_textures.emplace(m.name, g).first->second;
+  }
+
+  // Puts the textures `ts` (one size) into texture `g` as an array of their footprint
+  // layers (footprint_mips.h), one texture's after another's, each layer with its mip
+  // chain, filtered trilinearly.
+  static void UploadTexture(const GlTexture& g, const std::vector<render::Texture>& ts) {
+    const render::Texture& t = ts.front();
+    const FootprintMips mips = MakeFootprintMips(ts, g.ground ? kFootprintDirections : 0);
     glBindTexture(GL_TEXTURE_2D_ARRAY, g.name);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_REPEAT);
@@ -271,7 +300,7 @@ struct Renderer::Gl {
       const sim::TerrainMaterial& material = terrain->materials()[chunk.material];
       TerrainDrawable t;
       t.chunk = c;
-      t.texture = Texture(material.name, material.albedo, true);
+      t.texture = GroundTexture(material);
       terrain_drawables.push_back(std::move(t));
       Drawable d;
       d.box = chunk.box;
@@ -286,14 +315,14 @@ struct Renderer::Gl {
   void BuildFarTerrain(const GridWindow& w, std::vector<Drawable>* boxes) {
     std::vector<double> meters_per_repeat;
     for (const sim::TerrainMaterial& m : terrain->materials()) {
-      meters_per_repeat.push_back(Texture(m.name, m.albedo, true).meters_per_repeat);
+      meters_per_repeat.push_back(GroundTexture(m).meters_per_repeat);
     }
     FarTerrain far(*terrain, w, far_m, meters_per_repeat);
     for (const FarTerrain::Piece& piece : far.pieces()) {
       const sim::TerrainMaterial& material = terrain->materials()[piece.material];
       TerrainDrawable t;
       t.fixed = true;
-      t.texture = Texture(material.name, material.albedo, true);
+      t.texture = GroundTexture(material);
       t.mesh.vertices = piece.vertices;
       t.mesh.indices = piece.indices;
       t.mesh.level = TerrainDetail::kMaxLevel;
@@ -751,7 +780,7 @@ void Renderer::ReplaceTexture(const std::string& appearance, const Texture& text
                                 std::to_string(texture.meters_per_repeat));
   }
   gl_->MakeCurrent();
-  Gl::UploadTexture(it->second, texture);
+  Gl::UploadTexture(it->second, {texture});
 }
 
 std::string Renderer::gl_description() const {
@@ -834,8 +863,13 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
   for (const auto& [distance, k] : order) {
     const Drawable& d = g.drawables[static_cast<std::size_t>(k)];
     if (d.terrain >= 0) {
-      g.program->Use(SurfaceProgram::Kind::kFootprint);
-      g.DrawTerrain(g.terrain_drawables[static_cast<std::size_t>(d.terrain)], center_xy);
+      TerrainDrawable& t = g.terrain_drawables[static_cast<std::size_t>(d.terrain)];
+      if (t.texture.tiled) {
+        g.program->UseTiled(t.texture.tiling_seed, t.texture.tiling);
+      } else {
+        g.program->Use(SurfaceProgram::Kind::kFootprint);
+      }
+      g.DrawTerrain(t, center_xy);
     } else {
       g.program->Use(d.flat     ? SurfaceProgram::Kind::kFootprint
                      : d.curved ? SurfaceProgram::Kind::kOutlineCore

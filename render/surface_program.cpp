@@ -2,6 +2,7 @@
 #include "surface_program.h"
 
 #include "footprint_mips.h"
+#include "ground_tiling.h"
 
 #include <cmath>
 #include <stdexcept>
@@ -65,8 +66,14 @@ in float direct;
 
 float FootprintMean() {
   vec3 size = vec3(textureSize(albedo, 0));
+  vec2 st = albedo_st;
   vec2 tx = dFdx(albedo_st) * size.xy;  // the pixel's sides in texels
   vec2 ty = dFdy(albedo_st) * size.xy;
+#ifdef TILED
+  // The tile's variant (ground_tiling.h): its layers follow the variants before it.
+  float variant = TileLookup(st, tx, ty);
+  size.z = size.z / float(tile_variation.w);
+#endif
   // The footprint's ellipse: eigenvalues and major eigenvector of J J^T, J = [tx ty].
   float a = tx.x * tx.x + ty.x * ty.x;
   float b = tx.x * tx.y + ty.x * ty.y;
@@ -84,12 +91,15 @@ float FootprintMean() {
                 : 0.0;
   float k = mod(floor(atan(v.y, v.x) * (directions / 3.14159265) + 0.5), max(directions, 1.0));
   float layer = m > 0.0 ? 1.0 + (m - 1.0) * directions + k : 0.0;
+#ifdef TILED
+  layer += variant * size.z;
+#endif
   // The lookup's level from gradients along the footprint's axes, the major one its
   // length over the layer's: the level of the larger of the two, as textureLod at
   // log2(max(major / 2^m, minor)) would take, in llvmpipe's faster path.
   float len = length(v);
   vec2 dir = (len > 0.0 ? v / len : vec2(1.0, 0.0)) / size.xy * exp2(LOD_BIAS);
-  return textureGrad(albedo, vec3(albedo_st, layer), dir * (major / exp2(m)),
+  return textureGrad(albedo, vec3(st, layer), dir * (major / exp2(m)),
                      vec2(-dir.y, dir.x) * minor)
       .r;
 }
@@ -334,10 +344,11 @@ void main() {
 // (at 0: 12 and 24 % under at 3 and 5 m), with no more energy above their frequency.
 constexpr const char* kLodBias = "-0.5";
 
-GLuint Compile(GLenum type, const std::string& defines, const char* source) {
+GLuint Compile(GLenum type, const std::string& defines, const char* source,
+               const char* functions = "") {
   const GLuint shader = glCreateShader(type);
-  const char* parts[] = {kVersion, defines.c_str(), source};
-  glShaderSource(shader, 3, parts, nullptr);
+  const char* parts[] = {kVersion, defines.c_str(), functions, source};
+  glShaderSource(shader, 4, parts, nullptr);
   glCompileShader(shader);
   GLint ok = GL_FALSE;
   glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
@@ -378,7 +389,7 @@ GLuint UploadLightMap(const LightMap& map) {
 
 SurfaceProgram::SurfaceProgram(const LightMap* map, double ambient, double diffuse) {
   for (Kind kind : {Kind::kFootprint, Kind::kIsotropic, Kind::kOutlineCore, Kind::kOutlineFringe,
-                    Kind::kOutlineDepth}) {
+                    Kind::kOutlineDepth, Kind::kFootprintTiled}) {
     programs_[static_cast<int>(kind)] = Link(kind, map, ambient, diffuse);
   }
   if (map) light_texture_ = UploadLightMap(*map);
@@ -386,21 +397,24 @@ SurfaceProgram::SurfaceProgram(const LightMap* map, double ambient, double diffu
 
 SurfaceProgram::Linked SurfaceProgram::Link(Kind kind, const LightMap* map, double ambient,
                                             double diffuse) {
-  const std::string defines = std::string(map ? "#define LIGHT_MAP\n" : "") +
-                              (kind == Kind::kFootprint ? "#define FOOTPRINT\n" : "") +
-                              (kind == Kind::kOutlineCore ? "#define OUTLINE\n" : "") +
-                              (kind == Kind::kOutlineDepth ? "#define OUTLINE_DEPTH\n" : "") +
-                              "#define MAX_ANISOTROPY_LOG2 " + std::to_string(kMaxAnisotropyLog2) +
-                              ".0\n#define LOD_BIAS " + kLodBias + "\n#define OUTLINE_RING_COS " +
-                              std::to_string(std::cos(M_PI / kOutlineRingSegments)) + "\n";
+  const std::string defines =
+      std::string(map ? "#define LIGHT_MAP\n" : "") +
+      (kind == Kind::kFootprint || kind == Kind::kFootprintTiled ? "#define FOOTPRINT\n" : "") +
+      (kind == Kind::kFootprintTiled ? "#define TILED\n" : "") +
+      (kind == Kind::kOutlineCore ? "#define OUTLINE\n" : "") +
+      (kind == Kind::kOutlineDepth ? "#define OUTLINE_DEPTH\n" : "") +
+      "#define MAX_ANISOTROPY_LOG2 " + std::to_string(kMaxAnisotropyLog2) +
+      ".0\n#define LOD_BIAS " + kLodBias + "\n#define OUTLINE_RING_COS " +
+      std::to_string(std::cos(M_PI / kOutlineRingSegments)) + "\n";
   const bool band = kind == Kind::kOutlineFringe || kind == Kind::kOutlineDepth;
   Linked out;
   out.program = glCreateProgram();
   const GLuint program_ = out.program;
   glAttachShader(program_,
                  Compile(GL_VERTEX_SHADER, defines, band ? kBandVertexShader : kVertexShader));
-  glAttachShader(
-      program_, Compile(GL_FRAGMENT_SHADER, defines, band ? kBandFragmentShader : kFragmentShader));
+  glAttachShader(program_,
+                 Compile(GL_FRAGMENT_SHADER, defines, band ? kBandFragmentShader : kFragmentShader,
+                         kind == Kind::kFootprintTiled ? TilingShaderSource() : ""));
   glLinkProgram(program_);
   GLint ok = GL_FALSE;
   glGetProgramiv(program_, GL_LINK_STATUS, &ok);
@@ -422,6 +436,8 @@ SurfaceProgram::Linked SurfaceProgram::Link(Kind kind, const LightMap* map, doub
   out.exposure = glGetUniformLocation(program_, "exposure");
   out.outline_px_per_depth = glGetUniformLocation(program_, "outline_px_per_depth");
   out.ray_from_window = glGetUniformLocation(program_, "ray_from_window");
+  out.tile_seed = glGetUniformLocation(program_, "tile_seed");
+  out.tile_variation = glGetUniformLocation(program_, "tile_variation");
   glUseProgram(0);
   return out;
 }
@@ -458,6 +474,20 @@ void SurfaceProgram::Use(Kind kind) {
   if (kind == current_) return;
   glUseProgram(programs_[static_cast<int>(kind)].program);
   current_ = kind;
+}
+
+void SurfaceProgram::UseTiled(std::uint32_t seed, const TileVariation& v) {
+  Use(Kind::kFootprintTiled);
+  const Linked& p = programs_[static_cast<int>(Kind::kFootprintTiled)];
+  const bool same = tiled_set_ && seed == tile_seed_ && v.quarter_turns == tiling_.quarter_turns &&
+                    v.mirror == tiling_.mirror && v.offsets_per_side == tiling_.offsets_per_side &&
+                    v.variants == tiling_.variants;
+  if (same) return;
+  glUniform1ui(p.tile_seed, seed);
+  glUniform4i(p.tile_variation, v.quarter_turns, v.mirror ? 1 : 0, v.offsets_per_side, v.variants);
+  tiled_set_ = true;
+  tile_seed_ = seed;
+  tiling_ = v;
 }
 
 void SurfaceProgram::End() const { glUseProgram(0); }

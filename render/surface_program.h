@@ -36,9 +36,12 @@
 #include <GL/gl.h>
 #include <GL/glext.h>
 
+#include <cstdint>
+
 #include <Eigen/Core>
 
 #include "trackbed/common/pinhole_camera.h"
+#include "trackbed/render/procedural_texture.h"
 #include "trackbed/render/scene_lighting.h"
 
 namespace trackbed::render {
@@ -63,7 +66,8 @@ class SurfaceProgram {
     kIsotropic = 1,
     kOutlineCore = 2,
     kOutlineFringe = 3,
-    kOutlineDepth = 4
+    kOutlineDepth = 4,
+    kFootprintTiled = 5  ///< the footprint's, the ground tiled stochastically (ground_tiling.h)
   };
 
   /// Draws with the programs until End, the isotropic one first: `view` maps world to
@@ -73,6 +77,9 @@ class SurfaceProgram {
              const geometry::PinholeCamera& K);
   /// Draws what follows with the program of `kind`.
   void Use(Kind kind);
+  /// Draws what follows with the tiled footprint program, for a material of tiling seed
+  /// `seed` and variation `v`.
+  void UseTiled(std::uint32_t seed, const TileVariation& v);
   /// Back to no program.
   void End() const;
 
@@ -80,11 +87,14 @@ class SurfaceProgram {
   struct Linked {
     GLuint program = 0;
     GLint world_from_eye = -1, sun_eye = -1, exposure = -1, outline_px_per_depth = -1,
-          ray_from_window = -1;
+          ray_from_window = -1, tile_seed = -1, tile_variation = -1;
   };
   static Linked Link(Kind kind, const LightMap* map, double ambient, double diffuse);
 
-  Linked programs_[5];
+  Linked programs_[6];
+  bool tiled_set_ = false;  // the tiled program's uniforms, as last set
+  std::uint32_t tile_seed_ = 0;
+  TileVariation tiling_;
   GLuint light_texture_ = 0;
   Kind current_ = Kind::kIsotropic;
 };

@@ -84,13 +84,18 @@ scene:
   name: kitti_twin
   terrain:
     extent_m: [-40, -40, 650, 40]
-    # A flat road: coarse cells, the textures carry the detail.
+    # A flat road: coarse cells, the textures carry the detail. The carriageway is
+    # asphalt, the pavements concrete paving.
     cell_size_m: 0.5
     default_material: grass
     regions:
-      - {material: paving, shape: rectangle, min: [-40, -4], max: [650, 4]}
+      - {material: asphalt, shape: rectangle, min: [-40, -4], max: [650, 4]}
       - {material: paving, shape: rectangle, min: [-40, 7], max: [650, 9]}
       - {material: paving, shape: rectangle, min: [-40, -9], max: [650, -7]}
+  appearance:
+    # Every ground material varied tile by tile (no period), asphalt's variants
+    # (docs/rendering.md).
+    ground_look: detailed
   objects:""")
     for x, y, length, width, height, look in cars(rng):
         print(f"    - {{type: box, center: [{fmt(x)}, {fmt(y)}], size_m: [{fmt(length)}, "

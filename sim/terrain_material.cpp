@@ -101,6 +101,10 @@ std::vector<TerrainMaterial> MakeBuiltins() {
       Make("hard_floor", 0.0, DegOfFriction(0.8), 0.003, 0.0, 0.0, 1.0, 0.0, 0.55),
       // Outdoor paving (asphalt / concrete): μ 0.9, the peak of the same range; K 2 mm.
       Make("paving", 0.0, DegOfFriction(0.9), 0.002, 0.0, 0.0, 1.0, 0.0, 0.45),
+      // Dry asphalt concrete, rigid as paving: μ 0.85, the middle of the peak range for
+      // tyres on dry asphalt (0.8–0.9, Wong Table 1.1); K 2 mm, paving's pad compliance;
+      // albedo 0.12, aged asphalt (0.10–0.15: Pomerantz, Akbari & Harvey 2000).
+      Make("asphalt", 0.0, DegOfFriction(0.85), 0.002, 0.0, 0.0, 1.0, 0.0, 0.12),
       // LETE sand (Wong, Table 2.3): n 0.79, k_c 102 kN/m^1.79, k_φ 5301 kN/m^2.79,
       // c 1.3 kPa, φ 31.1°; K 1.2 cm (Wong's measured value for LETE sand).
       Make("lete_sand", 1300.0, 31.1, 0.012, 102e3, 5301e3, 0.79, kDrySandWeight, 0.62),

@@ -117,6 +117,7 @@ std::set<std::string> KeysOfEveryShippedScenario() {
   every_optional.robot.as_built_seed = 1;
   every_optional.drive.script.resize(2);  // a body twist, then track speeds
   every_optional.drive.script[1].track_speeds = true;
+  every_optional.scene.appearance.classic_look_materials = {"grass"};
   WrittenKeys(archive::Write(every_optional), "", &keys);
   const fs::path scenes = fs::path(TRACKBED_SOURCE_DIR) / "scenes";
   for (const auto& entry : fs::recursive_directory_iterator(scenes)) {

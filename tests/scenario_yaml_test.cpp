@@ -350,10 +350,11 @@ TEST(ScenarioYamlTest, OutOfRangeValueReportsFullDottedKey) {
             "test.yaml: drive.waypoints: mode path needs at least 2 waypoints (got 1)");
   EXPECT_EQ(ErrorOf("drive: {mode: script}\n"),
             "test.yaml: drive.script: mode script needs at least 1 command");
-  EXPECT_EQ(ErrorOf(m + "scene: {terrain: {regions: [{material: mud, min: [0, 0], max: [1, 1]}]}}"),
-            "test.yaml: scene.terrain.regions[0].material: unknown material 'mud' (known: "
-            "hard_floor, paving, lete_sand, dry_sand, dry_sand_wong, sandy_loam, clay, grass, "
-            "north_gower_clayey_loam_wong)");
+  EXPECT_EQ(
+      ErrorOf(m + "scene: {terrain: {regions: [{material: mud, min: [0, 0], max: [1, 1]}]}}"),
+      "test.yaml: scene.terrain.regions[0].material: unknown material 'mud' (known: "
+      "hard_floor, paving, asphalt, lete_sand, dry_sand, dry_sand_wong, sandy_loam, clay, grass, "
+      "north_gower_clayey_loam_wong)");
 }
 
 TEST(ScenarioYamlTest, ListIndexInKey) {

@@ -43,6 +43,28 @@ bool HasTexture(const std::string& appearance);
 /// [16, 2048].
 Texture MakeTexture(const std::string& appearance, std::uint64_t seed, int size_px = 256);
 
+/// How the tiles of a ground's texture vary when the ground is drawn with stochastic
+/// tiling (`scene.appearance.ground_look: detailed`, docs/rendering.md): each tile of the
+/// ground takes, from a hash of its index and the seed, one of `variants` textures,
+/// mirrored or not, turned by whole quarter turns and shifted. The defaults: no variation.
+struct TileVariation {
+  int quarter_turns = 1;     ///< turns a tile may take: 1 (none), 2 (half turns) or 4
+  bool mirror = false;       ///< whether a tile may be mirrored (across its u axis)
+  int offsets_per_side = 1;  ///< shifts by multiples of 1 / this of the tile; 0: any shift
+  int variants = 1;          ///< textures the tiles choose among (MakeTextureVariants)
+};
+
+/// The tile variation of `appearance`'s texture as a ground: free for textures without a
+/// direction or a grid, whole cells for a grid (paving, hard floor), none of turns and
+/// mirrors for wind ripples (sand). Throws std::invalid_argument as MakeTexture.
+TileVariation GroundTileVariation(const std::string& appearance);
+
+/// The `GroundTileVariation(appearance).variants` textures of `appearance`: one common
+/// surface with each variant's own features (variant 0 is MakeTexture's); one texture
+/// for an appearance of one variant. Throws as MakeTexture.
+std::vector<Texture> MakeTextureVariants(const std::string& appearance, std::uint64_t seed,
+                                         int size_px = 256);
+
 /// A plain texture of one grey level (`albedo` in [0, 1], 1 = white) with faint smooth
 /// seeded noise (standard deviation about one grey level), for a material that has no
 /// texture of its own. meters_per_repeat is 1 m. Throws std::invalid_argument when

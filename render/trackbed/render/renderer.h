@@ -24,6 +24,11 @@
 namespace trackbed::render {
 
 /// Light and dressing of a scene.
+/// How the ground's materials look (docs/rendering.md): `classic`, each material's
+/// texture repeated tile after tile; `detailed`, each tile of a material takes a variant
+/// of its texture, turned, mirrored and shifted from the seed (no period).
+enum class GroundLook { kClassic, kDetailed };
+
 struct SceneAppearance {
   /// Direction the sunlight comes from: azimuth counter-clockwise from +x [deg].
   double sun_azimuth_deg = 135.0;
@@ -50,6 +55,10 @@ struct SceneAppearance {
   /// this many pixels, judged from the detail centre (object_detail.h) [px]. 0:
   /// every object at full detail.
   double object_far_error_px = 0.0;
+  /// The ground's look: classic (a period of one texture tile) or detailed.
+  GroundLook ground_look = GroundLook::kClassic;
+  /// Materials that keep the classic look under `detailed` (names with a texture).
+  std::vector<std::string> classic_look_materials;
   /// Light that changes across the scene: shadows and lit zones (scene_lighting.h).
   /// Absent: the whole scene is lit alike.
   std::optional<SceneLighting> lighting;
@@ -70,6 +79,9 @@ struct SceneAppearance {
     a->Visit("texture_size_px", &texture_size_px);
     a->Visit("terrain_full_detail_m", &terrain_full_detail_m);
     a->Visit("object_far_error_px", &object_far_error_px);
+    a->VisitEnum("ground_look", &ground_look,
+                 {{"classic", GroundLook::kClassic}, {"detailed", GroundLook::kDetailed}});
+    a->Visit("classic_look_materials", &classic_look_materials, archive::kOmitEmpty);
     a->Visit("lighting", &lighting, archive::kOmitEmpty);
   }
 };

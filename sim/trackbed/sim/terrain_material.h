@@ -100,7 +100,7 @@ BearingCapacityFactors BearingCapacity(double tan_phi);
 SoilPoint SoilOf(const TerrainMaterial& m);
 
 /// The built-in materials, each documented with its source: rigid floors
-/// (hard_floor, paving), soils for a light vehicle under their common names
+/// (hard_floor, paving, asphalt), soils for a light vehicle under their common names
 /// (dry_sand, sandy_loam, clay, grass), and Wong's measured sets (lete_sand,
 /// dry_sand_wong, north_gower_clayey_loam_wong).
 const std::vector<TerrainMaterial>& BuiltinMaterials();
