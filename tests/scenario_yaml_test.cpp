@@ -665,7 +665,7 @@ TEST(ScenarioYamlTest, ObjectTypesPickShapeAndAppearance) {
   EXPECT_EQ(s.scene.objects[2].appearance, "rust");
   EXPECT_EQ(ErrorOf(std::string(kMinimal) + "scene: {objects: [{type: rock}]}"),
             "test.yaml: scene.objects[0].type: must be one of wall, box, bench, cylinder, tree, "
-            "post, door, poster (got 'rock')");
+            "post, door, poster, mesh (got 'rock')");
 }
 
 }  // namespace

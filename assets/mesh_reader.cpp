@@ -1,0 +1,181 @@
+// Triangle meshes read through assimp (see mesh_reader.h).
+#include "trackbed/assets/mesh_reader.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <utility>
+
+#include <assimp/DefaultIOSystem.h>
+#include <assimp/material.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <assimp/Importer.hpp>
+
+namespace trackbed::assets {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+[[noreturn]] void Fail(const std::string& file, const std::string& what) {
+  throw AssetError(file + ": " + what);
+}
+
+std::string LowerExtension(const std::string& file) {
+  std::string ext = fs::path(file).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+// assimp's file system, noting every file it opens (an OBJ's .mtl, a glTF's .bin).
+class NotingIoSystem : public Assimp::DefaultIOSystem {
+ public:
+  explicit NotingIoSystem(std::vector<std::string>* opened) : opened_(opened) {}
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    Assimp::IOStream* stream = Assimp::DefaultIOSystem::Open(file, mode);
+    if (stream != nullptr) {
+      const std::string path = fs::absolute(file).lexically_normal().string();
+      if (std::find(opened_->begin(), opened_->end(), path) == opened_->end()) {
+        opened_->push_back(path);
+      }
+    }
+    return stream;
+  }
+
+ private:
+  std::vector<std::string>* opened_;
+};
+
+// The material's base-colour image (glTF's base colour, else the diffuse map) and
+// colour; the image resolved against the mesh file's folder.
+void ReadMaterial(const std::string& file, const aiMaterial& material, sim::MeshPart* part) {
+  aiString path;
+  const bool has = material.GetTexture(aiTextureType_BASE_COLOR, 0, &path) == aiReturn_SUCCESS ||
+                   material.GetTexture(aiTextureType_DIFFUSE, 0, &path) == aiReturn_SUCCESS;
+  if (has && path.length > 0) {
+    const std::string name = path.C_Str();
+    if (name[0] == '*') Fail(file, "a material's image is embedded in the file (" + name + ")");
+    fs::path p(name);
+    if (p.is_relative()) p = fs::path(file).parent_path() / p;
+    p = fs::absolute(p).lexically_normal();
+    if (!fs::is_regular_file(p)) Fail(file, "a material's image is not a file: " + p.string());
+    part->base_color_texture = p.string();
+  }
+  aiColor4D colour(1.0f, 1.0f, 1.0f, 1.0f);
+  if (material.Get(AI_MATKEY_BASE_COLOR, colour) != aiReturn_SUCCESS) {
+    material.Get(AI_MATKEY_COLOR_DIFFUSE, colour);
+  }
+  part->base_color = {colour.r, colour.g, colour.b, colour.a};
+}
+
+// Appends `mesh`'s triangles, its vertices moved by `transform`.
+void AppendMesh(const std::string& file, const aiScene& scene, const aiMesh& mesh,
+                const aiMatrix4x4& transform, sim::TriangleMesh* out) {
+  const auto first_vertex = static_cast<std::uint32_t>(out->vertices.size());
+  const bool has_uvs = mesh.HasTextureCoords(0);
+  for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+    const aiVector3D p = transform * mesh.mVertices[v];
+    const Eigen::Vector3f q(p.x, p.y, p.z);
+    if (!q.allFinite()) Fail(file, "a vertex is not finite");
+    out->vertices.push_back(q);
+    const aiVector3D uv = has_uvs ? mesh.mTextureCoords[0][v] : aiVector3D(0, 0, 0);
+    out->uvs.emplace_back(uv.x, uv.y);
+  }
+  sim::MeshPart part;
+  part.first_triangle = static_cast<std::uint32_t>(out->triangles.size());
+  for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+    const aiFace& face = mesh.mFaces[f];
+    if (face.mNumIndices != 3) continue;  // points and lines
+    std::array<std::uint32_t, 3> t{};
+    for (int k = 0; k < 3; ++k) {
+      if (face.mIndices[k] >= mesh.mNumVertices) Fail(file, "a face names a missing vertex");
+      t[k] = first_vertex + face.mIndices[k];
+    }
+    out->triangles.push_back(t);
+    if (out->triangles.size() > kMaxMeshTriangles) {
+      Fail(file, "holds more than " + std::to_string(kMaxMeshTriangles) + " triangles");
+    }
+  }
+  part.triangles = static_cast<std::uint32_t>(out->triangles.size()) - part.first_triangle;
+  if (part.triangles == 0) return;
+  if (mesh.mMaterialIndex < scene.mNumMaterials) {
+    ReadMaterial(file, *scene.mMaterials[mesh.mMaterialIndex], &part);
+  }
+  out->parts.push_back(std::move(part));
+}
+
+// Every node's meshes under `parent` (the transforms above it), depth first.
+void AppendNode(const std::string& file, const aiScene& scene, const aiNode& node,
+                const aiMatrix4x4& parent, int depth, sim::TriangleMesh* out) {
+  if (depth > 1000) Fail(file, "its nodes nest more than 1000 deep");
+  const aiMatrix4x4 transform = parent * node.mTransformation;
+  for (unsigned k = 0; k < node.mNumMeshes; ++k) {
+    if (node.mMeshes[k] >= scene.mNumMeshes) Fail(file, "a node names a missing mesh");
+    AppendMesh(file, scene, *scene.mMeshes[node.mMeshes[k]], transform, out);
+  }
+  for (unsigned k = 0; k < node.mNumChildren; ++k) {
+    AppendNode(file, scene, *node.mChildren[k], transform, depth + 1, out);
+  }
+}
+
+// assimp 5.2.5 reads a PLY header that never ends forever: such a file is refused
+// before it gets there.
+void CheckPlyHeaderEnds(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::string head(64 * 1024, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  if (head.find("end_header") == std::string::npos) {
+    Fail(file, "its PLY header does not end (no end_header line in its first 64 KiB)");
+  }
+}
+
+}  // namespace
+
+const std::vector<std::string>& MeshExtensions() {
+  static const std::vector<std::string> extensions = {".gltf", ".glb", ".obj",
+                                                      ".ply",  ".dae", ".stl"};
+  return extensions;
+}
+
+MeshRead ReadMesh(const std::string& file) {
+  const std::string ext = LowerExtension(file);
+  const std::vector<std::string>& allowed = MeshExtensions();
+  if (std::find(allowed.begin(), allowed.end(), ext) == allowed.end()) {
+    std::string list;
+    for (const std::string& e : allowed) list += (list.empty() ? "" : ", ") + e;
+    Fail(file, "not a mesh file of a known kind (the extension must be one of " + list + ")");
+  }
+  if (!fs::is_regular_file(file)) Fail(file, "no such file");
+  if (ext == ".ply") CheckPlyHeaderEnds(file);
+  MeshRead read;
+  Assimp::Importer importer;
+  importer.SetIOHandler(new NotingIoSystem(&read.files));  // the importer owns it
+  const aiScene* scene =
+      importer.ReadFile(file, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices);
+  if (scene == nullptr || scene->mRootNode == nullptr) {
+    Fail(file, std::string("cannot be read as a mesh (") + importer.GetErrorString() + ")");
+  }
+  // assimp gives glTF and COLLADA with y up: turned about x so that up is z.
+  aiMatrix4x4 up;
+  if (ext == ".gltf" || ext == ".glb" || ext == ".dae") {
+    up = aiMatrix4x4(1, 0, 0, 0, 0, 0, -1, 0, 0, 1, 0, 0, 0, 0, 0, 1);
+  }
+  AppendNode(file, *scene, *scene->mRootNode, up, 0, &read.mesh);
+  if (read.mesh.triangles.empty()) Fail(file, "holds no triangle");
+  for (const sim::MeshPart& part : read.mesh.parts) {
+    const std::string& t = part.base_color_texture;
+    if (!t.empty() &&
+        std::find(read.textures.begin(), read.textures.end(), t) == read.textures.end()) {
+      read.textures.push_back(t);
+    }
+  }
+  return read;
+}
+
+}  // namespace trackbed::assets

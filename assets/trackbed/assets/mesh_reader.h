@@ -1,0 +1,42 @@
+// Triangle meshes read from users' files through assimp (docs/user_files.md), for
+// scene objects of type `mesh`. Only files whose extension is in MeshExtensions() are
+// opened; assimp stays private to this library.
+//
+// The mesh comes out in the object's frame, z up, in metres: every node's transform
+// applied to its meshes (a mesh under two nodes appears twice); glTF and COLLADA
+// files, which assimp gives with y up, turned so that their up is z; OBJ, PLY and STL
+// taken as written (z up, metres). Points and lines are dropped; polygons are split
+// into triangles.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "trackbed/assets/dem_reader.h"  // AssetError
+#include "trackbed/sim/triangle_mesh.h"
+
+namespace trackbed::assets {
+
+/// The extensions a mesh file may have (lower case, with the dot): .gltf, .glb, .obj,
+/// .ply, .dae, .stl.
+const std::vector<std::string>& MeshExtensions();
+
+/// Triangles a mesh file may hold at most (after node transforms repeat meshes).
+constexpr std::size_t kMaxMeshTriangles = 20'000'000;
+
+/// A mesh file read, with every file assimp opened for it (the file, an OBJ's .mtl,
+/// a glTF's buffers) and the textures its materials name.
+struct MeshRead {
+  sim::TriangleMesh mesh;
+  std::vector<std::string> files;     ///< Opened by assimp, in the order it opened them.
+  std::vector<std::string> textures;  ///< The materials' base-colour images (absolute).
+};
+
+/// Reads `file`. Throws AssetError naming the file if its extension is not in
+/// MeshExtensions(), assimp cannot read it, it holds no triangle or more than
+/// kMaxMeshTriangles, a vertex is not finite, or a material names a texture that is
+/// not a file (an image embedded in the file is refused: the renderer reads images
+/// from files).
+MeshRead ReadMesh(const std::string& file);
+
+}  // namespace trackbed::assets
