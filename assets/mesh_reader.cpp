@@ -2,11 +2,16 @@
 #include "trackbed/assets/mesh_reader.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <list>
 #include <memory>
+#include <mutex>
+#include <unordered_map>
 #include <utility>
 
 #include <assimp/DefaultIOSystem.h>
@@ -73,17 +78,47 @@ void ReadMaterial(const std::string& file, const aiMaterial& material, sim::Mesh
   part->base_color = {colour.r, colour.g, colour.b, colour.a};
 }
 
-// Appends `mesh`'s triangles, its vertices moved by `transform`.
+// A vertex's position and texture coordinates, bit for bit: assimp's readers repeat
+// a shared vertex for each face (PLY, STL), and joining the exact repeats here is
+// several times faster than assimp's own joining step, which compares within a
+// tolerance.
+struct VertexKey {
+  std::array<std::uint32_t, 5> bits;
+  bool operator==(const VertexKey& o) const { return bits == o.bits; }
+};
+struct VertexKeyHash {
+  std::size_t operator()(const VertexKey& k) const {
+    std::uint64_t h = 1469598103934665603ull;
+    for (std::uint32_t b : k.bits) h = (h ^ b) * 1099511628211ull;
+    return static_cast<std::size_t>(h ^ (h >> 29));
+  }
+};
+
+VertexKey KeyOf(const aiVector3D& p, const aiVector3D& uv) {
+  VertexKey k{};
+  const float f[5] = {p.x, p.y, p.z, uv.x, uv.y};
+  static_assert(sizeof f == sizeof k.bits);
+  std::memcpy(k.bits.data(), f, sizeof f);
+  return k;
+}
+
+// Appends `mesh`'s triangles, its vertices moved by `transform` (exact repeats joined).
 void AppendMesh(const std::string& file, const aiScene& scene, const aiMesh& mesh,
                 const aiMatrix4x4& transform, sim::TriangleMesh* out) {
-  const auto first_vertex = static_cast<std::uint32_t>(out->vertices.size());
   const bool has_uvs = mesh.HasTextureCoords(0);
+  std::vector<std::uint32_t> index(mesh.mNumVertices);
+  std::unordered_map<VertexKey, std::uint32_t, VertexKeyHash> seen;
+  seen.reserve(mesh.mNumVertices);
   for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+    const aiVector3D uv = has_uvs ? mesh.mTextureCoords[0][v] : aiVector3D(0, 0, 0);
+    const auto [it, added] = seen.emplace(KeyOf(mesh.mVertices[v], uv),
+                                          static_cast<std::uint32_t>(out->vertices.size()));
+    index[v] = it->second;
+    if (!added) continue;
     const aiVector3D p = transform * mesh.mVertices[v];
     const Eigen::Vector3f q(p.x, p.y, p.z);
     if (!q.allFinite()) Fail(file, "a vertex is not finite");
     out->vertices.push_back(q);
-    const aiVector3D uv = has_uvs ? mesh.mTextureCoords[0][v] : aiVector3D(0, 0, 0);
     out->uvs.emplace_back(uv.x, uv.y);
   }
   sim::MeshPart part;
@@ -94,7 +129,7 @@ void AppendMesh(const std::string& file, const aiScene& scene, const aiMesh& mes
     std::array<std::uint32_t, 3> t{};
     for (int k = 0; k < 3; ++k) {
       if (face.mIndices[k] >= mesh.mNumVertices) Fail(file, "a face names a missing vertex");
-      t[k] = first_vertex + face.mIndices[k];
+      t[k] = index[face.mIndices[k]];
     }
     out->triangles.push_back(t);
     if (out->triangles.size() > kMaxMeshTriangles) {
@@ -156,8 +191,7 @@ MeshRead ReadMesh(const std::string& file) {
   MeshRead read;
   Assimp::Importer importer;
   importer.SetIOHandler(new NotingIoSystem(&read.files));  // the importer owns it
-  const aiScene* scene =
-      importer.ReadFile(file, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices);
+  const aiScene* scene = importer.ReadFile(file, aiProcess_Triangulate);
   if (scene == nullptr || scene->mRootNode == nullptr) {
     Fail(file, std::string("cannot be read as a mesh (") + importer.GetErrorString() + ")");
   }
@@ -175,6 +209,36 @@ MeshRead ReadMesh(const std::string& file) {
       read.textures.push_back(t);
     }
   }
+  return read;
+}
+
+std::shared_ptr<const MeshRead> ReadMeshKept(const std::string& file) {
+  struct Kept {
+    std::string file;
+    std::uintmax_t bytes;
+    fs::file_time_type modified;
+    std::shared_ptr<const MeshRead> read;
+  };
+  static std::mutex mutex;
+  static std::list<Kept> kept;  // most recently used first
+  std::error_code error;
+  const std::uintmax_t bytes = fs::file_size(file, error);
+  const fs::file_time_type modified = fs::last_write_time(file, error);
+  if (error) return std::make_shared<const MeshRead>(ReadMesh(file));  // its error
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    for (auto it = kept.begin(); it != kept.end(); ++it) {
+      if (it->file == file && it->bytes == bytes && it->modified == modified) {
+        kept.splice(kept.begin(), kept, it);
+        return it->read;
+      }
+    }
+  }
+  auto read = std::make_shared<const MeshRead>(ReadMesh(file));
+  const std::lock_guard<std::mutex> lock(mutex);
+  kept.remove_if([&](const Kept& k) { return k.file == file; });
+  kept.push_front({file, bytes, modified, read});
+  if (kept.size() > kMeshesKept) kept.pop_back();
   return read;
 }
 

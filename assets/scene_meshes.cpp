@@ -14,7 +14,10 @@ SceneMeshes LoadSceneMeshes(const std::vector<sim::StaticObject>& objects) {
   std::map<std::string, std::shared_ptr<const sim::TriangleMesh>> read;
   const auto mesh_of = [&read](const std::string& file) {
     std::shared_ptr<const sim::TriangleMesh>& m = read[file];
-    if (!m) m = std::make_shared<const sim::TriangleMesh>(ReadMesh(file).mesh);
+    if (!m) {
+      const std::shared_ptr<const MeshRead> r = ReadMeshKept(file);
+      m = std::shared_ptr<const sim::TriangleMesh>(r, &r->mesh);  // shares the read's
+    }
     return m;
   };
   for (const sim::StaticObject& o : objects) {

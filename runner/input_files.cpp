@@ -46,9 +46,9 @@ std::vector<InputFile> InputFiles(const scenario::Scenario& s) {
     for (const auto& [name, file] : {std::pair<std::string, std::string>{"file", o.mesh.file},
                                      {"collision_file", o.mesh.collision_file}}) {
       if (file.empty()) continue;
-      const assets::MeshRead read = assets::ReadMesh(file);
-      for (const std::string& f : read.files) named.emplace_back(key + name, f);
-      for (const std::string& f : read.textures) named.emplace_back(key + name, f);
+      const std::shared_ptr<const assets::MeshRead> read = assets::ReadMeshKept(file);
+      for (const std::string& f : read->files) named.emplace_back(key + name, f);
+      for (const std::string& f : read->textures) named.emplace_back(key + name, f);
     }
   }
   if (!s.robot.calibration_dir.empty()) {

@@ -121,8 +121,19 @@ PlacedMesh::PlacedMesh(const TriangleMesh& mesh, const Eigen::Vector3d& scale,
   for (std::size_t k = 1; k < count.size(); ++k) count[k] += count[k - 1];
   cell_start_ = count;
   cell_triangles_.resize(count.back());
+  cell_z_lo_.assign(count.size() - 1, std::numeric_limits<double>::infinity());
+  cell_z_hi_.assign(count.size() - 1, -std::numeric_limits<double>::infinity());
   for (std::uint32_t t = 0; t < triangles_.size(); ++t) {
-    each_cell(t, [&](std::size_t cell) { cell_triangles_[count[cell]++] = t; });
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (std::uint32_t v : triangles_[t]) {
+      lo = std::min(lo, vertices_[v].z());
+      hi = std::max(hi, vertices_[v].z());
+    }
+    each_cell(t, [&](std::size_t cell) {
+      cell_triangles_[count[cell]++] = t;
+      cell_z_lo_[cell] = std::min(cell_z_lo_[cell], lo);
+      cell_z_hi_[cell] = std::max(cell_z_hi_[cell], hi);
+    });
   }
 }
 
@@ -171,38 +182,43 @@ double PlacedMesh::PlanDistance(const std::vector<Eigen::Vector2d>& polygon, dou
   Eigen::AlignedBox2d around;
   for (const Eigen::Vector2d& p : polygon) around.extend(p);
   const Eigen::AlignedBox2d all(bounds_.min().head<2>(), bounds_.max().head<2>());
-  std::vector<std::uint32_t> near;
   std::array<Eigen::Vector2d, 3> plan;
-  // Rings grown until the nearest triangle found lies within the searched reach:
-  // any triangle not listed in it is farther.
+  const auto visit = [&](int c, int r) {
+    const std::size_t cell = static_cast<std::size_t>(r) * cols_ + c;
+    if (cell_z_hi_[cell] < z_lo || cell_z_lo_[cell] > z_hi) return;
+    for (std::uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
+      const auto& t = triangles_[cell_triangles_[k]];
+      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+      for (int i = 0; i < 3; ++i) {
+        const Eigen::Vector3d& v = vertices_[t[i]];
+        lo = std::min(lo, v.z());
+        hi = std::max(hi, v.z());
+        plan[i] = v.head<2>();
+      }
+      if (hi < z_lo || lo > z_hi) continue;
+      best = std::min(best, ConvexDistance(polygon, plan));
+    }
+  };
+  // Rings of cells grown until the nearest triangle found lies within the searched
+  // reach (any triangle not listed in the cells searched is farther); each ring visits
+  // only the cells the last one did not (a triangle in several cells is measured again).
+  int p_c0 = 0, p_r0 = 0, p_c1 = -1, p_r1 = -1;  // the cells searched so far
   for (double reach = cell_m_;; reach *= 2.0) {
     Eigen::AlignedBox2d box = around;
     box.min().array() -= reach;
     box.max().array() += reach;
-    near.clear();
     if (box.intersects(all)) {
       int c0, r0, c1, r1;
       CellsOf(box, &c0, &r0, &c1, &r1);
       for (int r = r0; r <= r1; ++r) {
-        for (int c = c0; c <= c1; ++c) {
-          const std::size_t cell = static_cast<std::size_t>(r) * cols_ + c;
-          near.insert(near.end(), cell_triangles_.begin() + cell_start_[cell],
-                      cell_triangles_.begin() + cell_start_[cell + 1]);
+        if (r < p_r0 || r > p_r1) {
+          for (int c = c0; c <= c1; ++c) visit(c, r);
+        } else {
+          for (int c = c0; c < p_c0; ++c) visit(c, r);
+          for (int c = p_c1 + 1; c <= c1; ++c) visit(c, r);
         }
       }
-    }
-    std::sort(near.begin(), near.end());
-    near.erase(std::unique(near.begin(), near.end()), near.end());
-    for (std::uint32_t t : near) {
-      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-      for (int k = 0; k < 3; ++k) {
-        const Eigen::Vector3d& v = vertices_[triangles_[t][k]];
-        lo = std::min(lo, v.z());
-        hi = std::max(hi, v.z());
-        plan[k] = v.head<2>();
-      }
-      if (hi < z_lo || lo > z_hi) continue;
-      best = std::min(best, ConvexDistance(polygon, plan));
+      p_c0 = c0, p_r0 = r0, p_c1 = c1, p_r1 = r1;
     }
     if (best <= reach || box.contains(all)) return best;
   }

@@ -113,6 +113,16 @@ TEST(MeshReaderTest, ErrorsNameTheFileAndWhatIsWrong) {
             std::string::npos);
 }
 
+TEST(MeshReaderTest, AKeptReadIsTheFilesAsLongAsItIsUnchanged) {
+  const std::string file = test_mesh::ObjBox("kept.obj", 0, 0, 0, 1, 1, 1);
+  const auto first = assets::ReadMeshKept(file);
+  EXPECT_EQ(assets::ReadMeshKept(file), first);        // the same read
+  test_mesh::ObjBox("kept.obj", 0, 0, 0, 10, 10, 10);  // another size
+  const auto second = assets::ReadMeshKept(file);
+  EXPECT_NE(second, first);
+  ExpectBounds(second->mesh, {0, 0, 0}, {10, 10, 10});
+}
+
 TEST(PlacedMeshTest, HeightsAndPlanDistancesOfPlacedTriangles) {
   const assets::MeshRead r = assets::ReadMesh(test_mesh::StlRoof("roof2.stl"));
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();

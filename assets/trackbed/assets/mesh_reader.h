@@ -9,6 +9,7 @@
 // into triangles.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -38,5 +39,13 @@ struct MeshRead {
 /// not a file (an image embedded in the file is refused: the renderer reads images
 /// from files).
 MeshRead ReadMesh(const std::string& file);
+
+/// ReadMesh(file), kept for the next call while the file keeps its size and
+/// modification time (the last kMeshesKept files read): the scenario's check, the run
+/// folder's inputs.json and the world read a large mesh once. Thread-safe.
+std::shared_ptr<const MeshRead> ReadMeshKept(const std::string& file);
+
+/// How many files ReadMeshKept keeps.
+constexpr std::size_t kMeshesKept = 4;
 
 }  // namespace trackbed::assets

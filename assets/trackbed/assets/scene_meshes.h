@@ -21,7 +21,7 @@ struct SceneMeshes {
   std::vector<sim::MeshObject> grounds;
 };
 
-/// Reads every mesh object's files (each file once). Throws AssetError naming the
+/// Reads every mesh object's files (assets::ReadMeshKept). Throws AssetError naming the
 /// file (ReadMesh).
 SceneMeshes LoadSceneMeshes(const std::vector<sim::StaticObject>& objects);
 

@@ -74,6 +74,7 @@ class PlacedMesh {
   int cols_ = 1, rows_ = 1;
   std::vector<std::uint32_t> cell_start_;  // cols_ · rows_ + 1 offsets into cell_triangles_
   std::vector<std::uint32_t> cell_triangles_;
+  std::vector<double> cell_z_lo_, cell_z_hi_;  // each cell's triangles' height range
 };
 
 }  // namespace trackbed::sim
