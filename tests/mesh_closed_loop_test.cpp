@@ -87,6 +87,48 @@ TEST(MeshClosedLoopTest, AMeshWallStopsTheRobotAndReturnsTheRangeSensorsBeams) {
   EXPECT_NE(text.str().find("\"key\": \"scene.objects[0].file\""), std::string::npos) << text.str();
 }
 
+// An arch 3 m ahead (its opening 1.2 m wide, 0.7 m high: the hull is 0.42 m wide and
+// 0.28 m high, the tracks' outer edges 0.6 m apart) driven through, or, with its
+// bounding box as the collision solid, driven into.
+std::vector<Eigen::Vector3d> DriveAtArch(const std::string& collision) {
+  test_mesh::ObjArch("arch.obj");
+  const fs::path dir = fs::path(testing::TempDir()) / ("mesh_arch_" + collision);
+  const std::string yaml = test_mesh::Write(
+      "mesh_arch_" + collision + ".yaml",
+      "duration_s: 14\n"
+      "drive:\n  speed_mps: 0.5\n  waypoints: [[0, 0], [6, 0]]\n"
+      "robot:\n  range_sensor: {enabled: true, noise_std_m: 0}\n"
+      "scene:\n  terrain: {extent_m: [-5, -5, 10, 5]}\n"
+      "  objects:\n    - {type: mesh, file: arch.obj, center: [3, 0], collision: " +
+          collision + "}\n");
+  runner::RunToFolder(scenario::LoadScenario(yaml), dir);
+  return TruePositions(dir);
+}
+
+TEST(MeshClosedLoopTest, TheRobotDrivesUnderAnArchTheRangeSensorSeesThrough) {
+  const std::vector<Eigen::Vector3d> path = DriveAtArch("mesh");
+  ASSERT_GT(path.size(), 100u);
+  double furthest = -1e9, widest = 0.0;
+  for (const Eigen::Vector3d& p : path) {
+    furthest = std::max(furthest, p.x());
+    widest = std::max(widest, std::abs(p.y()));
+  }
+  EXPECT_GT(furthest, 5.5);  // through the arch, untouched
+  EXPECT_LT(widest, 0.05);
+  // The first scan: straight ahead through the opening, nothing within 8 m; 13° to the
+  // left the pillar's face at x = 3 (y 0.646 m there), 2.8 m ahead of the sensor.
+  const std::vector<std::vector<double>> scans =
+      Rows(fs::path(testing::TempDir()) / "mesh_arch_mesh" / "scan.csv");
+  ASSERT_FALSE(scans.empty());
+  EXPECT_TRUE(std::isinf(scans.front()[1]));
+  EXPECT_NEAR(scans.front()[1 + 13], (2.8 - path.front().x()) / std::cos(13 * M_PI / 180), 2e-3);
+  EXPECT_NEAR(scans.front()[1 + 360 - 13], scans.front()[1 + 13], 1e-6);
+  // Its bounding box as the solid: the hull stops at the arch's face.
+  double stopped = -1e9;
+  for (const Eigen::Vector3d& p : DriveAtArch("box")) stopped = std::max(stopped, p.x());
+  EXPECT_LT(stopped, 3.0 - 0.35 + 0.02);
+}
+
 TEST(MeshClosedLoopTest, TheTracksDriveOnAGroundMeshAtItsHeights) {
   // A ramp: flat for x < 2, rising 10 % from x = 2 to 12, two facets per face.
   test_mesh::Write("ramp.obj",

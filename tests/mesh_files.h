@@ -45,6 +45,28 @@ inline std::string ObjBox(const std::string& name, double x0, double y0, double 
   return Write(name, obj.str());
 }
 
+/// An OBJ arch: two pillars 0.3 m wide either side of an opening 1.2 m wide (y from
+/// −0.6 to 0.6) and 0.7 m high, a lintel 0.2 m thick across them, all 0.4 m deep in x.
+inline std::string ObjArch(const std::string& name) {
+  std::ostringstream obj;
+  const double boxes[3][6] = {
+      {0, -0.9, 0, 0.4, -0.6, 0.9}, {0, 0.6, 0, 0.4, 0.9, 0.9}, {0, -0.9, 0.7, 0.4, 0.9, 0.9}};
+  for (int b = 0; b < 3; ++b) {
+    const double* x = boxes[b];
+    for (int k = 0; k < 8; ++k) {
+      obj << "v " << (k & 1 ? x[3] : x[0]) << ' ' << (k & 2 ? x[4] : x[1]) << ' '
+          << (k & 4 ? x[5] : x[2]) << '\n';
+    }
+    const int o = 8 * b;
+    const int faces[6][4] = {{1, 3, 4, 2}, {5, 6, 8, 7}, {1, 2, 6, 5},
+                             {3, 7, 8, 4}, {1, 5, 7, 3}, {2, 4, 8, 6}};
+    for (const auto& f : faces) {
+      obj << "f " << o + f[0] << ' ' << o + f[1] << ' ' << o + f[2] << ' ' << o + f[3] << '\n';
+    }
+  }
+  return Write(name, obj.str());
+}
+
 /// An ASCII PLY: a square 2 m × 1 m at height 0.5 m (two triangles) and one more
 /// triangle standing on its edge.
 inline std::string PlySquare(const std::string& name) {
