@@ -1,11 +1,12 @@
 // OSMesa renderer (see renderer.h).
 //
-// Fixed-function OpenGL in the compatibility profile, back faces culled: one
-// display list per object compiled once, the terrain in chunks per material meshed at the
-// detail the distance from the detail centre asks for (TerrainDetail), kept
-// while it holds; textures uploaded once with a mip chain built here (box
-// filter) so that the bytes do not depend on the driver's mipmap generation.
-// Each frame: cull chunks against the view frustum, draw near to far into a
+// OpenGL in the compatibility profile, every surface drawn with one shader program
+// (SurfaceProgram: light per vertex, the texture filtered over each pixel's footprint),
+// back faces culled: one display list per object compiled once, the terrain in chunks
+// per material meshed at the detail the distance from the detail centre asks for
+// (TerrainDetail), kept while it holds; textures uploaded once with their mip chains
+// and footprint layers built here (FootprintMips), so that the bytes do not depend on
+// the driver. Each frame: cull chunks against the view frustum, draw near to far into a
 // frame buffer object of one 8-bit channel, read it back flipped to top-down rows.
 #include "trackbed/render/renderer.h"
 
@@ -23,7 +24,8 @@
 #include <optional>
 #include <stdexcept>
 
-#include "lit_program.h"
+#include "footprint_mips.h"
+#include "surface_program.h"
 #include "trackbed/common/option_error.h"
 #include "trackbed/common/units.h"
 #include "trackbed/render/far_terrain.h"
@@ -76,13 +78,20 @@ struct Drawable {
   int terrain = -1;                      // index of a terrain drawable
   Eigen::AlignedBox3d box;               // world-frame bounds, for culling
   std::vector<FarVersion> far_versions;  // coarser and coarser
+  bool curved = false;                   // a cylinder's outline: drawn antialiased
+  GLuint band_list = 0;                  // the band about a curved object's outline
+  bool flat = false;                     // a box or the ceiling: read by footprint
 };
 
 // A texture as uploaded: GL name and world size of one repeat.
 struct GlTexture {
   GLuint name = 0;
   double meters_per_repeat = 1.0;
+  bool ground = false;  // with the layers for long footprints
 };
+
+// Directions of the footprint layers of a ground's texture (footprint_mips.h).
+constexpr int kFootprintDirections = 16;
 
 // One material of one terrain chunk, and its mesh for the last detail centre; or
 // one piece of the far terrain, its mesh fixed.
@@ -147,7 +156,8 @@ struct Renderer::Gl {
   std::vector<sim::OccluderSpec> occluders;
   std::vector<GLuint> occluder_lists;
   std::vector<std::pair<double, int>> draw_order;  // per frame, kept to avoid reallocation
-  std::unique_ptr<LitProgram> lit;                 // with scene lighting
+  std::unique_ptr<SurfaceProgram> program;         // draws every surface
+  bool lit = false;                                // with scene lighting: pre-exposed
   double exposure = 1.0;                           // what a lit render is pre-exposed for
 
   ~Gl() {
@@ -208,45 +218,44 @@ struct Renderer::Gl {
     }
   }
 
-  const GlTexture& Texture(const std::string& name, double fallback_albedo = 0.5) {
+  // The texture of an appearance, made and uploaded when first asked for; a ground's
+  // (`ground`) with the layers for long footprints (footprint_mips.h), which an
+  // object's is made without and gains when a ground asks for it too.
+  const GlTexture& Texture(const std::string& name, double fallback_albedo = 0.5,
+                           bool ground = false) {
     auto it = textures.find(name);
-    if (it != textures.end()) return it->second;
-    const std::uint64_t s = seed ^ TextureNameHash(name);
-    render::Texture t = HasTexture(name) ? MakeTexture(name, s, appearance.texture_size_px)
-                                         : MakePlainTexture(fallback_albedo, s, 64);
-    GlTexture g;
-    g.meters_per_repeat = t.meters_per_repeat;
-    glGenTextures(1, &g.name);
-    glBindTexture(GL_TEXTURE_2D, g.name);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
-    // Mip chain by 2 x 2 box filtering, down to 1 x 1.
-    std::vector<std::uint8_t> level = t.texels;
-    int size = t.size_px;
-    for (int lod = 0;; ++lod) {
-      glTexImage2D(GL_TEXTURE_2D, lod, GL_LUMINANCE8, size, size, 0, GL_LUMINANCE, GL_UNSIGNED_BYTE,
-                   level.data());
-      if (size == 1) break;
-      const int half = size / 2;
-      std::vector<std::uint8_t> next(static_cast<std::size_t>(half) * half);
-      for (int y = 0; y < half; ++y) {
-        for (int x = 0; x < half; ++x) {
-          const auto at = [&](int xx, int yy) {
-            return static_cast<int>(level[static_cast<std::size_t>(yy) * size + xx]);
-          };
-          next[static_cast<std::size_t>(y) * half + x] =
-              static_cast<std::uint8_t>((at(2 * x, 2 * y) + at(2 * x + 1, 2 * y) +
-                                         at(2 * x, 2 * y + 1) + at(2 * x + 1, 2 * y + 1) + 2) /
-                                        4);
-        }
-      }
-      level.swap(next);
-      size = half;
+    if (it != textures.end() && (it->second.ground || !ground)) return it->second;
+    if (it == textures.end()) {
+      GlTexture g;
+      glGenTextures(1, &g.name);
+      it = textures.emplace(name, g).first;
     }
-    return textures.emplace(name, g).first->second;
+    const std::uint64_t s = seed ^ TextureNameHash(name);
+    const render::Texture t = HasTexture(name) ? MakeTexture(name, s, appearance.texture_size_px)
+                                               : MakePlainTexture(fallback_albedo, s, 64);
+    it->second.meters_per_repeat = t.meters_per_repeat;
+    it->second.ground = ground;
+    UploadTexture(it->second, t);
+    return it->second;
+  }
+
+  // Puts `t` into texture `g` as an array of its footprint layers (footprint_mips.h),
+  // each with its mip chain, filtered trilinearly.
+  static void UploadTexture(const GlTexture& g, const render::Texture& t) {
+    const FootprintMips mips = MakeFootprintMips(t, g.ground ? kFootprintDirections : 0);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, g.name);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAX_LEVEL,
+                    static_cast<GLint>(mips.levels.size()) - 1);
+    for (std::size_t lod = 0; lod < mips.levels.size(); ++lod) {
+      const int size = t.size_px >> lod;
+      glTexImage3D(GL_TEXTURE_2D_ARRAY, static_cast<GLint>(lod), GL_R8, size, size, mips.layers, 0,
+                   GL_RED, GL_UNSIGNED_BYTE, mips.levels[lod].data());
+    }
   }
 
   // Terrain drawables, first in `drawables`: one per (chunk, material) of the near
@@ -262,7 +271,7 @@ struct Renderer::Gl {
       const sim::TerrainMaterial& material = terrain->materials()[chunk.material];
       TerrainDrawable t;
       t.chunk = c;
-      t.texture = Texture(material.name, material.albedo);
+      t.texture = Texture(material.name, material.albedo, true);
       terrain_drawables.push_back(std::move(t));
       Drawable d;
       d.box = chunk.box;
@@ -277,14 +286,14 @@ struct Renderer::Gl {
   void BuildFarTerrain(const GridWindow& w, std::vector<Drawable>* boxes) {
     std::vector<double> meters_per_repeat;
     for (const sim::TerrainMaterial& m : terrain->materials()) {
-      meters_per_repeat.push_back(Texture(m.name, m.albedo).meters_per_repeat);
+      meters_per_repeat.push_back(Texture(m.name, m.albedo, true).meters_per_repeat);
     }
     FarTerrain far(*terrain, w, far_m, meters_per_repeat);
     for (const FarTerrain::Piece& piece : far.pieces()) {
       const sim::TerrainMaterial& material = terrain->materials()[piece.material];
       TerrainDrawable t;
       t.fixed = true;
-      t.texture = Texture(material.name, material.albedo);
+      t.texture = Texture(material.name, material.albedo, true);
       t.mesh.vertices = piece.vertices;
       t.mesh.indices = piece.indices;
       t.mesh.level = TerrainDetail::kMaxLevel;
@@ -364,7 +373,7 @@ struct Renderer::Gl {
       }
     }
     if (t.index_count == 0) return;
-    glBindTexture(GL_TEXTURE_2D, t.texture.name);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, t.texture.name);
     glBindBuffer(GL_ARRAY_BUFFER, t.vertex_buffer);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, t.index_buffer);
     const auto offset = [](std::size_t bytes) { return reinterpret_cast<const void*>(bytes); };
@@ -450,6 +459,33 @@ struct Renderer::Gl {
     }
   }
 
+  // The pixels the outlines of curved objects cross: the bands about them, far to near,
+  // blended over what is behind by the fraction of each pixel inside; then their depth
+  // where more than half inside (surface_program.h).
+  void DrawOutlineFringes(const std::vector<std::pair<double, int>>& order) {
+    glDisable(GL_CULL_FACE);  // the bands' winding follows the view
+    program->Use(SurfaceProgram::Kind::kOutlineFringe);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    glDepthMask(GL_FALSE);
+    glDepthFunc(GL_LEQUAL);
+    for (auto it = order.rbegin(); it != order.rend(); ++it) {
+      const Drawable& d = drawables[static_cast<std::size_t>(it->second)];
+      if (d.curved) glCallList(d.band_list);
+    }
+    glDisable(GL_BLEND);
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    program->Use(SurfaceProgram::Kind::kOutlineDepth);
+    for (const auto& [distance, k] : order) {
+      const Drawable& d = drawables[static_cast<std::size_t>(k)];
+      if (d.curved) glCallList(d.band_list);
+    }
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glEnable(GL_CULL_FACE);
+  }
+
   // The version of an object to draw: the coarsest whose silhouette departs from
   // the full one's by less than `object_far_error_px`, seen from the detail centre at
   // the distance of the object's nearest side (so both cameras of a pair draw the same).
@@ -479,12 +515,14 @@ struct Renderer::Gl {
   // are made before the list is compiled: made inside it, their upload would be
   // compiled into the list instead of done.
   GLuint CompileObject(const sim::StaticObject& o, const TreeTessellation& level) {
-    const GlTexture& tex = Texture(o.appearance);
+    // A box's faces (walls, seen at grazing angles) read by footprint, as the ground.
+    const bool flat = o.shape == sim::StaticObject::Shape::kBox;
+    const GlTexture& tex = Texture(o.appearance, 0.5, flat);
     const bool crown = DrawsCrown(o);
     const GlTexture& leaves = crown ? Texture("leaves") : tex;
     const GLuint list = glGenLists(1);
     glNewList(list, GL_COMPILE);
-    glBindTexture(GL_TEXTURE_2D, tex.name);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, tex.name);
     glPushMatrix();
     glTranslated(o.center_m.x(), o.center_m.y(), o.base_z_m);
     if (o.shape == sim::StaticObject::Shape::kBox) {
@@ -492,14 +530,59 @@ struct Renderer::Gl {
       glTranslated(0, 0, o.size_m.z() / 2);
       DrawBox(o.size_m, tex.meters_per_repeat);
     } else {
+      glMultiTexCoord4d(GL_TEXTURE1, 0, 0, 0, -o.radius_m);  // the outline's shape
       DrawCylinder(o.radius_m, o.height_m, tex.meters_per_repeat, level.trunk_slices);
       if (crown) {
         // Visual-only foliage: a crown a third of the trunk's height across.
-        glBindTexture(GL_TEXTURE_2D, leaves.name);
+        glBindTexture(GL_TEXTURE_2D_ARRAY, leaves.name);
         glTranslated(0, 0, o.height_m);
+        glMultiTexCoord4d(GL_TEXTURE1, 0, 0, 0, TreeCrownRadius(o));
         DrawSphere(TreeCrownRadius(o), leaves.meters_per_repeat, level.crown_slices,
                    level.crown_stacks);
       }
+    }
+    glPopMatrix();
+    glEndList();
+    return list;
+  }
+
+  // The display list of the bands about a cylinder object's outlines (its trunk's and
+  // its crown's), in the vertices the band program reads (surface_program.cpp): each
+  // band's shape on texture unit 1, its texture's repeat and a cylinder's height on
+  // unit 2, where each vertex lies on the band on unit 0.
+  GLuint CompileBands(const sim::StaticObject& o) {
+    const GlTexture& tex = Texture(o.appearance);
+    const bool crown = DrawsCrown(o);
+    const GlTexture& leaves = crown ? Texture("leaves") : tex;
+    const GLuint list = glGenLists(1);
+    glNewList(list, GL_COMPILE);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, tex.name);
+    glPushMatrix();
+    glTranslated(o.center_m.x(), o.center_m.y(), o.base_z_m);
+    glMultiTexCoord4d(GL_TEXTURE1, 0, 0, 0, -o.radius_m);
+    glMultiTexCoord4d(GL_TEXTURE2, 1.0 / tex.meters_per_repeat, o.height_m, 0, 0);
+    glBegin(GL_QUADS);
+    for (double side : {-1.0, 1.0}) {
+      for (const auto& [end, edge] : {std::pair{-1.0, -1.0}, std::pair{-1.0, 1.0},
+                                      std::pair{1.0, 1.0}, std::pair{1.0, -1.0}}) {
+        glMultiTexCoord4d(GL_TEXTURE0, side, end, edge, 0);
+        glVertex3d(0, 0, end > 0 ? o.height_m : 0.0);
+      }
+    }
+    glEnd();
+    if (crown) {
+      glBindTexture(GL_TEXTURE_2D_ARRAY, leaves.name);
+      glMultiTexCoord4d(GL_TEXTURE1, 0, 0, o.height_m, TreeCrownRadius(o));
+      glMultiTexCoord4d(GL_TEXTURE2, 1.0 / leaves.meters_per_repeat, 0, 0, 0);
+      glBegin(GL_QUAD_STRIP);
+      for (int k = 0; k <= kOutlineRingSegments; ++k) {
+        const double a = 2 * M_PI * k / kOutlineRingSegments;
+        for (double edge : {-1.0, 1.0}) {
+          glMultiTexCoord4d(GL_TEXTURE0, std::cos(a), std::sin(a), edge, 0);
+          glVertex3d(0, 0, o.height_m);
+        }
+      }
+      glEnd();
     }
     glPopMatrix();
     glEndList();
@@ -529,6 +612,9 @@ struct Renderer::Gl {
       Drawable d;
       d.list = CompileObject(o, kTreeLevels[0]);
       d.box = DrawnBounds(o);
+      d.curved = o.shape == sim::StaticObject::Shape::kCylinder;
+      if (d.curved) d.band_list = CompileBands(o);
+      d.flat = o.shape == sim::StaticObject::Shape::kBox;
       if (IsTree(o) && appearance.object_far_error_px > 0.0) {
         const double crown = DrawsCrown(o) ? TreeCrownRadius(o) : 0.0;
         for (std::size_t l = 1; l < kTreeLevels.size(); ++l) {
@@ -540,14 +626,15 @@ struct Renderer::Gl {
     }
     if (appearance.ceiling_height_m > 0.0) {
       const sim::Terrain& t = *terrain;
-      const GlTexture& tex = Texture("ceiling");
+      const GlTexture& tex = Texture("ceiling", 0.5, true);
       const double z = appearance.ceiling_height_m, m = tex.meters_per_repeat;
       Drawable d;
+      d.flat = true;
       d.box = Eigen::AlignedBox3d(Eigen::Vector3d(t.x_min(), t.y_min(), z),
                                   Eigen::Vector3d(t.x_max(), t.y_max(), z));
       d.list = glGenLists(1);
       glNewList(d.list, GL_COMPILE);
-      glBindTexture(GL_TEXTURE_2D, tex.name);
+      glBindTexture(GL_TEXTURE_2D_ARRAY, tex.name);
       glBegin(GL_QUADS);
       // Clockwise seen from above: the front face, and its normal, look down,
       // so the sun above does not light the underside.
@@ -567,7 +654,7 @@ struct Renderer::Gl {
       const GlTexture& tex = Texture(o.appearance);
       const GLuint list = glGenLists(1);
       glNewList(list, GL_COMPILE);
-      glBindTexture(GL_TEXTURE_2D, tex.name);
+      glBindTexture(GL_TEXTURE_2D_ARRAY, tex.name);
       const double head = std::min(0.12, 0.07 * o.height_m);
       DrawCylinder(o.radius_m, o.height_m - 2 * head, tex.meters_per_repeat);
       glTranslated(0, 0, o.height_m - head);
@@ -621,24 +708,6 @@ Renderer::Renderer(const sim::World& world, const SceneAppearance& appearance,
   glEnable(GL_CULL_FACE);
   glCullFace(GL_BACK);
   glFrontFace(GL_CCW);
-  glEnable(GL_TEXTURE_2D);
-  glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE);
-  glShadeModel(GL_SMOOTH);
-  glEnable(GL_LIGHTING);
-  glEnable(GL_LIGHT0);
-  const float ambient[] = {static_cast<float>(appearance.ambient),
-                           static_cast<float>(appearance.ambient),
-                           static_cast<float>(appearance.ambient), 1.0f};
-  const float diffuse[] = {static_cast<float>(appearance.diffuse),
-                           static_cast<float>(appearance.diffuse),
-                           static_cast<float>(appearance.diffuse), 1.0f};
-  const float black[] = {0, 0, 0, 1}, white[] = {1, 1, 1, 1};
-  glLightModelfv(GL_LIGHT_MODEL_AMBIENT, ambient);
-  glLightfv(GL_LIGHT0, GL_AMBIENT, black);
-  glLightfv(GL_LIGHT0, GL_DIFFUSE, diffuse);
-  glLightfv(GL_LIGHT0, GL_SPECULAR, black);
-  glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT_AND_DIFFUSE, white);
-  glMaterialfv(GL_FRONT_AND_BACK, GL_SPECULAR, black);
   const float sky = static_cast<float>(appearance.sky_gray);
   glClearColor(sky, sky, sky, 1.0f);
 
@@ -647,20 +716,22 @@ Renderer::Renderer(const sim::World& world, const SceneAppearance& appearance,
   g.window = std::make_unique<TerrainWindow>(*g.terrain, appearance.terrain_full_detail_m);
   if (!g.window->paged()) g.FollowDetailCenter(Eigen::Vector2d::Zero());
   g.BuildObjects(world);
+  std::optional<LightMap> light_map;
   if (appearance.lighting) {
     const Eigen::Vector3d sun =
         SunDirection(appearance.sun_azimuth_deg, appearance.sun_elevation_deg);
-    g.lit = std::make_unique<LitProgram>(
-        BakeLightMap(world, *appearance.lighting, sun, appearance.tree_crowns), appearance.ambient,
-        appearance.diffuse);
+    light_map = BakeLightMap(world, *appearance.lighting, sun, appearance.tree_crowns);
   }
+  g.lit = light_map.has_value();
+  g.program = std::make_unique<SurfaceProgram>(light_map ? &*light_map : nullptr,
+                                               appearance.ambient, appearance.diffuse);
   if (glGetError() != GL_NO_ERROR)
     throw std::runtime_error("Renderer: OpenGL error while building");
 }
 
 Renderer::~Renderer() = default;
 
-bool Renderer::pre_exposed() const { return gl_->lit != nullptr; }
+bool Renderer::pre_exposed() const { return gl_->lit; }
 
 void Renderer::SetExposure(double exposure) {
   if (!gl_->lit) throw std::logic_error("Renderer::SetExposure: the scene has no lighting");
@@ -668,6 +739,19 @@ void Renderer::SetExposure(double exposure) {
     throw std::invalid_argument("Renderer::SetExposure: exposure must be > 0");
   }
   gl_->exposure = exposure;
+}
+
+void Renderer::ReplaceTexture(const std::string& appearance, const Texture& texture) {
+  auto it = gl_->textures.find(appearance);
+  if (it == gl_->textures.end()) return;
+  if (texture.meters_per_repeat != it->second.meters_per_repeat) {
+    throw std::invalid_argument("Renderer::ReplaceTexture: '" + appearance + "' repeats every " +
+                                std::to_string(it->second.meters_per_repeat) +
+                                " m, the texture every " +
+                                std::to_string(texture.meters_per_repeat));
+  }
+  gl_->MakeCurrent();
+  Gl::UploadTexture(it->second, texture);
 }
 
 std::string Renderer::gl_description() const {
@@ -708,10 +792,7 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
   glLoadMatrixd(view.data());
   const Eigen::Vector3d sun_world =
       SunDirection(g.appearance.sun_azimuth_deg, g.appearance.sun_elevation_deg);
-  const float sun[] = {static_cast<float>(sun_world.x()), static_cast<float>(sun_world.y()),
-                       static_cast<float>(sun_world.z()), 0.0f};
-  glLightfv(GL_LIGHT0, GL_POSITION, sun);
-  if (g.lit) g.lit->Begin(view, sun_world, g.exposure);
+  g.program->Begin(view, sun_world, g.lit ? g.exposure : 1.0, K);
 
   // Frustum culling in camera coordinates: a box is skipped when all its
   // corners are outside one of the six planes.
@@ -753,8 +834,12 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
   for (const auto& [distance, k] : order) {
     const Drawable& d = g.drawables[static_cast<std::size_t>(k)];
     if (d.terrain >= 0) {
+      g.program->Use(SurfaceProgram::Kind::kFootprint);
       g.DrawTerrain(g.terrain_drawables[static_cast<std::size_t>(d.terrain)], center_xy);
     } else {
+      g.program->Use(d.flat     ? SurfaceProgram::Kind::kFootprint
+                     : d.curved ? SurfaceProgram::Kind::kOutlineCore
+                                : SurfaceProgram::Kind::kIsotropic);
       glCallList(g.ObjectList(d, K.fx, center_xy));
     }
   }
@@ -763,6 +848,7 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
   glDisableClientState(GL_VERTEX_ARRAY);
   glDisableClientState(GL_NORMAL_ARRAY);
   glDisableClientState(GL_TEXTURE_COORD_ARRAY);
+  g.program->Use(SurfaceProgram::Kind::kIsotropic);
   for (std::size_t k = 0; k < g.occluders.size(); ++k) {
     const sim::OccluderPose pose = sim::OccluderPoseAt(g.occluders[k], t_s);
     glPushMatrix();
@@ -772,7 +858,8 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
     glCallList(g.occluder_lists[k]);
     glPopMatrix();
   }
-  if (g.lit) g.lit->End();
+  g.DrawOutlineFringes(order);
+  g.program->End();
   g.ReadBack(gray, depth);
 }
 

@@ -24,8 +24,10 @@ double Ate(const runner::RunMetrics& m, const char* name) {
 TEST(LocalizationClosedLoopTest, InThePlainCorridorWheelOdometryBeatsVision) {
   const runner::RunMetrics m = RunScene("corridor.yaml", 30.0);
   ASSERT_TRUE(m.completed) << m.stop_reason;
-  // Few corners: most VO frames fail, so VO loses most of the motion.
-  EXPECT_GT(m.localization.vo_failures, m.localization.vo_frames / 2);
+  // Few corners: VO fails on many of its frames (58 of 301 with the walls read over
+  // each pixel's footprint, 147 read at its length, 184 on main's sampling;
+  // docs/results/2026-12-07-ground-sampling.md), so it loses most of the motion.
+  EXPECT_GT(m.localization.vo_failures, m.localization.vo_frames / 8);
   EXPECT_LT(Ate(m, "wheel_odometry"), 0.05);
   EXPECT_LT(10.0 * Ate(m, "wheel_odometry"), Ate(m, "visual_odometry"));
   // Fusion leans on the wheels there and stays close to the truth.

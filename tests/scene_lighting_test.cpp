@@ -1,6 +1,7 @@
 // Light that changes (render/scene_lighting.h): the baked shadows fall where the sun's
 // geometry puts them, a zone's gain and the exposure scale the rendered grey levels, and
-// the lit shader draws what the fixed-function pipeline draws where nothing changes.
+// the surface program with a light map draws what it draws without one where nothing
+// changes.
 #include "trackbed/render/scene_lighting.h"
 
 #include <cmath>
@@ -106,7 +107,7 @@ double WorstDifference(const GrayImage& a, const GrayImage& b, double scale,
   return worst;
 }
 
-TEST(SceneLightingTest, TheLitShaderDrawsWhatTheFixedPipelineDraws) {
+TEST(SceneLightingTest, TheLitProgramDrawsWhatTheUnlitOneDraws) {
   const sim::World world = test::FlatWorld({});
   SceneAppearance plain;
   plain.sun_elevation_deg = 60.0;
@@ -116,7 +117,7 @@ TEST(SceneLightingTest, TheLitShaderDrawsWhatTheFixedPipelineDraws) {
   lit.lighting.emplace();  // no zones, nothing casts a shadow
   const GrayImage a = RenderDown(world, plain, 1.0, 4.0), b = RenderDown(world, lit, 1.0, 4.0);
   const double worst = WorstDifference(a, b, 1.0, [](int) { return true; });
-  std::printf("fixed-function against the lit shader: at most %.0f grey levels apart\n", worst);
+  std::printf("unlit against lit program: at most %.0f grey levels apart\n", worst);
   EXPECT_LE(worst, 1.0);
 }
 

@@ -48,8 +48,14 @@ TEST(TeachRepeatOcclusionTest, ThreeDRecoversTheOccludedFeaturesTwoDDoesNot) {
   EXPECT_GT(t3.recovery_rate_pooled, 0.5);
 
   // The 2D repeat loses the features the person passes over for good: walking across
-  // the whole view 1.5 m ahead, that is every feature of the milestone, and with none
-  // left the repeat is lost at the first place.
+  // the whole view 1.5 m ahead, most of the milestone's, and it finds none of them
+  // again, at any place it reaches. Whether it then goes on is not recovery: as the
+  // person covers them, the funnel error of those left can rise past the milestone
+  // switch's hysteresis (1 px), and once too few are left to fit the progress the
+  // switch takes that for the milestone passed, standing still, and goes on with the
+  // next milestone's features (with the images of docs/rendering.md the error rises
+  // 1.55 -> 2.87 px and the repeat finishes; with blurrier walls 1.43 -> 2.06 px and it
+  // is lost: docs/results/2026-12-07-ground-sampling.md).
   const TeachRepeatMetrics t2 = RunShortRoom("2d");
   ASSERT_EQ(t2.places.size(), 3u);
   EXPECT_GT(t2.places[0].lost, 20);
@@ -57,7 +63,6 @@ TEST(TeachRepeatOcclusionTest, ThreeDRecoversTheOccludedFeaturesTwoDDoesNot) {
     EXPECT_EQ(p.recovered, 0) << "place at " << p.start_s << " s";
   }
   EXPECT_EQ(t2.features_recovered, 0);
-  EXPECT_EQ(t2.status, "lost");
 }
 
 TEST(TeachRepeatOcclusionTest, ACrossingThatNeverEndsIsRejected) {

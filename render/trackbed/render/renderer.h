@@ -16,6 +16,7 @@
 
 #include "trackbed/render/image.h"
 #include "trackbed/render/pinhole.h"
+#include "trackbed/render/procedural_texture.h"
 #include "trackbed/render/scene_lighting.h"
 #include "trackbed/sim/occluder.h"
 #include "trackbed/sim/world.h"
@@ -50,7 +51,7 @@ struct SceneAppearance {
   /// every object at full detail.
   double object_far_error_px = 0.0;
   /// Light that changes across the scene: shadows and lit zones (scene_lighting.h).
-  /// Absent: the whole scene is lit alike, by the fixed-function pipeline.
+  /// Absent: the whole scene is lit alike.
   std::optional<SceneLighting> lighting;
 
   void Validate() const;
@@ -103,6 +104,12 @@ class Renderer {
   /// The exposure the following renders are pre-exposed for (relative light, > 0).
   /// Throws std::logic_error without scene lighting.
   void SetExposure(double exposure);
+
+  /// Draws every surface of `appearance` (a texture or terrain material name) with
+  /// `texture` from now on, in place of its procedural one: a calibration target. No
+  /// effect when no surface has that appearance. Throws std::invalid_argument when its
+  /// meters_per_repeat is not the procedural one's (the meshes are scaled by it).
+  void ReplaceTexture(const std::string& appearance, const Texture& texture);
 
   /// OpenGL renderer and version strings, e.g. "llvmpipe (LLVM 15.0.6, 256 bits) / 4.5
   /// (Compatibility Profile) Mesa 22.3.6".
