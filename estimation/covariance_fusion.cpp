@@ -45,12 +45,26 @@ geometry::Pose2 CombineIncrements(const geometry::Pose2& prediction, const Eigen
   return {prediction.x + d(0), prediction.y + d(1), geometry::WrapAngle(prediction.yaw + d(2))};
 }
 
+Eigen::Matrix3d ComposeCovariance(const geometry::Pose2& pose, const Eigen::Matrix3d& P,
+                                  const geometry::Pose2& increment, const Eigen::Matrix3d& C) {
+  const double c = std::cos(pose.yaw), s = std::sin(pose.yaw);
+  Eigen::Matrix3d F = Eigen::Matrix3d::Identity();
+  F(0, 2) = -s * increment.x - c * increment.y;
+  F(1, 2) = c * increment.x - s * increment.y;
+  Eigen::Matrix3d G = Eigen::Matrix3d::Identity();
+  G.topLeftCorner<2, 2>() << c, -s, s, c;
+  return F * P * F.transpose() + G * C * G.transpose();
+}
+
 bool CovarianceFusion::Add(const geometry::Pose2& prediction, const Eigen::Matrix3d& Q,
                            const std::optional<geometry::Pose2>& measurement,
                            const Eigen::Matrix3d& R) {
   bool used = false;
   const geometry::Pose2 increment =
       measurement ? CombineIncrements(prediction, Q, *measurement, R, gate_, &used) : prediction;
+  // The fused increment's covariance: (I − K)·Q, K = Q·(Q + R)⁻¹, where VO's was used.
+  const Eigen::Matrix3d C = used ? Eigen::Matrix3d(Q - Q * (Q + R).inverse() * Q) : Q;
+  covariance_ = ComposeCovariance(pose_, covariance_, increment, 0.5 * (C + C.transpose()));
   pose_ = geometry::Compose(pose_, increment);
   return used;
 }

@@ -2,6 +2,7 @@
 #include "trackbed/estimation/localization.h"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -31,6 +32,7 @@ void LocalizationOptions::Validate() const {
   option_check::Nested("fusion", fusion);
   option_check::Nested("gyro", gyro);
   option_check::Nested("gyro_model", gyro_model);
+  option_check::Nested("localization_lost", localization_lost);
   if (min_inliers_for_slip < 0) {
     throw OptionError("min_inliers_for_slip",
                       "must be >= 0 (got " + std::to_string(min_inliers_for_slip) + ")");
@@ -301,6 +303,11 @@ LocalizationFrameReport LocalizationStack::ProcessStereoFrame(double t_s, const 
     // horizontal, and chaining the planar parts of tilted increments over-counts the
     // horizontal distance (by 1 − cos(pitch)) and leaks roll into heading.
     vo_increment = Between(planar_before, geometry::PlanarPose(T_world_body_vo_));
+    // VO's pose covariance: the frames' composed; without one, VO cannot say.
+    vo_pose_covariance_ = vo_planar_covariance
+                              ? ComposeCovariance(planar_before, vo_pose_covariance_, *vo_increment,
+                                                  *vo_planar_covariance)
+                              : Eigen::Matrix3d::Constant(std::numeric_limits<double>::infinity());
     if (has_frame_ && t_s > t_frame_ && report.vo.inliers >= options_.min_inliers_for_slip) {
       // Slip from the independent (visual) velocity over the frame interval.
       const double dt = t_s - t_frame_;
@@ -319,6 +326,10 @@ LocalizationFrameReport LocalizationStack::ProcessStereoFrame(double t_s, const 
     T_world_body_vo_ =
         T_world_body_vo_ * ContinuedMotion(vo_last_motion_, vo_last_dt_, t_s - t_frame_);
     report.vo_coasted = true;
+  }
+  if (!report.vo_valid && has_frame_) {
+    // A frame without a motion: VO alone knows nothing of this interval.
+    vo_pose_covariance_.setConstant(std::numeric_limits<double>::infinity());
   }
   // Only a measured motion enters the EKF; after a failed or coasted frame the next
   // motion starts from here.
@@ -415,6 +426,14 @@ Eigen::Isometry3d LocalizationStack::fused() const {
   }
   return ToIsometry(Compose(fused_.pose(), Between(wheel_at_frame_, wheel_for_fusion().pose())),
                     z0_);
+}
+
+PoseCovariances LocalizationStack::pose_covariances() const {
+  PoseCovariances c;
+  if (vo_) c.visual_odometry = vo_pose_covariance_;
+  if (covariance_fused_) c.fused = covariance_fused_->covariance();
+  c.ekf = ekf_.pose_covariance();
+  return c;
 }
 
 std::optional<Eigen::Isometry3d> LocalizationStack::fused_ham2012() const {

@@ -48,6 +48,7 @@ EstimateSample EstimateAfterEncoders(estimation::LocalizationStack& stack, const
   e.ekf = stack.ekf();
   e.has_camera = has_camera;
   e.slip = stack.slip();
+  e.covariances = stack.pose_covariances();
   return e;
 }
 
@@ -209,6 +210,7 @@ void ClosedLoop::Impl::BuildSoftware() {
     stack_ = std::make_unique<estimation::LocalizationStack>(
         LocalizationOptionsOf(scenario_, robot_.given), given_stereo,
         plant_->vehicle->chassis().T_world_body);
+    estimates_ = EstimatorScoring(scenario_.estimation.localization.localization_lost);
   }
   if (stack_ && plant_->camera) worker_ = std::make_unique<OrderedWorker>();
   if (!options_.commander) {

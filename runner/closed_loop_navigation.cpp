@@ -28,7 +28,8 @@ ClosedLoopNavigation::ClosedLoopNavigation(
       goal_{s.navigation.goal.x_m, s.navigation.goal.y_m,
             units::Radians(s.navigation.goal.yaw_deg)},
       period_s_(s.navigation.navigator.setup.control_period_s),
-      time_limit_s_(s.duration_s),
+      time_limit_s_(s.RunDuration(scenario::DriveSource::kScenario)),
+      standstill_s_(s.drive.start_standstill_s),
       gauge_eff_m_(s.estimation.icr_expansion * s.robot.vehicle.track_gauge_m),
       max_yaw_rate_radps_(s.navigation.max_yaw_rate_radps),
       mount_xy_m_(s.robot.range_sensor.mount_m.head<2>()),
@@ -51,6 +52,9 @@ ControlOutput ClosedLoopNavigation::Update(const ControlInput& input) {
                                     : input.estimates->wheel_odometry());
   };
   ControlOutput out;
+  // The start standstill (drive.start_standstill_s): the tracks held at zero, so the
+  // stack takes the gyro's bias; the navigator and its log start after it.
+  if (input.t_s < standstill_s_ - 1e-9) return out;
   out.tracks = Command(input.t_s, believed(), input.T_world_body);
   if (on_step_) on_step_(log_.back());
   if (finished()) out.stop_reason = "navigation " + Metrics(false).status;
@@ -72,6 +76,15 @@ kinematics::TrackSpeeds ClosedLoopNavigation::Command(double t_s, const geometry
     navigation::RangeScan scan{scan_->ranges_m, scan_->angles_rad, scan_->max_range_m};
     obstacles_ = navigation::ClusterScan(scan, sensor, clustering_);
   }
+  if (last_pose_ && t_s > last_pose_->first) {
+    // The twist the believed pose moved by over the last period: the robot's as measured,
+    // which the skid, the yaw-rate limit below and the tracks' dynamics set apart from
+    // the last command.
+    const double dt = t_s - last_pose_->first;
+    const geometry::Pose2 step = geometry::Between(last_pose_->second, pose);
+    navigator_->SetMeasuredTwist({step.x / dt, step.yaw / dt});
+  }
+  last_pose_ = std::make_pair(t_s, pose);
   const navigation::NavigationCommand c = navigator_->Update(pose, obstacles_);
   status_ = c.status;
   const geometry::Pose2 truth = geometry::PlanarPose(T_world_body);

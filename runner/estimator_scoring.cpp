@@ -22,11 +22,26 @@ void EstimatorScoring::Add(const RunSample& truth, const EstimateSample& e) {
     has_fused_ham2012_ = true;
     fused_ham2012_.Add(T_true, *e.fused_ham2012);
   }
+  vo_uncertainty_.Add(e.t_s, "vo_frames_composed", e.covariances.visual_odometry, lost_bound_);
+  fused_uncertainty_.Add(e.t_s, "covariance_fusion", e.covariances.fused, lost_bound_);
+  ekf_uncertainty_.Add(e.t_s, "ekf_state", e.covariances.ekf, lost_bound_);
   for (int side = 0; side < 2; ++side) {
     const double estimated = side == 0 ? e.slip.left_mps : e.slip.right_mps;
     const double err = estimated - truth.tracks[side].slip_velocity_mps;
     slip_sq_sum_ += err * err;
     ++slip_samples_;
+  }
+}
+
+void EstimatorScoring::Uncertainty::Add(double t_s, const char* from,
+                                        const std::optional<Eigen::Matrix3d>& P,
+                                        const estimation::LocalizationLostOptions& bound) {
+  if (!P) return;
+  source = from;
+  last = estimation::UncertaintyOf(*P);
+  if (!lost && estimation::BeyondBound(last, bound)) {
+    lost = true;
+    t_lost_s = t_s;
   }
 }
 
@@ -70,20 +85,42 @@ EstimatorMetrics Score(const estimation::RunningTrajectoryScore& score, double d
   return m;
 }
 
+// `m` with an estimator's own uncertainty over the run.
+EstimatorMetrics WithUncertainty(EstimatorMetrics m, const char* source, bool lost, double t_lost_s,
+                                 const estimation::PoseUncertainty& last) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  m.localization_lost_time_s = kNaN;
+  m.final_position_sigma_m = kNaN;
+  m.final_heading_sigma_deg = kNaN;
+  if (!source) return m;
+  m.covariance = source;
+  m.localization_lost = lost;
+  if (lost) m.localization_lost_time_s = t_lost_s;
+  m.final_position_sigma_m = last.position_sigma_m;
+  m.final_heading_sigma_deg = last.heading_sigma_rad * 180.0 / M_PI;
+  return m;
+}
+
 }  // namespace
+
+EstimatorMetrics EstimatorScoring::Scored(const Running& score, const Uncertainty* u,
+                                          double distance_m) {
+  if (!u) return WithUncertainty(Score(score, distance_m), nullptr, false, 0.0, {});
+  return WithUncertainty(Score(score, distance_m), u->source, u->lost, u->t_lost_s, u->last);
+}
 
 std::map<std::string, EstimatorMetrics> EstimatorScoring::Metrics(double distance_m) const {
   std::map<std::string, EstimatorMetrics> m;
-  for (const auto& [name, score] : external_) m[name] = Score(score, distance_m);
+  for (const auto& [name, score] : external_) m[name] = Scored(score, nullptr, distance_m);
   if (empty()) return m;
-  m["wheel_odometry"] = Score(wheel_, distance_m);
-  m["wheel_odometry_noslip"] = Score(wheel_noslip_, distance_m);
-  m["ekf"] = Score(ekf_, distance_m);
+  m["wheel_odometry"] = Scored(wheel_, nullptr, distance_m);
+  m["wheel_odometry_noslip"] = Scored(wheel_noslip_, nullptr, distance_m);
+  m["ekf"] = Scored(ekf_, &ekf_uncertainty_, distance_m);
   if (has_camera_) {
-    m["fused"] = Score(fused_, distance_m);
-    m["visual_odometry"] = Score(vo_, distance_m);
+    m["fused"] = Scored(fused_, &fused_uncertainty_, distance_m);
+    m["visual_odometry"] = Scored(vo_, &vo_uncertainty_, distance_m);
   }
-  if (has_fused_ham2012_) m["fused_ham2012"] = Score(fused_ham2012_, distance_m);
+  if (has_fused_ham2012_) m["fused_ham2012"] = Scored(fused_ham2012_, nullptr, distance_m);
   return m;
 }
 

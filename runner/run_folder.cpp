@@ -116,6 +116,25 @@ struct PlotData {
   }
 };
 
+// The header of `pose_covariance.csv`: the estimators that have a covariance in this run.
+std::string PoseCovarianceHeader(const scenario::Scenario& scenario) {
+  std::string header = "t";
+  const auto add = [&header](const char* name) {
+    for (const char* c : {"xx_m2", "xy_m2", "xyaw_m_rad", "yy_m2", "yyaw_m_rad", "yawyaw_rad2"}) {
+      header += std::string(",") + name + "_" + c;
+    }
+  };
+  if (scenario.robot.stereo.enabled) {
+    add("visual_odometry");
+    if (scenario.estimation.localization.fusion.method ==
+        estimation::FusionOptions::Method::kCovariance) {
+      add("fused");
+    }
+  }
+  add("ekf");
+  return header;
+}
+
 // The run's logs, one file each with its header (README.md, "Run folder"): ground
 // truth, encoders, slip, tracks, IMU, twist, and one TUM file per estimator when
 // estimation is on.
@@ -146,6 +165,8 @@ class RunLogs {
     wheel_tum_ = std::make_unique<LogFile>(dir / "wheel_odometry.tum", "");
     noslip_tum_ = std::make_unique<LogFile>(dir / "wheel_odometry_noslip.tum", "");
     ekf_tum_ = std::make_unique<LogFile>(dir / "ekf.tum", "");
+    pose_covariance_csv_ =
+        std::make_unique<LogFile>(dir / "pose_covariance.csv", PoseCovarianceHeader(scenario));
     if (!scenario.robot.stereo.enabled) return;
     fused_tum_ = std::make_unique<LogFile>(dir / "fused.tum", "");
     vo_tum_ = std::make_unique<LogFile>(dir / "visual_odometry.tum", "");
@@ -182,7 +203,7 @@ class RunLogs {
   void Close() {
     for (LogFile* f : {&truth_, &twist_, &encoders_, &slip_, &tracks_, &imu_}) f->Close();
     for (auto* f : {&wheel_tum_, &noslip_tum_, &ekf_tum_, &fused_tum_, &vo_tum_, &fusion_csv_,
-                    &scan_csv_, &vo_covariance_csv_, &fused_ham2012_tum_}) {
+                    &scan_csv_, &vo_covariance_csv_, &fused_ham2012_tum_, &pose_covariance_csv_}) {
       if (*f) (*f)->Close();
     }
     for (auto& [name, f] : external_tum_) f->Close();
@@ -191,13 +212,14 @@ class RunLogs {
  private:
   LogFile truth_, encoders_, slip_, tracks_, imu_, twist_;
   std::unique_ptr<LogFile> wheel_tum_, noslip_tum_, ekf_tum_, fused_tum_, vo_tum_, fusion_csv_,
-      scan_csv_, vo_covariance_csv_, fused_ham2012_tum_;
+      scan_csv_, vo_covariance_csv_, fused_ham2012_tum_, pose_covariance_csv_;
   std::map<std::string, std::unique_ptr<LogFile>> external_tum_;  // reported estimators
   long long decimate_ = 1, samples_ = 0, imu_samples_ = 0;
   char line_[512];
   void WriteSample(const RunSample& s);
   void WriteImu(const robot::ImuSample& s);
   void WriteVoCovariance(const LocalizationFrame& f);
+  void WritePoseCovariance(const EstimateSample& e);
 };
 
 void RunLogs::WriteSample(const RunSample& s) {
@@ -229,6 +251,7 @@ void RunLogs::WriteSample(const RunSample& s) {
       fused_ham2012_tum_->Line(
           estimation::FormatTumLine({s.t_s, *s.estimate->fused_ham2012}).c_str());
     }
+    WritePoseCovariance(*s.estimate);
   }
   std::snprintf(line_, sizeof(line_), "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%d", s.t_s,
                 l.motor_torque_nm, r.motor_torque_nm, l.normal_load_n, r.normal_load_n,
@@ -282,6 +305,24 @@ void RunLogs::WriteVoCovariance(const LocalizationFrame& f) {
     }
   }
   vo_covariance_csv_->Line(row.c_str());
+}
+
+// Each estimator's pose covariance that has one, in the header's order
+// (docs/run_folder.md, `pose_covariance.csv`).
+void RunLogs::WritePoseCovariance(const EstimateSample& e) {
+  std::string row(line_,
+                  static_cast<std::size_t>(std::snprintf(line_, sizeof(line_), "%.6f", e.t_s)));
+  for (const std::optional<Eigen::Matrix3d>* P :
+       {&e.covariances.visual_odometry, &e.covariances.fused, &e.covariances.ekf}) {
+    if (!*P) continue;
+    for (int i = 0; i < 3; ++i) {
+      for (int j = i; j < 3; ++j) {
+        std::snprintf(line_, sizeof(line_), ",%.6g", (**P)(i, j));
+        row += line_;
+      }
+    }
+  }
+  pose_covariance_csv_->Line(row.c_str());
 }
 
 void RunLogs::WriteImu(const robot::ImuSample& s) {
@@ -340,7 +381,15 @@ std::string MetricsJson(const RunMetrics& m) {
                         {"final_error_m", e.final_error_m},
                         {"final_error_pct", FiniteOrNull(e.final_error_pct)},
                         {"rpe_trans_pct", FiniteOrNull(e.rpe_trans_pct)},
-                        {"samples", e.samples}};
+                        {"samples", e.samples},
+                        {"covariance", e.covariance}};
+    // The estimator's own uncertainty against the bound: null without a covariance; a
+    // sigma null also where it is not finite (the flag then says lost).
+    const bool has = e.covariance != "none";
+    estimators[name]["localization_lost"] = has ? Json(e.localization_lost) : nullptr;
+    estimators[name]["localization_lost_time_s"] = FiniteOrNull(e.localization_lost_time_s);
+    estimators[name]["final_position_sigma_m"] = FiniteOrNull(e.final_position_sigma_m);
+    estimators[name]["final_heading_sigma_deg"] = FiniteOrNull(e.final_heading_sigma_deg);
   }
   j["estimators"] = estimators;
   const LocalizationSummary& loc = m.localization;

@@ -299,7 +299,9 @@ void OutputsSpec::Validate() const {
 }
 
 double Scenario::RunDuration(DriveSource drive_source) const {
-  const bool drives = drive_source == DriveSource::kScenario && !navigation.enabled;
+  // The scenario's drive, or closed-loop navigation, starts after the standstill.
+  const bool drives = drive_source == DriveSource::kScenario &&
+                      (!navigation.enabled || navigation.mode == NavigationSpec::Mode::kClosedLoop);
   return duration_s + (drives ? drive.start_standstill_s : 0.0);
 }
 

@@ -10,7 +10,9 @@ logs that quote them. Exit 0 when everything else is identical.
 With --new-keys-allowed, the second folder may add files and, in JSON and YAML files
 and in a sweep's `set` lists, keys and overrides the first has not (a feature that
 leaves every earlier value as it was; the sweep files then differ only in the overrides
-added): the values the first folder has must be identical.
+added): the values the first folder has must be identical. A sweep's `summary.csv` may
+then add columns and its `aggregates.csv` rows of new metrics: the second folder's are
+compared on the first's columns and metrics.
 
     python3 scripts/compare_run_folders.py --new-keys-allowed runs/before runs/ideal
 """
@@ -62,6 +64,20 @@ def contained(a, b):
 NEW_KEYS = False
 
 
+def restricted(rows_a, rows_b):
+    """rows_b on rows_a's columns (by name), and without the metric rows rows_a has not
+    (aggregates.csv): what a feature that adds metrics leaves to compare."""
+    if not rows_a or not rows_b or not set(rows_a[0]) <= set(rows_b[0]):
+        return rows_b
+    index = [rows_b[0].index(name) for name in rows_a[0]]
+    rows = [[row[i] if i < len(row) else None for i in index] for row in rows_b]
+    if "metric" in rows_a[0]:
+        m = rows_a[0].index("metric")
+        known = {row[m] for row in rows_a[1:]}
+        rows = rows[:1] + [row for row in rows[1:] if row[m] in known]
+    return rows
+
+
 def same(a, b):
     if a.suffix in (".log", ".md") or a.name in ("stdout.txt", "stderr.txt", "summary.json"):
         return True  # these quote wall times and paths; their data is in the files above
@@ -79,7 +95,10 @@ def same(a, b):
         except (json.JSONDecodeError, UnicodeDecodeError):
             pass
     if a.suffix == ".csv" and a.name.startswith(("summary", "aggregates")):
-        return strip_csv(a.read_text()) == strip_csv(b.read_text())
+        rows_a, rows_b = strip_csv(a.read_text()), strip_csv(b.read_text())
+        if NEW_KEYS:
+            rows_b = restricted(rows_a, rows_b)
+        return rows_a == rows_b
     return a.read_bytes() == b.read_bytes()
 
 

@@ -82,7 +82,7 @@ TEST(EstimationOptionsTest, WalkCoversTheWholeStack) {
                           "estimation.wheel.estimate_slip", "estimation.imu"}) {
     EXPECT_EQ(paths.count(key), 0u) << key;
   }
-  EXPECT_EQ(paths.size(), 82u);
+  EXPECT_EQ(paths.size(), 85u);
 }
 
 // Each key set alone through --set to a valid value other than its default reaches the

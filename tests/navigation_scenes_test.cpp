@@ -254,5 +254,20 @@ TEST(KinematicSimulationTest, RejectsANavigatorBuiltForAnotherGoal) {
   EXPECT_THROW(RunKinematicSimulation(PaperSceneLeft(), *navigator, {}), std::invalid_argument);
 }
 
+// In closed loop the robot's twist is not the last command (the tracks' dynamics, the
+// skid, the run's yaw-rate limit): the window starts from the measured twist where one
+// is given. Robot at rest 10 m from the goal, no obstacle, a_v = 2.5 m/s², Δt = 0.1 s.
+TEST(DynamicWindowTest, TheWindowStartsFromTheMeasuredTwist) {
+  const auto second_speed = [](bool measured) {
+    const std::unique_ptr<Navigator> dwa = MakeNavigator("dwa", {}, {10.0, 0.0, 0.0});
+    const NavigationCommand first = dwa->Update({0.0, 0.0, 0.0}, {});
+    EXPECT_NEAR(first.twist.v_mps, 0.25, 1e-9);       // from rest: a_v·Δt
+    if (measured) dwa->SetMeasuredTwist({0.0, 0.0});  // the robot has not moved yet
+    return dwa->Update({0.0, 0.0, 0.0}, {}).twist.v_mps;
+  };
+  EXPECT_NEAR(second_speed(false), 0.5, 1e-9);  // its own command taken for the twist
+  EXPECT_NEAR(second_speed(true), 0.25, 1e-9);  // the window around the measured rest
+}
+
 }  // namespace
 }  // namespace trackbed::navigation

@@ -18,6 +18,7 @@
 #include "trackbed/common/units.h"
 #include "trackbed/navigation/navigator_factory.h"
 #include "trackbed/navigation/pure_pursuit.h"
+#include "trackbed/runner/closed_loop_navigation.h"
 #include "trackbed/runner/navigation_scenario.h"
 #include "trackbed/runner/path_driver.h"
 #include "trackbed/runner/teach_repeat_run.h"
@@ -270,7 +271,7 @@ TEST(StackKeysTest, DriveKeysReachThePathFollower) {
 
 // drive.start_standstill_s: the tracks at zero for its length, then the script on a clock
 // started at its end; the run lasts duration_s plus it when the scenario drives, not when
-// a commander from outside or navigation does.
+// a commander from outside or kinematic navigation does.
 TEST(StackKeysTest, TheStartStandstillHoldsTheTracksAndLengthensTheRun) {
   Scenario s = Parse({{"drive.start_standstill_s", "2"}, {"duration_s", "30"}});
   s.drive.mode = DriveSpec::Mode::kScript;
@@ -288,8 +289,35 @@ TEST(StackKeysTest, TheStartStandstillHoldsTheTracksAndLengthensTheRun) {
   EXPECT_DOUBLE_EQ(driver.Update(in).tracks.left_mps, 0.5);
   EXPECT_EQ(s.RunDuration(DriveSource::kScenario), 32.0);
   EXPECT_EQ(s.RunDuration(DriveSource::kExternal), 30.0);
-  s.navigation.enabled = true;
+  s.navigation.enabled = true;  // kinematic: no stack to take a bias
   EXPECT_EQ(s.RunDuration(DriveSource::kScenario), 30.0);
+  s.navigation.mode = scenario::NavigationSpec::Mode::kClosedLoop;
+  EXPECT_EQ(s.RunDuration(DriveSource::kScenario), 32.0);
+}
+
+// Closed-loop navigation starts after drive.start_standstill_s: the tracks at zero and
+// nothing logged before it, the navigator driving from its end, and the time limit
+// duration_s plus it.
+TEST(StackKeysTest, ClosedLoopNavigationStartsAfterTheStandstill) {
+  Scenario s = Parse({{"drive.start_standstill_s", "2"},
+                      {"duration_s", "30"},
+                      {"navigation.enabled", "true"},
+                      {"navigation.mode", "closed_loop"},
+                      {"navigation.pose_source", "ground_truth"},
+                      {"robot.range_sensor.enabled", "true"},
+                      {"navigation.goal", "{x_m: 5, y_m: 0, yaw_deg: 0}"}});
+  runner::ClosedLoopNavigation nav(s, {}, {});
+  runner::ControlInput in;
+  in.t_s = 1.9;
+  runner::ControlOutput out = nav.Update(in);
+  EXPECT_EQ(out.tracks.left_mps, 0.0);
+  EXPECT_EQ(out.tracks.right_mps, 0.0);
+  EXPECT_FALSE(out.stop_reason);
+  in.t_s = 2.0;  // the navigator's first step: toward the goal 5 m ahead
+  out = nav.Update(in);
+  EXPECT_GT(out.tracks.left_mps, 0.0);
+  EXPECT_EQ(nav.last_entry().t_s, 2.0);
+  EXPECT_EQ(nav.Metrics(true).duration_s, 2.0);
 }
 
 }  // namespace

@@ -27,7 +27,15 @@ geometry::Pose2 CombineIncrements(const geometry::Pose2& prediction, const Eigen
                                   const geometry::Pose2& measurement, const Eigen::Matrix3d& R,
                                   double gate, bool* used = nullptr);
 
-/// Composes the fused increments into a planar pose.
+/// The covariance of the planar pose `pose` ⊕ `increment` (geometry::Compose) to first
+/// order, from the pose's covariance `P` and the increment's `C`, independent: F·P·Fᵀ +
+/// G·C·Gᵀ with F, G the composition's Jacobians in the pose and in the increment [m²,
+/// m·rad, rad² for x, y, yaw].
+Eigen::Matrix3d ComposeCovariance(const geometry::Pose2& pose, const Eigen::Matrix3d& P,
+                                  const geometry::Pose2& increment, const Eigen::Matrix3d& C);
+
+/// Composes the fused increments into a planar pose, and their covariances into the
+/// pose's: the fused increment's is (I − K)·Q where VO's was used, Q where not.
 class CovarianceFusion {
  public:
   CovarianceFusion(const geometry::Pose2& initial_pose, double gate)
@@ -39,9 +47,12 @@ class CovarianceFusion {
            const std::optional<geometry::Pose2>& measurement, const Eigen::Matrix3d& R);
 
   const geometry::Pose2& pose() const { return pose_; }
+  /// The covariance of pose() (x, y, yaw) [m², m·rad, rad²], zero at the initial pose.
+  const Eigen::Matrix3d& covariance() const { return covariance_; }
 
  private:
   geometry::Pose2 pose_;
+  Eigen::Matrix3d covariance_ = Eigen::Matrix3d::Zero();
   double gate_;
 };
 

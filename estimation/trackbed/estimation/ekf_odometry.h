@@ -114,6 +114,8 @@ class EkfOdometry {
 
   geometry::Pose2 pose() const { return {x_(0), x_(1), geometry::WrapAngle(x_(2))}; }
   double gyro_bias() const { return x_(6); }
+  /// The covariance of pose() (x, y, yaw) [m², m·rad, rad²]: the filter's own.
+  Eigen::Matrix3d pose_covariance() const { return P_.topLeftCorner<3, 3>(); }
 
  private:
   static constexpr int kN = 10;

@@ -25,6 +25,7 @@
 #include "trackbed/estimation/gyro_bias.h"
 #include "trackbed/estimation/gyro_rotation.h"
 #include "trackbed/estimation/imu_correction.h"
+#include "trackbed/estimation/pose_uncertainty.h"
 #include "trackbed/estimation/stereo_visual_odometry.h"
 #include "trackbed/estimation/wheel_odometry.h"
 #include "trackbed/perception/stereo_rectifier.h"
@@ -63,6 +64,9 @@ struct LocalizationOptions {
   /// The gyro as a rotation source: its bias from standstills, the gyro-led wheel
   /// odometry and fusion (gyro_bias.h).
   GyroHeadingOptions gyro;
+  /// The bound beyond which an estimate's own covariance says it is lost
+  /// (pose_uncertainty.h); the stack reports, the run scores it.
+  LocalizationLostOptions localization_lost;
   /// The IMU's given calibration (imu_calibration.json): AddImuSample turns its
   /// readings into body rates with it. Known at run time, no key (see Serialize).
   calibration::ImuCalibration imu;
@@ -94,6 +98,7 @@ struct LocalizationOptions {
     a->Visit("apply_camera_time_offset", &apply_camera_time_offset);
     a->Visit("ekf", &ekf);
     a->Visit("gyro", &gyro);
+    a->Visit("localization_lost", &localization_lost);
   }
 };
 
@@ -183,6 +188,8 @@ class LocalizationStack {
   /// otherwise.
   std::optional<Eigen::Isometry3d> fused_ham2012() const;
   Eigen::Isometry3d ekf() const;
+  /// Each estimator's pose covariance now, where it has one (PoseCovariances).
+  PoseCovariances pose_covariances() const;
   /// The zero-velocity estimate of the gyro's bias.
   const ZeroVelocityGyroBias& gyro_bias() const { return zupt_; }
   /// The slip estimate of the `wheel_odometry` estimator.
@@ -226,6 +233,8 @@ class LocalizationStack {
   FusionWeightRise weight_;  // the applied wheel weight
   ImuCorrection imu_;        // readings to body rates (LocalizationOptions::imu)
   Eigen::Isometry3d T_world_body_vo_;
+  // The covariance of visual odometry's planar pose (+∞ once a frame had no motion).
+  Eigen::Matrix3d vo_pose_covariance_ = Eigen::Matrix3d::Zero();
   // The body's motion over the last valid VO frame, its interval and its time (coasting).
   Eigen::Isometry3d vo_last_motion_ = Eigen::Isometry3d::Identity();
   double vo_last_dt_ = 0.0, t_vo_valid_ = 0.0;

@@ -106,8 +106,9 @@ DynamicWindowChoice ChooseDynamicWindowVelocity(const NavigationSetup& setup,
                                                 const Eigen::Vector2d& goal_world,
                                                 const std::vector<Circle>& obstacles);
 
-/// The dynamic window as a Navigator. It assumes its previous command is the robot's
-/// current velocity (no odometry twist is passed in).
+/// The dynamic window as a Navigator. Its window is centred on the twist measured
+/// before each decision (SetMeasuredTwist) where one is given, else on its previous
+/// command.
 class DynamicWindowNavigator final : public Navigator {
  public:
   /// Validates all options (throws OptionError naming the field).
@@ -118,6 +119,8 @@ class DynamicWindowNavigator final : public Navigator {
   NavigationCommand Update(const Pose2& pose, const std::vector<Circle>& obstacles) override;
   const char* method() const override { return "dwa"; }
   const Pose2& goal() const override { return goal_; }
+  /// The next decision's window starts from `twist` (the robot's, measured).
+  void SetMeasuredTwist(const BodyTwist& twist) override { current_ = twist; }
 
  private:
   /// The method's own part of Update: the window's choice (or the final turn) into

@@ -102,6 +102,11 @@ class Navigator {
   /// One control period: the robot's pose and the obstacles known now, both in the world
   /// frame. Once the status is not kDriving it stays so and the command is zero.
   virtual NavigationCommand Update(const Pose2& pose, const std::vector<Circle>& obstacles) = 0;
+  /// The robot's body twist as measured just before the next Update (closed loop: from
+  /// the pose it believes). A method that models the robot's dynamics starts from it
+  /// (the dynamic window); the others ignore it. Without it, a method takes its own
+  /// last command for the robot's twist (kinematic mode, where the command is exact).
+  virtual void SetMeasuredTwist(const BodyTwist& /*twist*/) {}
 
   /// The method's name as MakeNavigator accepts it.
   virtual const char* method() const = 0;

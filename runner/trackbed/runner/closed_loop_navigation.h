@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -68,7 +69,8 @@ class ClosedLoopNavigation : public Commander {
   std::unique_ptr<navigation::Navigator> navigator_;
   navigation::Pose2 goal_;
   double period_s_;
-  double time_limit_s_;
+  double time_limit_s_;  // the run's, the standstill included
+  double standstill_s_;  // drive.start_standstill_s: the navigator starts after it
   double gauge_eff_m_;
   double max_yaw_rate_radps_;
   Eigen::Vector2d mount_xy_m_;
@@ -77,6 +79,8 @@ class ClosedLoopNavigation : public Commander {
   std::optional<robot::RangeScanSample> scan_;
   std::vector<navigation::Circle> obstacles_;
   std::vector<navigation::NavigationLogEntry> log_;
+  // The believed pose at the last control step: the measured twist's start.
+  std::optional<std::pair<double, geometry::Pose2>> last_pose_;
   navigation::NavigationStatus status_ = navigation::NavigationStatus::kDriving;
 };
 

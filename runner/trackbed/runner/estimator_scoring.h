@@ -7,10 +7,12 @@
 
 #include <cstddef>
 #include <map>
+#include <optional>
 #include <string>
 
 #include <Eigen/Geometry>
 
+#include "trackbed/estimation/pose_uncertainty.h"
 #include "trackbed/estimation/running_trajectory_score.h"
 
 namespace trackbed::runner {
@@ -32,6 +34,18 @@ struct EstimatorMetrics {
   /// path is shorter than 10 m.
   double rpe_trans_pct = 0.0;
   long long samples = 0;
+  /// Where the estimator's pose covariance comes from (`ekf_state`,
+  /// `vo_frames_composed`, `covariance_fusion`), or `none`: it has no covariance of its
+  /// own, and the fields below are NaN (null) and the flag false.
+  std::string covariance = "none";
+  /// Its own uncertainty passed the bound (estimation::LocalizationLostOptions) at some
+  /// sample; the first such time [s], NaN when never.
+  bool localization_lost = false;
+  double localization_lost_time_s = 0.0;
+  /// Its own uncertainty at the last sample (estimation::PoseUncertainty) [m, °]; +∞ when
+  /// its covariance is not finite.
+  double final_position_sigma_m = 0.0;
+  double final_heading_sigma_deg = 0.0;
 };
 
 /// Visual odometry and fusion over a run.
@@ -51,6 +65,10 @@ struct LocalizationSummary {
 
 class EstimatorScoring {
  public:
+  /// `lost_bound`: when an estimator's own covariance says it is lost.
+  explicit EstimatorScoring(const estimation::LocalizationLostOptions& lost_bound = {})
+      : lost_bound_(lost_bound) {}
+
   void Add(const RunSample& truth, const EstimateSample& estimate);
   void AddFrame(const Eigen::Isometry3d& T_world_body_true, const LocalizationFrame& frame);
   /// An estimate from outside the loop, scored as its name's own track.
@@ -69,6 +87,19 @@ class EstimatorScoring {
   Running wheel_, wheel_noslip_, fused_, ekf_, vo_;
   Running fused_ham2012_;  // scored when the samples carry it
   bool has_fused_ham2012_ = false;
+  // One estimator's own uncertainty over the run, against the bound.
+  struct Uncertainty {
+    const char* source = nullptr;  // null: no covariance seen
+    bool lost = false;
+    double t_lost_s = 0.0;
+    estimation::PoseUncertainty last;
+    void Add(double t_s, const char* from, const std::optional<Eigen::Matrix3d>& P,
+             const estimation::LocalizationLostOptions& bound);
+  };
+  // The figures of `score`, with `u`'s uncertainty (null: the estimator has none).
+  static EstimatorMetrics Scored(const Running& score, const Uncertainty* u, double distance_m);
+  estimation::LocalizationLostOptions lost_bound_;
+  Uncertainty vo_uncertainty_, fused_uncertainty_, ekf_uncertainty_;
   std::map<std::string, Running> external_;  // name → its estimates against the truth then
   bool has_camera_ = false;
   long long vo_failures_ = 0, vo_constrained_ = 0, vo_coasted_ = 0, blackout_frames_ = 0;

@@ -25,6 +25,8 @@ struct EstimateSample {
   /// (estimation.fusion.method: covariance); none otherwise.
   std::optional<Eigen::Isometry3d> fused_ham2012;
   estimation::TrackSlip slip;
+  /// Each estimator's pose covariance, where it has one (estimation::PoseCovariances).
+  estimation::PoseCovariances covariances;
 };
 
 /// What the runner records at the encoder rate.

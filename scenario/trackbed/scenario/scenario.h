@@ -201,8 +201,9 @@ struct DriveSpec {
   /// How long the robot stands still before the drive starts [s], >= 0: the tracks are
   /// commanded to zero, so the stack can take the gyro's bias from the standstill
   /// (estimation.gyro.zero_velocity_bias); a script's times and the path count from its
-  /// end, and the run's duration is `duration_s` plus it (Scenario::RunDuration). Not
-  /// with a pose path, which is carried without a drive.
+  /// end, and the run's duration is `duration_s` plus it (Scenario::RunDuration).
+  /// Closed-loop navigation starts after it too. Not with a pose path, which is carried
+  /// without a drive.
   double start_standstill_s = 0.0;
 
   void Validate() const;
@@ -519,7 +520,8 @@ struct Scenario {
   /// (drive.mode pose_path, not navigating) instead of simulating its vehicle.
   bool CarriedOnPosePath(DriveSource drive_source) const;
   /// The run's simulated length [s]: duration_s, plus drive.start_standstill_s when the
-  /// scenario's own drive drives the robot (drive_source kScenario, not navigating).
+  /// scenario drives the robot (drive_source kScenario): its drive, or closed-loop
+  /// navigation (which starts after the standstill); not kinematic navigation.
   double RunDuration(DriveSource drive_source) const;
 
   /// The scenario file's keys for these fields (docs/scenario_format.md), read and
