@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <list>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <unordered_map>
@@ -19,6 +20,8 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <assimp/Importer.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 namespace trackbed::assets {
 
@@ -56,20 +59,89 @@ class NotingIoSystem : public Assimp::DefaultIOSystem {
   std::vector<std::string>* opened_;
 };
 
-// The material's base-colour image (glTF's base colour, else the diffuse map) and
-// colour; the image resolved against the mesh file's folder.
-void ReadMaterial(const std::string& file, const aiMaterial& material, sim::MeshPart* part) {
+// Images larger than this are refused [texels].
+constexpr double kMaxImageTexels = 64.0 * 1024 * 1024;
+
+// An image decoded by OpenCV (BGR, rows top first) as a MeshImage (RGB).
+std::shared_ptr<const sim::MeshImage> FromBgr(const std::string& file, const std::string& what,
+                                              const cv::Mat& bgr) {
+  if (bgr.empty() || bgr.type() != CV_8UC3) Fail(file, what + " cannot be decoded as an image");
+  if (static_cast<double>(bgr.cols) * bgr.rows > kMaxImageTexels) {
+    Fail(file, what + " has more than 64 Mi texels");
+  }
+  auto image = std::make_shared<sim::MeshImage>();
+  image->width = bgr.cols;
+  image->height = bgr.rows;
+  image->rgb.resize(static_cast<std::size_t>(bgr.cols) * bgr.rows * 3);
+  std::size_t k = 0;
+  for (int r = 0; r < bgr.rows; ++r) {
+    const std::uint8_t* row = bgr.ptr<std::uint8_t>(r);
+    for (int c = 0; c < bgr.cols; ++c, k += 3) {
+      image->rgb[k] = row[3 * c + 2];
+      image->rgb[k + 1] = row[3 * c + 1];
+      image->rgb[k + 2] = row[3 * c];
+    }
+  }
+  return image;
+}
+
+// The image embedded in the mesh file as "*<index>": compressed (PNG, JPEG: decoded by
+// OpenCV) or raw texels (assimp's BGRA).
+std::shared_ptr<const sim::MeshImage> EmbeddedImage(const std::string& file, const aiScene& scene,
+                                                    const std::string& name) {
+  const aiTexture* t = scene.GetEmbeddedTexture(name.c_str());
+  if (t == nullptr || t->pcData == nullptr) Fail(file, "names a missing embedded image " + name);
+  const std::string what = "its embedded image " + name;
+  if (t->mHeight == 0) {
+    const cv::Mat bytes(1, static_cast<int>(t->mWidth), CV_8UC1, static_cast<void*>(t->pcData));
+    return FromBgr(file, what,
+                   cv::imdecode(bytes, cv::IMREAD_COLOR | cv::IMREAD_IGNORE_ORIENTATION));
+  }
+  if (static_cast<double>(t->mWidth) * t->mHeight > kMaxImageTexels) {
+    Fail(file, what + " has more than 64 Mi texels");
+  }
+  cv::Mat bgr(static_cast<int>(t->mHeight), static_cast<int>(t->mWidth), CV_8UC3);
+  for (unsigned r = 0; r < t->mHeight; ++r) {
+    for (unsigned c = 0; c < t->mWidth; ++c) {
+      const aiTexel& x = t->pcData[r * t->mWidth + c];
+      bgr.at<cv::Vec3b>(static_cast<int>(r), static_cast<int>(c)) = cv::Vec3b(x.b, x.g, x.r);
+    }
+  }
+  return FromBgr(file, what, bgr);
+}
+
+// The material's base-colour image (glTF's base colour, else the diffuse map), decoded,
+// and colour; an image file resolved against the mesh file's folder. `decoded` keeps
+// each image read for this file.
+void ReadMaterial(const std::string& file, const aiScene& scene, const aiMaterial& material,
+                  std::map<std::string, std::shared_ptr<const sim::MeshImage>>* decoded,
+                  sim::MeshPart* part) {
   aiString path;
   const bool has = material.GetTexture(aiTextureType_BASE_COLOR, 0, &path) == aiReturn_SUCCESS ||
                    material.GetTexture(aiTextureType_DIFFUSE, 0, &path) == aiReturn_SUCCESS;
   if (has && path.length > 0) {
     const std::string name = path.C_Str();
-    if (name[0] == '*') Fail(file, "a material's image is embedded in the file (" + name + ")");
-    fs::path p(name);
-    if (p.is_relative()) p = fs::path(file).parent_path() / p;
-    p = fs::absolute(p).lexically_normal();
-    if (!fs::is_regular_file(p)) Fail(file, "a material's image is not a file: " + p.string());
-    part->base_color_texture = p.string();
+    std::string key = name;
+    if (name[0] != '*' && scene.GetEmbeddedTexture(name.c_str()) == nullptr) {
+      // Windows' separators, as OBJ material libraries written there have them.
+      std::string portable = name;
+      std::replace(portable.begin(), portable.end(), '\\', '/');
+      fs::path p(portable);
+      if (p.is_relative()) p = fs::path(file).parent_path() / p;
+      p = fs::absolute(p).lexically_normal();
+      if (!fs::is_regular_file(p)) Fail(file, "a material's image is not a file: " + p.string());
+      part->base_color_texture = key = p.string();
+    }
+    auto it = decoded->find(key);
+    if (it == decoded->end()) {
+      const auto image =
+          part->base_color_texture.empty()
+              ? EmbeddedImage(file, scene, name)
+              : FromBgr(file, "its material's image " + key,
+                        cv::imread(key, cv::IMREAD_COLOR | cv::IMREAD_IGNORE_ORIENTATION));
+      it = decoded->emplace(key, image).first;
+    }
+    part->base_color_image = it->second;
   }
   aiColor4D colour(1.0f, 1.0f, 1.0f, 1.0f);
   if (material.Get(AI_MATKEY_BASE_COLOR, colour) != aiReturn_SUCCESS) {
@@ -104,7 +176,9 @@ VertexKey KeyOf(const aiVector3D& p, const aiVector3D& uv) {
 
 // Appends `mesh`'s triangles, its vertices moved by `transform` (exact repeats joined).
 void AppendMesh(const std::string& file, const aiScene& scene, const aiMesh& mesh,
-                const aiMatrix4x4& transform, sim::TriangleMesh* out) {
+                const aiMatrix4x4& transform,
+                std::map<std::string, std::shared_ptr<const sim::MeshImage>>* decoded,
+                sim::TriangleMesh* out) {
   const bool has_uvs = mesh.HasTextureCoords(0);
   std::vector<std::uint32_t> index(mesh.mNumVertices);
   std::unordered_map<VertexKey, std::uint32_t, VertexKeyHash> seen;
@@ -139,22 +213,24 @@ void AppendMesh(const std::string& file, const aiScene& scene, const aiMesh& mes
   part.triangles = static_cast<std::uint32_t>(out->triangles.size()) - part.first_triangle;
   if (part.triangles == 0) return;
   if (mesh.mMaterialIndex < scene.mNumMaterials) {
-    ReadMaterial(file, *scene.mMaterials[mesh.mMaterialIndex], &part);
+    ReadMaterial(file, scene, *scene.mMaterials[mesh.mMaterialIndex], decoded, &part);
   }
   out->parts.push_back(std::move(part));
 }
 
 // Every node's meshes under `parent` (the transforms above it), depth first.
 void AppendNode(const std::string& file, const aiScene& scene, const aiNode& node,
-                const aiMatrix4x4& parent, int depth, sim::TriangleMesh* out) {
+                const aiMatrix4x4& parent, int depth,
+                std::map<std::string, std::shared_ptr<const sim::MeshImage>>* decoded,
+                sim::TriangleMesh* out) {
   if (depth > 1000) Fail(file, "its nodes nest more than 1000 deep");
   const aiMatrix4x4 transform = parent * node.mTransformation;
   for (unsigned k = 0; k < node.mNumMeshes; ++k) {
     if (node.mMeshes[k] >= scene.mNumMeshes) Fail(file, "a node names a missing mesh");
-    AppendMesh(file, scene, *scene.mMeshes[node.mMeshes[k]], transform, out);
+    AppendMesh(file, scene, *scene.mMeshes[node.mMeshes[k]], transform, decoded, out);
   }
   for (unsigned k = 0; k < node.mNumChildren; ++k) {
-    AppendNode(file, scene, *node.mChildren[k], transform, depth + 1, out);
+    AppendNode(file, scene, *node.mChildren[k], transform, depth + 1, decoded, out);
   }
 }
 
@@ -200,7 +276,8 @@ MeshRead ReadMesh(const std::string& file) {
   if (ext == ".gltf" || ext == ".glb" || ext == ".dae") {
     up = aiMatrix4x4(1, 0, 0, 0, 0, 0, -1, 0, 0, 1, 0, 0, 0, 0, 0, 1);
   }
-  AppendNode(file, *scene, *scene->mRootNode, up, 0, &read.mesh);
+  std::map<std::string, std::shared_ptr<const sim::MeshImage>> decoded;
+  AppendNode(file, *scene, *scene->mRootNode, up, 0, &decoded, &read.mesh);
   if (read.mesh.triangles.empty()) Fail(file, "holds no triangle");
   for (const sim::MeshPart& part : read.mesh.parts) {
     const std::string& t = part.base_color_texture;

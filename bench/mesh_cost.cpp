@@ -4,7 +4,11 @@
 // (sim::PlacedMesh), Bullet's bounding volume hierarchy (a World with the sheet as an
 // obstacle, less one without), 360 range-sensor rays cast at it, the footprint
 // clearance against it, and sampling it as ground onto a terrain of 0.1 m cells over
-// it (assets::SampleMeshGround).
+// it (assets::SampleMeshGround); then the renderer: its set-up with the sheet (placing
+// its vertices, normals, buffer objects filled at the first frame) less without it, and
+// a 640 × 480 view (90° across, from 0.5 m over the sheet's centre, looking along +x
+// over half of it) with and without the sheet. The sheet is one material: one drawable
+// of every triangle, submitted whole whenever any of it is in view.
 //
 //   mesh_cost [--quads N] [--size-m S] [--repeats R] [--file OUT.ply]
 #include <algorithm>
@@ -21,6 +25,7 @@
 
 #include "bench_args.h"
 #include "trackbed/assets/scene_meshes.h"
+#include "trackbed/render/renderer.h"
 #include "trackbed/runner/footprint_clearance.h"
 #include "trackbed/sim/world.h"
 
@@ -66,6 +71,35 @@ double Best(int repeats, const std::function<void()>& f) {
     best = std::min(best, static_cast<double>(std::clock() - t0) / CLOCKS_PER_SEC);
   }
   return best;
+}
+
+// The renderer's set-up and a view's CPU time with the sheet in `with` and without it.
+void RenderCost(const sim::World& with, const sim::World& without, std::size_t triangles,
+                int repeats) {
+  const geometry::PinholeCamera K = geometry::PinholeCamera::FromFieldOfView(640, 480, M_PI / 2);
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();  // OpenCV axes: z along +x
+  T.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  T.translation() = Eigen::Vector3d(0.0, 0.0, 0.8);
+  GrayImage gray;
+  const auto setup = [&](const sim::World& w) {
+    return Best(repeats, [&] {
+      render::Renderer r(w, render::SceneAppearance{}, {}, 1, 640, 480, 0.05, 120.0);
+      r.Render(K, T, 0.0, &gray, nullptr);  // fills the buffer objects
+    });
+  };
+  const double setup_with = setup(with), setup_without = setup(without);
+  std::printf("renderer set-up + first frame: %8.3f s more with it (%.3f s, without %.3f s)\n",
+              setup_with - setup_without, setup_with, setup_without);
+  for (const sim::World* w : {&with, &without}) {
+    render::Renderer r(*w, render::SceneAppearance{}, {}, 1, 640, 480, 0.05, 120.0);
+    r.Render(K, T, 0.0, &gray, nullptr);
+    const double frame = Best(repeats, [&] {
+      for (int k = 0; k < 10; ++k) r.Render(K, T, 0.0, &gray, nullptr);
+    });
+    std::printf("a 640 x 480 view:        %8.3f ms (%s; %zu triangles of it submitted)\n",
+                1e3 * frame / 10, w == &with ? "with the sheet" : "without",
+                w == &with ? triangles : std::size_t{0});
+  }
 }
 
 }  // namespace
@@ -133,6 +167,7 @@ int main(int argc, char** argv) {
     std::printf("footprint clearance:     %8.3f ms (body at z %.1f m: %.3f m)\n", 1e3 * clearance,
                 z, d);
   }
+  RenderCost(world, sim::World({}, sim::Terrain(terrain, 1), {}), mesh->triangles.size(), repeats);
   object.entry.mesh.ground = true;
   std::shared_ptr<const sim::ElevationGrid> grid;
   const double sampling =

@@ -2,12 +2,13 @@
 //
 // OpenGL in the compatibility profile, every surface drawn with one shader program
 // (SurfaceProgram: light per vertex, the texture filtered over each pixel's footprint),
-// back faces culled: one display list per object compiled once, the terrain in chunks
-// per material meshed at the detail the distance from the detail centre asks for
-// (TerrainDetail), kept while it holds; textures uploaded once with their mip chains
-// and footprint layers built here (FootprintMips), so that the bytes do not depend on
-// the driver. Each frame: cull chunks against the view frustum, draw near to far into a
-// frame buffer object of one 8-bit channel, read it back flipped to top-down rows.
+// back faces culled: one display list per object compiled once, a mesh object's parts
+// in buffer objects (MeshSurfaces), the terrain in chunks per material meshed at the
+// detail the distance from the detail centre asks for (TerrainDetail), kept while it
+// holds; textures uploaded once with mip chains and footprint layers built here
+// (FootprintMips): the bytes do not depend on the driver. Each frame: cull chunks
+// against the view frustum, draw near to far into a frame buffer object of one 8-bit
+// channel, read it back flipped to top-down rows.
 #include "trackbed/render/renderer.h"
 
 #define GL_GLEXT_PROTOTYPES 1  // buffer objects (GL 1.5), which libOSMesa exports
@@ -25,6 +26,7 @@
 #include <stdexcept>
 
 #include "footprint_mips.h"
+#include "mesh_surfaces.h"
 #include "surface_program.h"
 #include "trackbed/common/option_error.h"
 #include "trackbed/common/units.h"
@@ -75,7 +77,8 @@ struct FarVersion {
 
 struct Drawable {
   GLuint list = 0;                       // display list of an object, or
-  int terrain = -1;                      // index of a terrain drawable
+  int terrain = -1;                      // index of a terrain drawable, or
+  int mesh = -1;                         // of a mesh object's part (mesh_surfaces.h)
   Eigen::AlignedBox3d box;               // world-frame bounds, for culling
   std::vector<FarVersion> far_versions;  // coarser and coarser
   bool curved = false;                   // a cylinder's outline: drawn antialiased
@@ -152,7 +155,8 @@ struct Renderer::Gl {
   std::optional<TerrainWindow::Placement> placement;  // where it is now
   std::unique_ptr<TerrainDetail> detail;              // the near window's levels
   std::vector<TerrainDrawable> terrain_drawables;
-  std::size_t terrain_drawable_count = 0;  // drawables[0, count) are the terrain's
+  std::size_t terrain_drawable_count = 0;       // drawables[0, count) are the terrain's
+  std::vector<TerrainDrawable> mesh_drawables;  // mesh objects' parts (fixed)
   std::vector<sim::OccluderSpec> occluders;
   std::vector<GLuint> occluder_lists;
   std::vector<std::pair<double, int>> draw_order;  // per frame, kept to avoid reallocation
@@ -607,6 +611,33 @@ struct Renderer::Gl {
         Eigen::Vector3d(o.center_m.x() + reach, o.center_m.y() + reach, o.base_z_m + top));
   }
 
+  // One drawable per part of a mesh object, read by footprint as the ground and boxes.
+  void BuildMeshes(const sim::World& world) {
+    for (const sim::MeshObject& m : world.meshes()) {
+      for (MeshSurface& s : MeshSurfaces(m)) {
+        auto it = textures.find(s.texture_key);
+        if (it == textures.end()) {
+          GlTexture g;
+          g.ground = true;
+          glGenTextures(1, &g.name);
+          UploadTexture(g, MeshPartTexture(*s.part));
+          it = textures.emplace(s.texture_key, g).first;
+        }
+        TerrainDrawable t;
+        t.fixed = true;
+        t.texture = it->second;
+        t.mesh.vertices = std::move(s.vertices);
+        t.mesh.indices = std::move(s.indices);
+        t.mesh.topology = 0;
+        mesh_drawables.push_back(std::move(t));
+        Drawable d;
+        d.box = s.box;
+        d.mesh = static_cast<int>(mesh_drawables.size()) - 1;
+        drawables.push_back(d);
+      }
+    }
+  }
+
   void BuildObjects(const sim::World& world) {
     for (const sim::StaticObject& o : world.objects()) {
       Drawable d;
@@ -716,6 +747,7 @@ Renderer::Renderer(const sim::World& world, const SceneAppearance& appearance,
   g.window = std::make_unique<TerrainWindow>(*g.terrain, appearance.terrain_full_detail_m);
   if (!g.window->paged()) g.FollowDetailCenter(Eigen::Vector2d::Zero());
   g.BuildObjects(world);
+  g.BuildMeshes(world);
   std::optional<LightMap> light_map;
   if (appearance.lighting) {
     const Eigen::Vector3d sun =
@@ -833,9 +865,11 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
   glEnableClientState(GL_TEXTURE_COORD_ARRAY);
   for (const auto& [distance, k] : order) {
     const Drawable& d = g.drawables[static_cast<std::size_t>(k)];
-    if (d.terrain >= 0) {
+    if (d.terrain >= 0 || d.mesh >= 0) {
       g.program->Use(SurfaceProgram::Kind::kFootprint);
-      g.DrawTerrain(g.terrain_drawables[static_cast<std::size_t>(d.terrain)], center_xy);
+      g.DrawTerrain(d.terrain >= 0 ? g.terrain_drawables[static_cast<std::size_t>(d.terrain)]
+                                   : g.mesh_drawables[static_cast<std::size_t>(d.mesh)],
+                    center_xy);
     } else {
       g.program->Use(d.flat     ? SurfaceProgram::Kind::kFootprint
                      : d.curved ? SurfaceProgram::Kind::kOutlineCore

@@ -52,6 +52,29 @@ if [ ! -f "$stars/tif/olinda_dem_utm25s.tif" ]; then
   rm -rf "$tmp"
 fi
 
+# Textured mesh files for scenes/mesh_props.yaml: models Debian's assimp-testmodels
+# ships (BSD-3-clause, the ASSIMP Development Team), taken from the package without
+# installing it; the scene's test skips where they are absent.
+models=/usr/local/share/trackbed/assimp-testmodels
+if [ ! -f "$models/OBJ/spider.obj" ]; then
+  sudo_cmd=()
+  [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+  tmp=$(mktemp -d)
+  if (cd "$tmp" && { apt-get download assimp-testmodels >/dev/null 2>&1 ||
+        { "${sudo_cmd[@]}" apt-get update -qq && apt-get download assimp-testmodels >/dev/null 2>&1; }; }); then
+    dpkg-deb -x "$tmp"/assimp-testmodels_*.deb "$tmp/x"
+    src="$tmp/x/usr/share/assimp/models"
+    "${sudo_cmd[@]}" mkdir -p "$models/OBJ" "$models/glTF2"
+    "${sudo_cmd[@]}" cp "$src"/OBJ/spider.obj "$src"/OBJ/spider.mtl "$src"/OBJ/*.jpg "$models/OBJ/"
+    "${sudo_cmd[@]}" cp -r "$src"/glTF2/BoxTextured-glTF "$src"/glTF2/BoxTextured-glTF-Binary \
+      "$models/glTF2/"
+    "${sudo_cmd[@]}" cp "$tmp/x/usr/share/doc/assimp-testmodels/copyright" "$models/"
+  else
+    echo "setup: assimp-testmodels could not be downloaded: scenes/mesh_props.yaml will not run"
+  fi
+  rm -rf "$tmp"
+fi
+
 launcher=()
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" >/dev/null

@@ -97,7 +97,7 @@ TriangleMesh BoxMesh(const Eigen::AlignedBox3d& box) {
   // Corner k has x from bit 0, y from bit 1, z from bit 2.
   m.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
                  {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
-  m.parts.push_back({0, 12, "", Eigen::Vector4f::Ones()});
+  m.parts.push_back({0, 12, "", Eigen::Vector4f::Ones(), nullptr});
   return m;
 }
 

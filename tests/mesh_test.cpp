@@ -6,6 +6,8 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "mesh_files.h"
 #include "trackbed/assets/mesh_reader.h"
@@ -41,7 +43,10 @@ std::string AssetErrorOf(F&& read) {
 }
 
 TEST(MeshReaderTest, AnObjBoxWithItsMaterialAndTexture) {
-  Write("paint.png", "not read here: the renderer reads it");
+  // A 3 × 2 image: its texels decoded, red, green and blue as written, rows top first.
+  cv::Mat paint(2, 3, CV_8UC3, cv::Scalar(30, 20, 10));  // OpenCV's order: blue, green, red
+  paint.at<cv::Vec3b>(1, 2) = cv::Vec3b(3, 2, 1);
+  ASSERT_TRUE(cv::imwrite(TempPath("paint.png"), paint));
   const std::string file = test_mesh::ObjBox("box.obj", -1, -0.5, 0, 1, 0.5, 2, "paint.png");
   const assets::MeshRead r = assets::ReadMesh(file);
   EXPECT_EQ(r.mesh.triangles.size(), 12u);
@@ -51,6 +56,12 @@ TEST(MeshReaderTest, AnObjBoxWithItsMaterialAndTexture) {
   EXPECT_EQ(r.mesh.parts[0].triangles, 12u);
   EXPECT_EQ(r.mesh.parts[0].base_color_texture, TempPath("paint.png"));
   EXPECT_NEAR(r.mesh.parts[0].base_color.x(), 0.8, 1e-6);
+  ASSERT_NE(r.mesh.parts[0].base_color_image, nullptr);
+  const sim::MeshImage& image = *r.mesh.parts[0].base_color_image;
+  EXPECT_EQ(image.width, 3);
+  EXPECT_EQ(image.height, 2);
+  EXPECT_EQ(image.rgb, (std::vector<std::uint8_t>{10, 20, 30, 10, 20, 30, 10, 20, 30,  //
+                                                  10, 20, 30, 10, 20, 30, 1, 2, 3}));
   ASSERT_EQ(r.textures.size(), 1u);
   // assimp opened the OBJ and its material library.
   EXPECT_NE(std::find(r.files.begin(), r.files.end(), TempPath("box.mtl")), r.files.end());
@@ -111,6 +122,11 @@ TEST(MeshReaderTest, ErrorsNameTheFileAndWhatIsWrong) {
               assets::ReadMesh(no_texture);
             }).find(no_texture + ": a material's image is not a file: " + TempPath("gone.png")),
             std::string::npos);
+  Write("junk.png", "not an image");
+  const std::string junk = test_mesh::ObjBox("junk.obj", 0, 0, 0, 1, 1, 1, "junk.png");
+  EXPECT_EQ(
+      AssetErrorOf([&] { assets::ReadMesh(junk); }),
+      junk + ": its material's image " + TempPath("junk.png") + " cannot be decoded as an image");
 }
 
 TEST(MeshReaderTest, AKeptReadIsTheFilesAsLongAsItIsUnchanged) {

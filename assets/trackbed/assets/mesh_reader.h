@@ -30,14 +30,14 @@ constexpr std::size_t kMaxMeshTriangles = 20'000'000;
 struct MeshRead {
   sim::TriangleMesh mesh;
   std::vector<std::string> files;     ///< Opened by assimp, in the order it opened them.
-  std::vector<std::string> textures;  ///< The materials' base-colour images (absolute).
+  std::vector<std::string> textures;  ///< The materials' base-colour image files (absolute).
 };
 
 /// Reads `file`. Throws AssetError naming the file if its extension is not in
 /// MeshExtensions(), assimp cannot read it, it holds no triangle or more than
-/// kMaxMeshTriangles, a vertex is not finite, or a material names a texture that is
-/// not a file (an image embedded in the file is refused: the renderer reads images
-/// from files).
+/// kMaxMeshTriangles, a vertex is not finite, or a material names an image that is
+/// not a file or that OpenCV cannot decode (PNG, JPEG, …; images embedded in the file,
+/// as a .glb holds them, are decoded too), or one of more than 64 Mi texels.
 MeshRead ReadMesh(const std::string& file);
 
 /// ReadMesh(file), kept for the next call while the file keeps its size and

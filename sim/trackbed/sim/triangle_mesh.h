@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,14 +17,24 @@
 
 namespace trackbed::sim {
 
+/// A material's image as its file holds it: rows top first, three bytes a texel (red,
+/// green, blue as encoded, sRGB). The renderer linearises it (render/mesh_surfaces.h).
+struct MeshImage {
+  int width = 0, height = 0;      ///< [texels], each > 0
+  std::vector<std::uint8_t> rgb;  ///< width · height · 3 bytes
+};
+
 /// Triangles sharing one material.
 struct MeshPart {
   std::uint32_t first_triangle = 0;  ///< Index of its first triangle in TriangleMesh::triangles.
   std::uint32_t triangles = 0;       ///< How many triangles, consecutive from the first.
-  /// The material's base-colour image: an absolute path, empty for none.
+  /// The material's base-colour image: an absolute path, empty for none or an image
+  /// embedded in the mesh file.
   std::string base_color_texture;
   /// The material's base colour, linear RGBA in [0, 1] (multiplies the texture).
   Eigen::Vector4f base_color{1.0f, 1.0f, 1.0f, 1.0f};
+  /// The base-colour image decoded (a file's or an embedded one); null for none.
+  std::shared_ptr<const MeshImage> base_color_image;
 };
 
 /// A mesh in its object's frame: x forward, y left, z up, metres.
