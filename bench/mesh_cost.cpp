@@ -6,7 +6,7 @@
 // clearance against it, and sampling it as ground onto a terrain of 0.1 m cells over
 // it (assets::SampleMeshGround); then the renderer: its set-up with the sheet (placing
 // its vertices, normals, buffer objects filled at the first frame) less without it, and
-// a 640 × 480 view (90° across, from 0.5 m over the sheet's centre, looking along +x
+// a 640 × 480 view (90° across, from 0.8 m over the sheet's centre, looking along +x
 // over half of it) with and without the sheet. The sheet is one material: one drawable
 // of every triangle, submitted whole whenever any of it is in view.
 //
