@@ -2,12 +2,13 @@
 //
 // OpenGL in the compatibility profile, every surface drawn with one shader program
 // (SurfaceProgram: light per vertex, the texture filtered over each pixel's footprint),
-// back faces culled: one display list per object compiled once, the terrain in chunks
-// per material meshed at the detail the distance from the detail centre asks for
-// (TerrainDetail), kept while it holds; textures uploaded once with their mip chains
-// and footprint layers built here (FootprintMips), so that the bytes do not depend on
-// the driver. Each frame: cull chunks against the view frustum, draw near to far into a
-// frame buffer object of one 8-bit channel, read it back flipped to top-down rows.
+// back faces culled: one display list per object compiled once, a mesh object's parts
+// in buffer objects (MeshSurfaces), the terrain in chunks per material meshed at the
+// detail the distance from the detail centre asks for (TerrainDetail), kept while it
+// holds; textures uploaded once with mip chains and footprint layers built here
+// (FootprintMips): the bytes do not depend on the driver. Each frame: cull chunks
+// against the view frustum, draw near to far into a frame buffer object of one 8-bit
+// channel, read it back flipped to top-down rows.
 #include "trackbed/render/renderer.h"
 
 #define GL_GLEXT_PROTOTYPES 1  // buffer objects (GL 1.5), which libOSMesa exports
@@ -25,7 +26,9 @@
 #include <stdexcept>
 
 #include "footprint_mips.h"
+#include "gl_primitives.h"
 #include "ground_tiling.h"
+#include "mesh_surfaces.h"
 #include "surface_program.h"
 #include "trackbed/common/option_error.h"
 #include "trackbed/common/units.h"
@@ -81,7 +84,8 @@ struct FarVersion {
 
 struct Drawable {
   GLuint list = 0;                       // display list of an object, or
-  int terrain = -1;                      // index of a terrain drawable
+  int terrain = -1;                      // index of a terrain drawable, or
+  int mesh = -1;                         // of a mesh object's part (mesh_surfaces.h)
   Eigen::AlignedBox3d box;               // world-frame bounds, for culling
   std::vector<FarVersion> far_versions;  // coarser and coarser
   bool curved = false;                   // a cylinder's outline: drawn antialiased
@@ -162,7 +166,8 @@ struct Renderer::Gl {
   std::optional<TerrainWindow::Placement> placement;  // where it is now
   std::unique_ptr<TerrainDetail> detail;              // the near window's levels
   std::vector<TerrainDrawable> terrain_drawables;
-  std::size_t terrain_drawable_count = 0;  // drawables[0, count) are the terrain's
+  std::size_t terrain_drawable_count = 0;       // drawables[0, count) are the terrain's
+  std::vector<TerrainDrawable> mesh_drawables;  // mesh objects' parts (fixed)
   std::vector<sim::OccluderSpec> occluders;
   std::vector<GLuint> occluder_lists;
   std::vector<std::pair<double, int>> draw_order;  // per frame, kept to avoid reallocation
@@ -412,82 +417,6 @@ struct Renderer::Gl {
     glDrawElements(GL_TRIANGLES, t.index_count, GL_UNSIGNED_INT, nullptr);
   }
 
-  // A box of extents (lx, ly, lz) centred at the origin of the current frame,
-  // texture coordinates in metres of each face.
-  static void DrawBox(const Eigen::Vector3d& size, double m) {
-    const double hx = size.x() / 2, hy = size.y() / 2, hz = size.z() / 2;
-    struct Face {
-      Eigen::Vector3d n, u, v;  // normal, in-plane axes (half extents)
-      double su, sv;            // full extents along u and v
-    };
-    const Face faces[] = {
-        {{1, 0, 0}, {0, hy, 0}, {0, 0, hz}, size.y(), size.z()},
-        {{-1, 0, 0}, {0, -hy, 0}, {0, 0, hz}, size.y(), size.z()},
-        {{0, 1, 0}, {-hx, 0, 0}, {0, 0, hz}, size.x(), size.z()},
-        {{0, -1, 0}, {hx, 0, 0}, {0, 0, hz}, size.x(), size.z()},
-        {{0, 0, 1}, {hx, 0, 0}, {0, hy, 0}, size.x(), size.y()},
-        {{0, 0, -1}, {hx, 0, 0}, {0, -hy, 0}, size.x(), size.y()},
-    };
-    glBegin(GL_QUADS);
-    for (const Face& f : faces) {
-      const Eigen::Vector3d c(f.n.x() * hx, f.n.y() * hy, f.n.z() * hz);
-      glNormal3d(f.n.x(), f.n.y(), f.n.z());
-      const double cu[4] = {0, 1, 1, 0}, cv[4] = {0, 0, 1, 1};
-      for (int k = 0; k < 4; ++k) {
-        const Eigen::Vector3d p = c + (2 * cu[k] - 1) * f.u + (2 * cv[k] - 1) * f.v;
-        glTexCoord2d(cu[k] * f.su / m, cv[k] * f.sv / m);
-        glVertex3d(p.x(), p.y(), p.z());
-      }
-    }
-    glEnd();
-  }
-
-  // An upright cylinder from z = 0 to `height`, with a top cap. Each side quad
-  // is top, bottom, next bottom, next top: counter-clockwise from outside.
-  static void DrawCylinder(double radius, double height, double m, int slices = 24) {
-    glBegin(GL_QUAD_STRIP);
-    for (int k = 0; k <= slices; ++k) {
-      const double a = 2 * M_PI * k / slices;
-      const double c = std::cos(a), s = std::sin(a);
-      glNormal3d(c, s, 0);
-      glTexCoord2d(a * radius / m, height / m);
-      glVertex3d(radius * c, radius * s, height);
-      glTexCoord2d(a * radius / m, 0);
-      glVertex3d(radius * c, radius * s, 0);
-    }
-    glEnd();
-    glBegin(GL_TRIANGLE_FAN);
-    glNormal3d(0, 0, 1);
-    glTexCoord2d(0, 0);
-    glVertex3d(0, 0, height);
-    for (int k = 0; k <= slices; ++k) {
-      const double a = 2 * M_PI * k / slices;
-      glTexCoord2d(radius * std::cos(a) / m, radius * std::sin(a) / m);
-      glVertex3d(radius * std::cos(a), radius * std::sin(a), height);
-    }
-    glEnd();
-  }
-
-  // A sphere of `radius` centred at the origin.
-  static void DrawSphere(double radius, double m, int slices = 16, int stacks = 10) {
-    for (int i = 0; i < stacks; ++i) {
-      const double a0 = M_PI * (-0.5 + static_cast<double>(i) / stacks);
-      const double a1 = M_PI * (-0.5 + static_cast<double>(i + 1) / stacks);
-      glBegin(GL_QUAD_STRIP);
-      for (int k = 0; k <= slices; ++k) {
-        const double b = 2 * M_PI * k / slices;
-        for (double a : {a1, a0}) {
-          const Eigen::Vector3d n(std::cos(a) * std::cos(b), std::cos(a) * std::sin(b),
-                                  std::sin(a));
-          glNormal3d(n.x(), n.y(), n.z());
-          glTexCoord2d(b * radius / m, a * radius / m);
-          glVertex3d(radius * n.x(), radius * n.y(), radius * n.z());
-        }
-      }
-      glEnd();
-    }
-  }
-
   // The pixels the outlines of curved objects cross: the bands about them, far to near,
   // blended over what is behind by the fraction of each pixel inside; then their depth
   // where more than half inside (surface_program.h).
@@ -636,6 +565,33 @@ struct Renderer::Gl {
         Eigen::Vector3d(o.center_m.x() + reach, o.center_m.y() + reach, o.base_z_m + top));
   }
 
+  // One drawable per part of a mesh object, read by footprint as the ground and boxes.
+  void BuildMeshes(const sim::World& world) {
+    for (const sim::MeshObject& m : world.meshes()) {
+      for (MeshSurface& s : MeshSurfaces(m)) {
+        auto it = textures.find(s.texture_key);
+        if (it == textures.end()) {
+          GlTexture g;
+          g.ground = true;
+          glGenTextures(1, &g.name);
+          UploadTexture(g, {MeshPartTexture(*s.part)});
+          it = textures.emplace(s.texture_key, g).first;
+        }
+        TerrainDrawable t;
+        t.fixed = true;
+        t.texture = it->second;
+        t.mesh.vertices = std::move(s.vertices);
+        t.mesh.indices = std::move(s.indices);
+        t.mesh.topology = 0;
+        mesh_drawables.push_back(std::move(t));
+        Drawable d;
+        d.box = s.box;
+        d.mesh = static_cast<int>(mesh_drawables.size()) - 1;
+        drawables.push_back(d);
+      }
+    }
+  }
+
   void BuildObjects(const sim::World& world) {
     for (const sim::StaticObject& o : world.objects()) {
       Drawable d;
@@ -745,6 +701,7 @@ Renderer::Renderer(const sim::World& world, const SceneAppearance& appearance,
   g.window = std::make_unique<TerrainWindow>(*g.terrain, appearance.terrain_full_detail_m);
   if (!g.window->paged()) g.FollowDetailCenter(Eigen::Vector2d::Zero());
   g.BuildObjects(world);
+  g.BuildMeshes(world);
   std::optional<LightMap> light_map;
   if (appearance.lighting) {
     const Eigen::Vector3d sun =
@@ -862,8 +819,9 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
   glEnableClientState(GL_TEXTURE_COORD_ARRAY);
   for (const auto& [distance, k] : order) {
     const Drawable& d = g.drawables[static_cast<std::size_t>(k)];
-    if (d.terrain >= 0) {
-      TerrainDrawable& t = g.terrain_drawables[static_cast<std::size_t>(d.terrain)];
+    if (d.terrain >= 0 || d.mesh >= 0) {
+      TerrainDrawable& t = d.terrain >= 0 ? g.terrain_drawables[static_cast<std::size_t>(d.terrain)]
+                                          : g.mesh_drawables[static_cast<std::size_t>(d.mesh)];
       if (t.texture.tiled) {
         g.program->UseTiled(t.texture.tiling_seed, t.texture.tiling);
       } else {

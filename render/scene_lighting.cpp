@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "trackbed/common/option_error.h"
@@ -160,6 +161,48 @@ void CastShadow(const sim::World& world, const sim::StaticObject& o, bool crown,
   }
 }
 
+// Multiplies `map.sunlit` by the fraction of each texel's ground, in 2 × 2 points, that
+// sees the sun past mesh object `m`'s triangles. They are sheared along the sun's rays
+// (x, y moved by −z times the rays' run over rise), so that each ray towards the sun
+// is vertical: a point's ray is blocked where the highest sheared triangle over it lies
+// above the point.
+void CastMeshShadow(const sim::World& world, const sim::MeshObject& m, const Eigen::Vector3d& sun,
+                    LightMap* map) {
+  const Eigen::Vector2d run = sun.head<2>() / sun.z();
+  const Eigen::Isometry3d pose = m.Pose();
+  sim::TriangleMesh sheared;
+  sheared.triangles = m.visual->triangles;
+  Eigen::AlignedBox3d box;
+  for (const Eigen::Vector3f& v : m.visual->vertices) {
+    const Eigen::Vector3d w =
+        pose * Eigen::Vector3d(v.cast<double>().cwiseProduct(m.entry.mesh.scale));
+    box.extend(w);
+    const Eigen::Vector2d q = w.head<2>() - w.z() * run;
+    sheared.vertices.emplace_back(static_cast<float>(q.x()), static_cast<float>(q.y()),
+                                  static_cast<float>(w.z()));
+  }
+  const sim::PlacedMesh placed(sheared, Eigen::Vector3d::Ones(), Eigen::Isometry3d::Identity());
+  const sim::Terrain& terrain = world.terrain();
+  const double fall = (box.max().z() - terrain.min_height_bound_m()) / std::max(sun.z(), 1e-3);
+  const Eigen::Vector2d lo = box.min().head<2>(), hi = box.max().head<2>();
+  const Eigen::Vector2d away = -sun.head<2>() * fall;
+  const Eigen::Vector2d a = lo.cwiseMin(lo + away), b = hi.cwiseMax(hi + away);
+  const Eigen::Vector2i first = map->Texel(a.x(), a.y()), last = map->Texel(b.x(), b.y());
+  for (int j = first.y(); j <= last.y(); ++j) {
+    for (int i = first.x(); i <= last.x(); ++i) {
+      int lit = 0;
+      for (int k = 0; k < 4; ++k) {
+        const double x = map->x_min + (i + 0.25 + 0.5 * (k % 2)) * map->texel_m;
+        const double y = map->y_min + (j + 0.25 + 0.5 * (k / 2)) * map->texel_m;
+        const double z = terrain.Height(x, y) + 1e-3;
+        const std::optional<double> top = placed.HighestAt(x - z * run.x(), y - z * run.y());
+        lit += top && *top > z ? 0 : 1;
+      }
+      map->sunlit[static_cast<std::size_t>(j) * map->width + i] *= 0.25f * static_cast<float>(lit);
+    }
+  }
+}
+
 }  // namespace
 
 LightMap BakeLightMap(const sim::World& world, const SceneLighting& lighting,
@@ -191,6 +234,7 @@ LightMap BakeLightMap(const sim::World& world, const SceneLighting& lighting,
   }
   if (lighting.sun_shadows) {
     for (const sim::StaticObject& o : world.objects()) CastShadow(world, o, tree_crowns, sun, &map);
+    for (const sim::MeshObject& m : world.meshes()) CastMeshShadow(world, m, sun, &map);
   }
   return map;
 }

@@ -216,7 +216,8 @@ void ClosedLoop::Impl::BuildSoftware() {
   if (!options_.commander) {
     if (scenario_.navigation.enabled) {
       options_.commander = std::make_unique<ClosedLoopNavigation>(
-          scenario_, plant_->world->objects(), observers_.on_navigation_step);
+          scenario_, plant_->world->objects(), plant_->world->mesh_solids(),
+          observers_.on_navigation_step);
     } else if (plant_->carrier) {
       options_.commander = std::make_unique<PathDriver>(scenario_.drive, rs.vehicle.track_gauge_m,
                                                         plant_->carrier->end_time_s());

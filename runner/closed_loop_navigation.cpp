@@ -12,12 +12,18 @@
 #include "trackbed/runner/run_metrics.h"
 
 namespace trackbed::runner {
-ClosedLoopNavigation::ClosedLoopNavigation(const scenario::Scenario& s,
-                                           std::vector<sim::StaticObject> objects,
-                                           StepObserver on_step)
+ClosedLoopNavigation::ClosedLoopNavigation(
+    const scenario::Scenario& s, std::vector<sim::StaticObject> objects,
+    std::vector<std::shared_ptr<const sim::PlacedMesh>> meshes, StepObserver on_step)
     : method_(s.navigation.method),
       pose_source_(s.navigation.pose_source),
       objects_(std::move(objects)),
+      meshes_(std::move(meshes)),
+      // From the ground at rest (the centre of mass is com_height_m above it) to
+      // the hull's top.
+      hull_z_range_m_(-s.robot.vehicle.com_height_m, s.robot.vehicle.ground_clearance_m +
+                                                         s.robot.vehicle.hull_size_m.z() -
+                                                         s.robot.vehicle.com_height_m),
       on_step_(std::move(on_step)),
       goal_{s.navigation.goal.x_m, s.navigation.goal.y_m,
             units::Radians(s.navigation.goal.yaw_deg)},
@@ -94,7 +100,7 @@ kinematics::TrackSpeeds ClosedLoopNavigation::Command(double t_s, const geometry
   e.target_x_m = c.target.x();
   e.target_y_m = c.target.y();
   e.subgoal_active = c.subgoal_active;
-  e.clearance_m = ChassisClearance(T_world_body, hull_xy_m_, objects_);
+  e.clearance_m = ChassisClearance(T_world_body, hull_xy_m_, objects_, meshes_, hull_z_range_m_);
   log_.push_back(e);
   kinematics::BodyTwist twist{c.twist.v_mps, c.twist.yaw_rate_radps};
   if (std::abs(twist.yaw_rate_radps) > max_yaw_rate_radps_) {

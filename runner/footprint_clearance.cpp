@@ -76,7 +76,9 @@ double RectangleCircle(const Eigen::Vector2d& centre, double yaw, const Eigen::V
 }  // namespace
 
 double ChassisClearance(const Eigen::Isometry3d& T_world_body, const Eigen::Vector2d& size_xy_m,
-                        const std::vector<sim::StaticObject>& objects) {
+                        const std::vector<sim::StaticObject>& objects,
+                        const std::vector<std::shared_ptr<const sim::PlacedMesh>>& meshes,
+                        const Eigen::Vector2d& z_range_body_m) {
   const Eigen::Vector2d centre = T_world_body.translation().head<2>();
   const Eigen::Matrix3d& R = T_world_body.linear();
   const double yaw = std::atan2(R(1, 0), R(0, 0));
@@ -89,6 +91,14 @@ double ChassisClearance(const Eigen::Isometry3d& T_world_body, const Eigen::Vect
                          : RectangleRectangle(chassis, RectangleCorners(o.center_m, o.yaw_rad,
                                                                         o.size_m.head<2>()));
     clearance = std::min(clearance, d);
+  }
+  if (!meshes.empty()) {
+    const std::vector<Eigen::Vector2d> footprint(chassis.begin(), chassis.end());
+    const double z = T_world_body.translation().z();
+    for (const auto& m : meshes) {
+      clearance = std::min(
+          clearance, m->PlanDistance(footprint, z + z_range_body_m[0], z + z_range_body_m[1]));
+    }
   }
   return clearance;
 }

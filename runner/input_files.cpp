@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "trackbed/assets/dem_reader.h"
+#include "trackbed/assets/mesh_reader.h"
 #include "trackbed/common/durable_file.h"
 #include "trackbed/common/sha256.h"
 
@@ -36,6 +37,18 @@ std::vector<InputFile> InputFiles(const scenario::Scenario& s) {
   if (dem.enabled()) {
     for (const std::string& f : assets::ReadDemHeader(dem).files) {
       named.emplace_back("scene.terrain.dem.file", f);
+    }
+  }
+  for (std::size_t k = 0; k < s.scene.objects.size(); ++k) {
+    const sim::StaticObject& o = s.scene.objects[k];
+    if (o.shape != sim::StaticObject::Shape::kMesh) continue;
+    const std::string key = "scene.objects[" + std::to_string(k) + "].";
+    for (const auto& [name, file] : {std::pair<std::string, std::string>{"file", o.mesh.file},
+                                     {"collision_file", o.mesh.collision_file}}) {
+      if (file.empty()) continue;
+      const std::shared_ptr<const assets::MeshRead> read = assets::ReadMeshKept(file);
+      for (const std::string& f : read->files) named.emplace_back(key + name, f);
+      for (const std::string& f : read->textures) named.emplace_back(key + name, f);
     }
   }
   if (!s.robot.calibration_dir.empty()) {

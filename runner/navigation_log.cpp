@@ -40,11 +40,11 @@ void WriteNavigationMap(const std::filesystem::path& png, const std::string& tit
 }
 
 // The scene's colliding objects as circles, for the map: cylinders as they are, boxes
-// as chains of circles along their longer side.
+// as chains of circles along their longer side; meshes are not drawn.
 std::vector<navigation::Circle> ObjectCircles(const std::vector<sim::StaticObject>& objects) {
   std::vector<navigation::Circle> circles;
   for (const sim::StaticObject& o : objects) {
-    if (!o.collides) continue;
+    if (!o.collides || o.shape == sim::StaticObject::Shape::kMesh) continue;
     if (o.shape == sim::StaticObject::Shape::kCylinder) {
       circles.push_back({o.center_m, o.radius_m});
       continue;

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "trackbed/assets/dem_reader.h"
+#include "trackbed/assets/scene_meshes.h"
 #include "trackbed/common/split_mix.h"
 #include "trackbed/common/units.h"
 #include "trackbed/robot/as_built.h"
@@ -51,11 +52,15 @@ Plant BuildPlant(const scenario::Scenario& scenario, const RobotBuild& robot, bo
   const double gravity = scenario.scene.world.gravity_mps2;
   Plant p;
   const sim::TerrainOptions& terrain = scenario.scene.terrain;
-  std::shared_ptr<const sim::ElevationGrid> dem;
-  if (terrain.dem.enabled()) dem = assets::ReadDem(terrain.dem, terrain.grid_extent_m());
+  assets::SceneMeshes meshes = assets::LoadSceneMeshes(scenario::SceneObjects(scenario));
+  // The heights under the roughness: an elevation model's or the ground meshes'
+  // (the scenario allows one of them).
+  std::shared_ptr<const sim::ElevationGrid> base =
+      assets::SampleMeshGround(meshes.grounds, terrain);
+  if (terrain.dem.enabled()) base = assets::ReadDem(terrain.dem, terrain.grid_extent_m());
   p.world = std::make_unique<sim::World>(
-      scenario.scene.world, sim::Terrain(terrain, split_mix::Stream(scenario.seed, 0), dem),
-      scenario::SceneObjects(scenario));
+      scenario.scene.world, sim::Terrain(terrain, split_mix::Stream(scenario.seed, 0), base),
+      std::move(meshes.primitives), std::move(meshes.obstacles));
   if (pose_path) {
     auto carrier = std::make_unique<robot::PosePathCarrier>(
         PosePathOf(scenario), &p.world->terrain(), robot.truth.vehicle, gravity);

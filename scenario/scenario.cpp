@@ -115,6 +115,10 @@ void SceneSpec::Validate() const {
   }
   for (std::size_t k = 0; k < objects.size(); ++k) {
     option_check::Nested(Indexed("objects", k), objects[k]);
+    if (objects[k].mesh.ground && terrain.dem.enabled()) {
+      throw OptionError(Indexed("objects", k) + ".ground",
+                        "a ground mesh and terrain.dem exclude each other (both give the heights)");
+    }
   }
   for (std::size_t k = 0; k < scatter.size(); ++k) {
     option_check::Nested(Indexed("scatter", k), scatter[k]);

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "trackbed/assets/dem_reader.h"
+#include "trackbed/assets/scene_meshes.h"
 #include "trackbed/common/archive.h"
 #include "trackbed/common/option_error.h"
 #include "trackbed/common/units.h"
@@ -102,6 +103,38 @@ void ReadWallEnds(archive::Reader& map, StaticObject* out) {
   out->size_m = {d.norm(), thickness_m, height_m};
 }
 
+// A mesh: its file, full rotation, scale (one number or one per axis), collision
+// solid and use as ground.
+void ReadMeshKeys(archive::Reader& map, StaticObject* out) {
+  sim::MeshSource& m = out->mesh;
+  if (!map.Has("file")) map.Fail("file", "missing: a mesh names its file");
+  map.Visit("file", &m.file);
+  map.Visit("center", &out->center_m);
+  double roll_deg = 0.0, pitch_deg = 0.0, yaw_deg = 0.0;
+  map.Visit("roll_deg", &roll_deg);
+  map.Visit("pitch_deg", &pitch_deg);
+  map.Visit("yaw_deg", &yaw_deg);
+  out->roll_rad = units::Radians(roll_deg);
+  out->pitch_rad = units::Radians(pitch_deg);
+  out->yaw_rad = units::Radians(yaw_deg);
+  Node scale;
+  map.Visit("scale", &scale);
+  const std::string scale_path = archive::JoinKey(map.path(), "scale");
+  if (scale.IsScalar()) {
+    double uniform = 1.0;
+    archive::Codec<double>::Read(scale, scale_path, map.wording(), &uniform);
+    m.scale.setConstant(uniform);
+  } else if (!scale.IsNull()) {
+    archive::Codec<Eigen::Vector3d>::Read(scale, scale_path, map.wording(), &m.scale);
+  }
+  map.VisitEnum("collision", &m.collision,
+                {{"mesh", sim::MeshSource::Collision::kMesh},
+                 {"file", sim::MeshSource::Collision::kFile},
+                 {"box", sim::MeshSource::Collision::kBox}});
+  map.Visit("collision_file", &m.collision_file);
+  map.Visit("ground", &m.ground);
+}
+
 void ReadObject(const Node& node, const std::string& path, archive::Wording wording,
                 StaticObject* out) {
   archive::Reader map(node, path, wording);
@@ -115,7 +148,9 @@ void ReadObject(const Node& node, const std::string& path, archive::Wording word
   }
   out->shape = type->shape;
   out->appearance = type->appearance;
-  if (out->kind == "wall" && (map.Has("from") || map.Has("to"))) {
+  if (out->shape == StaticObject::Shape::kMesh) {
+    ReadMeshKeys(map, out);
+  } else if (out->kind == "wall" && (map.Has("from") || map.Has("to"))) {
     ReadWallEnds(map, out);
   } else if (out->shape == StaticObject::Shape::kBox) {
     double yaw_deg = 0.0;
@@ -140,8 +175,28 @@ void ReadObject(const Node& node, const std::string& path, archive::Wording word
 Node WriteObject(StaticObject o) {
   archive::Writer map;
   map.Visit("type", &o.kind);
+  if (o.shape == StaticObject::Shape::kMesh) map.Visit("file", &o.mesh.file);
   map.Visit("center", &o.center_m);
-  if (o.shape == StaticObject::Shape::kBox) {
+  if (o.shape == StaticObject::Shape::kMesh) {
+    double roll_deg = YawDegreesFor(o.roll_rad), pitch_deg = YawDegreesFor(o.pitch_rad),
+           yaw_deg = YawDegreesFor(o.yaw_rad);
+    map.Visit("roll_deg", &roll_deg);
+    map.Visit("pitch_deg", &pitch_deg);
+    map.Visit("yaw_deg", &yaw_deg);
+    const Eigen::Vector3d& s = o.mesh.scale;
+    if (s.x() == s.y() && s.x() == s.z()) {
+      double uniform = s.x();
+      map.Visit("scale", &uniform);
+    } else {
+      map.Visit("scale", &o.mesh.scale);
+    }
+    map.VisitEnum("collision", &o.mesh.collision,
+                  {{"mesh", sim::MeshSource::Collision::kMesh},
+                   {"file", sim::MeshSource::Collision::kFile},
+                   {"box", sim::MeshSource::Collision::kBox}});
+    if (!o.mesh.collision_file.empty()) map.Visit("collision_file", &o.mesh.collision_file);
+    map.Visit("ground", &o.mesh.ground);
+  } else if (o.shape == StaticObject::Shape::kBox) {
     map.Visit("size_m", &o.size_m);
     double yaw_deg = YawDegreesFor(o.yaw_rad);
     map.Visit("yaw_deg", &yaw_deg);
@@ -217,7 +272,8 @@ void ApplyOverride(Node& root, const Override& o, Sources* sources) {
 // OptionError fields are struct member names; a few differ from their keys.
 std::string KeyOfField(const std::string& field) {
   static const std::pair<const char*, const char*> kRenames[] = {
-      {"center_m", "center"}, {"min_m", "min"}, {"max_m", "max"}, {"yaw_rad", "yaw_deg"}};
+      {"center_m", "center"}, {"min_m", "min"},         {"max_m", "max"},
+      {"yaw_rad", "yaw_deg"}, {"roll_rad", "roll_deg"}, {"pitch_rad", "pitch_deg"}};
   std::string key;
   std::size_t begin = 0;
   while (begin <= field.size()) {
@@ -256,6 +312,44 @@ void CheckDemCoversTerrain(const std::string& path, const sim::TerrainOptions& t
                             "terrain's grid [" +
                             m(g[0]) + ", " + m(g[1]) + ", " + m(g[2]) + ", " + m(g[3]) +
                             "] (scene.terrain.extent_m)");
+  }
+}
+
+// Every mesh object's files read once as they will be for the run: an error names the
+// object's key; a ground mesh's plan must reach over the terrain's grid (the grid
+// points it leaves without a triangle are found when the run samples it).
+void CheckMeshes(const std::string& path, const Scenario& scenario) {
+  const std::vector<StaticObject>& objects = scenario.scene.objects;
+  const Eigen::Vector4d g = scenario.scene.terrain.grid_extent_m();
+  Eigen::AlignedBox2d ground;
+  std::string ground_key;
+  for (std::size_t k = 0; k < objects.size(); ++k) {
+    const StaticObject& o = objects[k];
+    if (o.shape != StaticObject::Shape::kMesh) continue;
+    const std::string key = "scene.objects[" + std::to_string(k) + "]";
+    std::vector<StaticObject> one = {o};
+    try {
+      const assets::SceneMeshes m = assets::LoadSceneMeshes(one);
+      if (!o.mesh.ground) continue;
+      const sim::PlacedMesh placed(*m.grounds[0].visual, o.mesh.scale, m.grounds[0].Pose());
+      ground.extend(
+          Eigen::AlignedBox2d(placed.bounds().min().head<2>(), placed.bounds().max().head<2>()));
+      ground_key = key + ".file";
+    } catch (const assets::AssetError& e) {
+      const bool collision = o.mesh.collision == sim::MeshSource::Collision::kFile &&
+                             std::string(e.what()).rfind(o.mesh.collision_file + ":", 0) == 0;
+      throw ScenarioError(path, key + (collision ? ".collision_file" : ".file"), e.what());
+    }
+  }
+  if (!ground_key.empty() && !ground.contains(Eigen::AlignedBox2d(Eigen::Vector2d(g[0], g[1]),
+                                                                  Eigen::Vector2d(g[2], g[3])))) {
+    const auto m = [](double v) { return option_check::Describe(v); };
+    throw ScenarioError(path, ground_key,
+                        "the ground meshes span x " + m(ground.min().x()) + " to " +
+                            m(ground.max().x()) + " m and y " + m(ground.min().y()) + " to " +
+                            m(ground.max().y()) + " m, short of the terrain's grid [" + m(g[0]) +
+                            ", " + m(g[1]) + ", " + m(g[2]) + ", " + m(g[3]) +
+                            "] (scene.terrain.extent_m): a ground mesh must cover it");
   }
 }
 
@@ -340,6 +434,13 @@ Scenario LoadScenario(const std::string& path, const std::vector<Override>& over
   resolve("robot.calibration_dir", &scenario.robot.calibration_dir, true);
   resolve("scene.terrain.dem.file", &scenario.scene.terrain.dem.file, false);
   CheckDemCoversTerrain(path, scenario.scene.terrain);
+  for (std::size_t k = 0; k < scenario.scene.objects.size(); ++k) {
+    sim::MeshSource& m = scenario.scene.objects[k].mesh;
+    const std::string key = "scene.objects[" + std::to_string(k) + "].";
+    resolve((key + "file").c_str(), &m.file, false);
+    resolve((key + "collision_file").c_str(), &m.collision_file, false);
+  }
+  CheckMeshes(path, scenario);
   return scenario;
 }
 

@@ -9,7 +9,7 @@ packages=(
   g++ cmake ninja-build ccache pkg-config python3
   libbullet-dev libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libopencv-dev libosmesa6-dev libfuzzylite-dev libboost-math-dev
-  pybind11-dev python3-dev python3-numpy libzstd-dev zlib1g-dev libgdal-dev
+  pybind11-dev python3-dev python3-numpy libzstd-dev zlib1g-dev libgdal-dev libassimp-dev
 )
 # `--tests`: what the test suite needs beyond the build (node and npm run the
 # independent MCAP readers, tests/mcap/; xmllint checks JUnit XML), each unless its
@@ -48,6 +48,29 @@ if [ ! -f "$stars/tif/olinda_dem_utm25s.tif" ]; then
       "$tmp/x/usr/share/doc/r-cran-stars/copyright" "$stars/"
   else
     echo "setup: r-cran-stars could not be downloaded: scenes/olinda_dem.yaml will not run"
+  fi
+  rm -rf "$tmp"
+fi
+
+# Textured mesh files for scenes/mesh_props.yaml: models Debian's assimp-testmodels
+# ships (BSD-3-clause, the ASSIMP Development Team), taken from the package without
+# installing it; the scene's test skips where they are absent.
+models=/usr/local/share/trackbed/assimp-testmodels
+if [ ! -f "$models/OBJ/spider.obj" ]; then
+  sudo_cmd=()
+  [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+  tmp=$(mktemp -d)
+  if (cd "$tmp" && { apt-get download assimp-testmodels >/dev/null 2>&1 ||
+        { "${sudo_cmd[@]}" apt-get update -qq && apt-get download assimp-testmodels >/dev/null 2>&1; }; }); then
+    dpkg-deb -x "$tmp"/assimp-testmodels_*.deb "$tmp/x"
+    src="$tmp/x/usr/share/assimp/models"
+    "${sudo_cmd[@]}" mkdir -p "$models/OBJ" "$models/glTF2"
+    "${sudo_cmd[@]}" cp "$src"/OBJ/spider.obj "$src"/OBJ/spider.mtl "$src"/OBJ/*.jpg "$models/OBJ/"
+    "${sudo_cmd[@]}" cp -r "$src"/glTF2/BoxTextured-glTF "$src"/glTF2/BoxTextured-glTF-Binary \
+      "$models/glTF2/"
+    "${sudo_cmd[@]}" cp "$tmp/x/usr/share/doc/assimp-testmodels/copyright" "$models/"
+  else
+    echo "setup: assimp-testmodels could not be downloaded: scenes/mesh_props.yaml will not run"
   fi
   rm -rf "$tmp"
 fi

@@ -13,9 +13,20 @@ void StaticObject::Validate() const {
     option_check::Positive("size_m[0]", size_m.x());
     option_check::Positive("size_m[1]", size_m.y());
     option_check::Positive("size_m[2]", size_m.z());
-  } else {
+  } else if (shape == Shape::kCylinder) {
     option_check::Positive("radius_m", radius_m);
     option_check::Positive("height_m", height_m);
+  } else {
+    if (mesh.file.empty()) throw OptionError("file", "must name a mesh file");
+    for (int k = 0; k < 3; ++k) {
+      option_check::Positive(("scale[" + std::to_string(k) + "]").c_str(), mesh.scale[k]);
+    }
+    if ((mesh.collision == MeshSource::Collision::kFile) == mesh.collision_file.empty()) {
+      throw OptionError("collision_file",
+                        "names the collision mesh exactly when collision is 'file'");
+    }
+    option_check::Finite("roll_rad", roll_rad);
+    option_check::Finite("pitch_rad", pitch_rad);
   }
   option_check::Finite("center_m[0]", center_m.x());
   option_check::Finite("center_m[1]", center_m.y());
@@ -33,6 +44,7 @@ const std::vector<ObjectType>& ObjectTypes() {
       {"post", StaticObject::Shape::kCylinder, "metal"},
       {"door", StaticObject::Shape::kBox, "door"},
       {"poster", StaticObject::Shape::kBox, "poster"},
+      {"mesh", StaticObject::Shape::kMesh, "mesh"},
   };
   return types;
 }

@@ -3,10 +3,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <utility>
 
+#include <BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h>
 #include <BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h>
+#include <BulletCollision/CollisionShapes/btTriangleIndexVertexArray.h>
 #include <btBulletDynamicsCommon.h>
 
 #include "trackbed/common/least_recently_used.h"
@@ -38,7 +41,65 @@ double LowestGround(const Terrain& terrain, const StaticObject& o) {
   return lowest;
 }
 
+// The origin height that sets a mesh's lowest point on the lowest ground under its
+// plan bounding box (sampled 9 × 9).
+double MeshOnGround(const Terrain& terrain, const MeshObject& m) {
+  MeshObject at_zero = m;
+  at_zero.entry.base_z_m = 0.0;
+  const PlacedMesh placed(*m.visual, m.entry.mesh.scale, at_zero.Pose());
+  const Eigen::AlignedBox3d& box = placed.bounds();
+  double lowest = std::numeric_limits<double>::infinity();
+  for (int i = 0; i <= 8; ++i) {
+    for (int j = 0; j <= 8; ++j) {
+      const Eigen::Vector2d p =
+          box.min().head<2>() +
+          Eigen::Vector2d(i / 8.0, j / 8.0).cwiseProduct(box.sizes().head<2>());
+      lowest = std::min(lowest, terrain.HeightFromSeed(p.x(), p.y()));
+    }
+  }
+  return lowest - box.min().z();
+}
+
+// A mesh's solid as Bullet reads it: the scaled vertices and the indices it points
+// into, kept alive with the shape.
+struct MeshArrays {
+  std::vector<double> vertices;
+  std::vector<int> indices;
+  btTriangleIndexVertexArray array;
+};
+
 }  // namespace
+
+Eigen::Isometry3d MeshObject::Pose() const {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = RollPitchYaw(entry.roll_rad, entry.pitch_rad, entry.yaw_rad);
+  pose.translation() = Eigen::Vector3d(entry.center_m.x(), entry.center_m.y(), entry.base_z_m);
+  return pose;
+}
+
+std::shared_ptr<const TriangleMesh> MeshObject::Solid() const {
+  switch (entry.mesh.collision) {
+    case MeshSource::Collision::kFile:
+      return collision;
+    case MeshSource::Collision::kBox:
+      return std::make_shared<const TriangleMesh>(BoxMesh(visual->Bounds()));
+    case MeshSource::Collision::kMesh:
+      break;
+  }
+  return visual;
+}
+
+TriangleMesh BoxMesh(const Eigen::AlignedBox3d& box) {
+  TriangleMesh m;
+  for (int k = 0; k < 8; ++k) {
+    m.vertices.push_back(box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(k)).cast<float>());
+  }
+  // Corner k has x from bit 0, y from bit 1, z from bit 2.
+  m.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                 {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  m.parts.push_back({0, 12, "", Eigen::Vector4f::Ones(), nullptr});
+  return m;
+}
 
 // One terrain tile in Bullet: a heightfield over the tile and one cell beyond
 // it on every side that has a neighbour, so that neighbouring heightfields
@@ -79,6 +140,7 @@ struct World::BulletParts {
   btDiscreteDynamicsWorld dynamics{&dispatcher, &broadphase, &solver, &config};
   std::map<std::pair<int, int>, GroundTile> ground;
   std::uint64_t ground_clock = 0;
+  std::vector<std::unique_ptr<MeshArrays>> mesh_arrays;  // declared first: outlives the shapes
   std::vector<std::unique_ptr<btCollisionShape>> shapes;
   std::vector<std::unique_ptr<btCollisionObject>> bodies;
 
@@ -116,6 +178,61 @@ struct World::BulletParts {
     dynamics.updateSingleAabb(g.body.get());
   }
 
+  // A static obstacle of `shape` at `pose`.
+  void AddObstacle(std::unique_ptr<btCollisionShape> shape, const btTransform& pose) {
+    auto body = std::make_unique<btCollisionObject>();
+    body->setCollisionShape(shape.get());
+    body->setWorldTransform(pose);
+    body->setFriction(0.6);
+    body->setActivationState(ISLAND_SLEEPING);
+    dynamics.addCollisionObject(body.get(), kGroupObstacle, kGroupChassis | kGroupOccluder);
+    dynamics.updateSingleAabb(body.get());
+    shapes.push_back(std::move(shape));
+    bodies.push_back(std::move(body));
+  }
+
+  // A mesh obstacle: its solid's triangles, scaled, in a bounding volume hierarchy
+  // (btBvhTriangleMeshShape), or its scaled bounding box.
+  void AddMesh(const MeshObject& m) {
+    const Eigen::Isometry3d pose = m.Pose();
+    const Eigen::Quaterniond q(pose.linear());
+    const Eigen::Vector3d& t = pose.translation();
+    btTransform frame(btQuaternion(q.x(), q.y(), q.z(), q.w()), btVector3(t.x(), t.y(), t.z()));
+    const Eigen::Vector3d& scale = m.entry.mesh.scale;
+    if (m.entry.mesh.collision == MeshSource::Collision::kBox) {
+      const Eigen::AlignedBox3d box = m.visual->Bounds();
+      const Eigen::Vector3d half = 0.5 * box.sizes().cwiseProduct(scale);
+      const Eigen::Vector3d c = box.center().cwiseProduct(scale);
+      AddObstacle(std::make_unique<btBoxShape>(btVector3(half.x(), half.y(), half.z())),
+                  frame * btTransform(btQuaternion::getIdentity(), btVector3(c.x(), c.y(), c.z())));
+      return;
+    }
+    const TriangleMesh& solid = *m.Solid();
+    auto arrays = std::make_unique<MeshArrays>();
+    arrays->vertices.reserve(3 * solid.vertices.size());
+    for (const Eigen::Vector3f& v : solid.vertices) {
+      for (int k = 0; k < 3; ++k) arrays->vertices.push_back(v[k] * scale[k]);
+    }
+    arrays->indices.reserve(3 * solid.triangles.size());
+    for (const auto& tri : solid.triangles) {
+      for (std::uint32_t v : tri) arrays->indices.push_back(static_cast<int>(v));
+    }
+    btIndexedMesh part;
+    part.m_numTriangles = static_cast<int>(solid.triangles.size());
+    part.m_triangleIndexBase = reinterpret_cast<const unsigned char*>(arrays->indices.data());
+    part.m_triangleIndexStride = 3 * sizeof(int);
+    part.m_numVertices = static_cast<int>(solid.vertices.size());
+    part.m_vertexBase = reinterpret_cast<const unsigned char*>(arrays->vertices.data());
+    part.m_vertexStride = 3 * sizeof(double);
+    part.m_indexType = PHY_INTEGER;
+    part.m_vertexType = PHY_DOUBLE;
+    arrays->array.addIndexedMesh(part, PHY_INTEGER);
+    auto shape = std::make_unique<btBvhTriangleMeshShape>(&arrays->array,
+                                                          /*useQuantizedAabbCompression=*/true);
+    mesh_arrays.push_back(std::move(arrays));
+    AddObstacle(std::move(shape), frame);
+  }
+
   // Takes the least recently used tiles out beyond `keep`.
   void DropGround(std::size_t keep) {
     while (ground.size() > keep) {
@@ -126,16 +243,36 @@ struct World::BulletParts {
   }
 };
 
-World::World(const WorldOptions& options, Terrain terrain, std::vector<StaticObject> objects)
+World::World(const WorldOptions& options, Terrain terrain, std::vector<StaticObject> objects,
+             std::vector<MeshObject> meshes)
     : options_(options),
       terrain_(std::move(terrain)),
       objects_(std::move(objects)),
+      meshes_(std::move(meshes)),
       bullet_(std::make_unique<BulletParts>()) {
   options_.Validate();
   for (std::size_t k = 0; k < objects_.size(); ++k) {
     option_check::Nested("objects[" + std::to_string(k) + "]", objects_[k]);
+    if (objects_[k].shape == StaticObject::Shape::kMesh) {
+      throw OptionError("objects[" + std::to_string(k) + "]",
+                        "a mesh comes with its triangles, among the meshes");
+    }
     if (std::isnan(objects_[k].base_z_m))
       objects_[k].base_z_m = LowestGround(terrain_, objects_[k]);
+  }
+  for (std::size_t k = 0; k < meshes_.size(); ++k) {
+    MeshObject& m = meshes_[k];
+    option_check::Nested("meshes[" + std::to_string(k) + "]", m.entry);
+    if (m.entry.shape != StaticObject::Shape::kMesh || m.entry.mesh.ground || !m.visual ||
+        (m.entry.mesh.collision == MeshSource::Collision::kFile && !m.collision)) {
+      throw OptionError("meshes[" + std::to_string(k) + "]",
+                        "must be a mesh obstacle with its triangles");
+    }
+    if (std::isnan(m.entry.base_z_m)) m.entry.base_z_m = MeshOnGround(terrain_, m);
+    if (m.entry.collides) {
+      mesh_solids_.push_back(
+          std::make_shared<const PlacedMesh>(*m.Solid(), m.entry.mesh.scale, m.Pose()));
+    }
   }
   BulletParts& b = *bullet_;
   b.dynamics.setGravity(btVector3(0, 0, -options_.gravity_mps2));
@@ -153,6 +290,9 @@ World::World(const WorldOptions& options, Terrain terrain, std::vector<StaticObj
     }
   }
 
+  for (const MeshObject& m : meshes_) {
+    if (m.entry.collides) b.AddMesh(m);
+  }
   for (const StaticObject& o : objects_) {
     if (!o.collides) continue;
     std::unique_ptr<btCollisionShape> shape;
@@ -164,17 +304,9 @@ World::World(const WorldOptions& options, Terrain terrain, std::vector<StaticObj
       shape = std::make_unique<btCylinderShapeZ>(btVector3(o.radius_m, o.radius_m, o.height_m / 2));
       half_height = o.height_m / 2;
     }
-    auto body = std::make_unique<btCollisionObject>();
-    body->setCollisionShape(shape.get());
-    body->setWorldTransform(
-        btTransform(btQuaternion(btVector3(0, 0, 1), o.yaw_rad),
-                    btVector3(o.center_m.x(), o.center_m.y(), o.base_z_m + half_height)));
-    body->setFriction(0.6);
-    body->setActivationState(ISLAND_SLEEPING);
-    b.dynamics.addCollisionObject(body.get(), kGroupObstacle, kGroupChassis | kGroupOccluder);
-    b.dynamics.updateSingleAabb(body.get());
-    b.shapes.push_back(std::move(shape));
-    b.bodies.push_back(std::move(body));
+    b.AddObstacle(std::move(shape),
+                  btTransform(btQuaternion(btVector3(0, 0, 1), o.yaw_rad),
+                              btVector3(o.center_m.x(), o.center_m.y(), o.base_z_m + half_height)));
   }
 }
 

@@ -148,10 +148,17 @@ TEST(ScenarioYamlTest, RepositoryScenesLoadAndRoundTrip) {
   for (const auto& entry :
        std::filesystem::directory_iterator(std::string(TRACKBED_SOURCE_DIR) + "/scenes")) {
     if (entry.path().extension() != ".yaml") continue;
-    // The example on a real elevation model needs the file scripts/setup.sh installs.
-    const char* olinda = "/usr/local/share/trackbed/r-cran-stars/tif/olinda_dem_utm25s.tif";
-    if (entry.path().filename() == "olinda_dem.yaml" && !std::filesystem::exists(olinda)) {
-      std::cout << "not loaded: " << entry.path() << " (" << olinda << " absent)\n";
+    // The examples on a real elevation model and on packaged mesh files need the files
+    // scripts/setup.sh installs.
+    const std::string name = entry.path().filename().string();
+    const std::string needed =
+        name == "olinda_dem.yaml"
+            ? "/usr/local/share/trackbed/r-cran-stars/tif/olinda_dem_utm25s.tif"
+            : (name == "mesh_props.yaml"
+                   ? "/usr/local/share/trackbed/assimp-testmodels/OBJ/spider.obj"
+                   : "");
+    if (!needed.empty() && !std::filesystem::exists(needed)) {
+      std::cout << "not loaded: " << entry.path() << " (" << needed << " absent)\n";
       continue;
     }
     ++scenes;
@@ -666,7 +673,7 @@ TEST(ScenarioYamlTest, ObjectTypesPickShapeAndAppearance) {
   EXPECT_EQ(s.scene.objects[2].appearance, "rust");
   EXPECT_EQ(ErrorOf(std::string(kMinimal) + "scene: {objects: [{type: rock}]}"),
             "test.yaml: scene.objects[0].type: must be one of wall, box, bench, cylinder, tree, "
-            "post, door, poster (got 'rock')");
+            "post, door, poster, mesh (got 'rock')");
 }
 
 }  // namespace

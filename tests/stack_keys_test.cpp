@@ -306,7 +306,7 @@ TEST(StackKeysTest, ClosedLoopNavigationStartsAfterTheStandstill) {
                       {"navigation.pose_source", "ground_truth"},
                       {"robot.range_sensor.enabled", "true"},
                       {"navigation.goal", "{x_m: 5, y_m: 0, yaw_deg: 0}"}});
-  runner::ClosedLoopNavigation nav(s, {}, {});
+  runner::ClosedLoopNavigation nav(s, {}, {}, {});
   runner::ControlInput in;
   in.t_s = 1.9;
   runner::ControlOutput out = nav.Update(in);

@@ -1,6 +1,7 @@
 // Headless rendering of the world on OSMesa (Mesa's llvmpipe, no display, no
 // GPU): the same geometry the physics uses — the terrain triangulation,
-// walls, boxes, cylinders — plus visual-only dressing (tree crowns, a
+// walls, boxes, cylinders, the triangles of mesh objects with their files'
+// images — plus visual-only dressing (tree crowns, a
 // ceiling, doors and posters), textured procedurally from the seed and lit by
 // a directional light plus ambient. One OpenGL context per renderer, reused
 // for every frame.

@@ -7,12 +7,13 @@
 //          · exposure
 //
 // sunlit(x, y) is the fraction of the texel's ground that sees the sun (2 × 2 rays per
-// texel towards it, against tree crowns, trunks, posts, boxes and walls): only the
-// sun's direct light is shadowed, the sky's (ambient) is not. gain(x, y) is the product
-// over the zones of 1 + (gain − 1) · w, w = 1 inside a zone and falling smoothly to 0
-// across `edge_m` about its border. Being a map in x and y, it lights a wall or a trunk
-// by its footprint: a shadow or a lit zone covers whatever stands in it, to its full
-// height. docs/camera_model.md ("Light that changes") has the sourced levels.
+// texel towards it, against tree crowns, trunks, posts, boxes, walls and the triangles
+// of mesh objects): only the sun's direct light is shadowed, the sky's (ambient) is
+// not. gain(x, y) is the product over the zones of 1 + (gain − 1) · w, w = 1 inside a
+// zone and falling smoothly to 0 across `edge_m` about its border. Being a map in x
+// and y, it lights a wall or a trunk by its footprint: a shadow or a lit zone covers
+// whatever stands in it, to its full height.
+// docs/camera_model.md ("Light that changes") has the sourced levels.
 //
 // With lighting the renderer's output is pre-exposed: the light is multiplied by the
 // camera's exposure before the 8-bit output clips, so a zone brighter than the

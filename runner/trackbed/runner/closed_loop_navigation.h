@@ -22,16 +22,19 @@
 #include "trackbed/robot/range_sensor.h"
 #include "trackbed/runner/commander.h"
 #include "trackbed/scenario/scenario.h"
+#include "trackbed/sim/triangle_mesh.h"
 
 namespace trackbed::runner {
 
 /// The navigator as the run's commander, at `navigation.control_period_s`.
 class ClosedLoopNavigation : public Commander {
  public:
-  /// `objects` are the world's (for the chassis clearance logged with ground truth);
-  /// `on_step` (may be empty) sees every control step's log entry.
+  /// `objects` and `meshes` are the world's (sim::World::objects, mesh_solids: for the
+  /// chassis clearance logged with ground truth); `on_step` (may be empty) sees every
+  /// control step's log entry.
   using StepObserver = std::function<void(const navigation::NavigationLogEntry&)>;
   ClosedLoopNavigation(const scenario::Scenario& scenario, std::vector<sim::StaticObject> objects,
+                       std::vector<std::shared_ptr<const sim::PlacedMesh>> meshes,
                        StepObserver on_step);
 
   double period_s() const override { return period_s_; }
@@ -60,6 +63,8 @@ class ClosedLoopNavigation : public Commander {
   navigation::NavigationMethod method_;
   scenario::NavigationSpec::PoseSource pose_source_;
   std::vector<sim::StaticObject> objects_;
+  std::vector<std::shared_ptr<const sim::PlacedMesh>> meshes_;
+  Eigen::Vector2d hull_z_range_m_;  // the chassis's heights about its body origin
   StepObserver on_step_;
   std::unique_ptr<navigation::Navigator> navigator_;
   navigation::Pose2 goal_;

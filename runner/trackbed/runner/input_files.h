@@ -1,7 +1,7 @@
 // The files a scenario names besides itself — an elevation model with its side
-// files, a calibration folder, a fusion rule base, a teach map — fingerprinted in the
-// run folder's `inputs.json`, since `scenario.yaml` alone no longer reproduces a run
-// that reads them (docs/run_folder.md).
+// files, mesh objects' files with their side files and textures, a calibration folder, a fusion
+// rule base, a teach map — fingerprinted in the run folder's `inputs.json`, since `scenario.yaml`
+// alone no longer reproduces a run that reads them (docs/run_folder.md).
 #pragma once
 
 #include <cstdint>

@@ -32,7 +32,7 @@ void WriteNavigationMap(const std::filesystem::path& png, const std::string& tit
                         const std::vector<navigation::SubgoalRecord>& subgoals);
 
 /// The scene's colliding objects as circles, for the map: cylinders as they are, boxes
-/// as chains of circles along their longer side.
+/// as chains of circles along their longer side; meshes are left out.
 std::vector<navigation::Circle> ObjectCircles(const std::vector<sim::StaticObject>& objects);
 
 }  // namespace trackbed::runner

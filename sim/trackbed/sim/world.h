@@ -20,6 +20,7 @@
 
 #include "trackbed/sim/static_object.h"
 #include "trackbed/sim/terrain.h"
+#include "trackbed/sim/triangle_mesh.h"
 
 class btDiscreteDynamicsWorld;
 class btRigidBody;
@@ -51,6 +52,27 @@ struct WorldOptions {
   }
 };
 
+/// A `mesh` scene object with the triangles read from its files
+/// (assets/trackbed/assets/mesh_reader.h).
+struct MeshObject {
+  /// The scene entry (shape kMesh); the world fills a NaN base_z_m.
+  StaticObject entry;
+  /// The mesh file's triangles in the object's frame, before the scale.
+  std::shared_ptr<const TriangleMesh> visual;
+  /// The collision file's triangles (MeshSource::Collision::kFile), else null.
+  std::shared_ptr<const TriangleMesh> collision;
+
+  /// Object frame to world: the origin at (center_m, base_z_m), rotated by
+  /// sim::RollPitchYaw(roll, pitch, yaw).
+  Eigen::Isometry3d Pose() const;
+  /// The triangles Bullet and the clearance take as its solid, in the object's frame
+  /// before the scale: the collision file's, the visual's bounding box's, or the visual's.
+  std::shared_ptr<const TriangleMesh> Solid() const;
+};
+
+/// The twelve triangles of an axis-aligned box's faces, outward facing.
+TriangleMesh BoxMesh(const Eigen::AlignedBox3d& box);
+
 /// Result of a ray test.
 struct RayHit {
   Eigen::Vector3d point_world;
@@ -64,7 +86,10 @@ class World {
   /// Terrain tiles held in Bullet at most (beyond what one ray spans).
   static constexpr std::size_t kGroundTiles = 9;
 
-  World(const WorldOptions& options, Terrain terrain, std::vector<StaticObject> objects);
+  /// `objects` are the primitives (no shape kMesh); `meshes` the mesh obstacles (not
+  /// ground meshes, whose triangles are already the terrain's heights).
+  World(const WorldOptions& options, Terrain terrain, std::vector<StaticObject> objects,
+        std::vector<MeshObject> meshes = {});
   ~World();
   World(const World&) = delete;
   World& operator=(const World&) = delete;
@@ -75,6 +100,10 @@ class World {
   const WorldOptions& options() const { return options_; }
   const Terrain& terrain() const { return terrain_; }
   const std::vector<StaticObject>& objects() const { return objects_; }
+  /// The mesh obstacles, their base heights filled.
+  const std::vector<MeshObject>& meshes() const { return meshes_; }
+  /// Each colliding mesh obstacle's solid placed in the world (for the clearance).
+  const std::vector<std::shared_ptr<const PlacedMesh>>& mesh_solids() const { return mesh_solids_; }
   /// The Bullet world, for bodies that add themselves (the robot's chassis).
   btDiscreteDynamicsWorld& bullet();
 
@@ -94,6 +123,8 @@ class World {
   WorldOptions options_;
   Terrain terrain_;
   std::vector<StaticObject> objects_;
+  std::vector<MeshObject> meshes_;
+  std::vector<std::shared_ptr<const PlacedMesh>> mesh_solids_;
   std::unique_ptr<BulletParts> bullet_;
 };
 
