@@ -126,6 +126,31 @@ void Bounds(const sim::StaticObject& o, bool crown, Eigen::Vector2d* lo, Eigen::
   *hi = o.center_m.array() + reach;
 }
 
+// Multiplies `map.sunlit` by the fraction of each texel's ground, in 2 × 2 points p
+// (1 mm above the terrain), for which `blocked(p)` is false, over the texels the shadow
+// of what spans [lo, hi] in plan, up to height `top`, can reach: it falls away from the
+// sun, as far as the top's height above the lowest ground can be over the tangent of
+// the elevation.
+template <class Blocked>
+void ShadeTexels(const sim::Terrain& terrain, const Eigen::Vector3d& sun, const Eigen::Vector2d& lo,
+                 const Eigen::Vector2d& hi, double top, LightMap* map, Blocked&& blocked) {
+  const double fall = (top - terrain.min_height_bound_m()) / std::max(sun.z(), 1e-3);
+  const Eigen::Vector2d away = -sun.head<2>() * fall;
+  const Eigen::Vector2d a = lo.cwiseMin(lo + away), b = hi.cwiseMax(hi + away);
+  const Eigen::Vector2i first = map->Texel(a.x(), a.y()), last = map->Texel(b.x(), b.y());
+  for (int j = first.y(); j <= last.y(); ++j) {
+    for (int i = first.x(); i <= last.x(); ++i) {
+      int lit = 0;
+      for (int k = 0; k < 4; ++k) {
+        const double x = map->x_min + (i + 0.25 + 0.5 * (k % 2)) * map->texel_m;
+        const double y = map->y_min + (j + 0.25 + 0.5 * (k / 2)) * map->texel_m;
+        lit += blocked(Eigen::Vector3d(x, y, terrain.Height(x, y) + 1e-3)) ? 0 : 1;
+      }
+      map->sunlit[static_cast<std::size_t>(j) * map->width + i] *= 0.25f * static_cast<float>(lit);
+    }
+  }
+}
+
 // Multiplies `map.sunlit` by the fraction of each texel's ground, in 2 × 2 points, that
 // sees the sun past `o`: only the texels its shadow can reach are tested.
 void CastShadow(const sim::World& world, const sim::StaticObject& o, bool crown,
@@ -133,32 +158,14 @@ void CastShadow(const sim::World& world, const sim::StaticObject& o, bool crown,
   Eigen::Vector2d lo, hi;
   double top = 0.0;
   Bounds(o, crown, &lo, &hi, &top);
-  const sim::Terrain& terrain = world.terrain();
-  // The shadow falls away from the sun, as far as the top's height above the lowest
-  // ground can be over the tangent of the elevation.
-  const double fall = (top - terrain.min_height_bound_m()) / std::max(sun.z(), 1e-3);
-  const Eigen::Vector2d away = -sun.head<2>() * fall;
-  const Eigen::Vector2d a = lo.cwiseMin(lo + away), b = hi.cwiseMax(hi + away);
-  const Eigen::Vector2i first = map->Texel(a.x(), a.y()), last = map->Texel(b.x(), b.y());
   const bool tree = crown && o.kind == "tree";
   const Eigen::Vector3d crown_center(o.center_m.x(), o.center_m.y(), o.base_z_m + o.height_m);
-  for (int j = first.y(); j <= last.y(); ++j) {
-    for (int i = first.x(); i <= last.x(); ++i) {
-      int lit = 0;
-      for (int k = 0; k < 4; ++k) {
-        const double x = map->x_min + (i + 0.25 + 0.5 * (k % 2)) * map->texel_m;
-        const double y = map->y_min + (j + 0.25 + 0.5 * (k / 2)) * map->texel_m;
-        const Eigen::Vector3d p(x, y, terrain.Height(x, y) + 1e-3);
-        const bool blocked =
-            o.shape == sim::StaticObject::Shape::kBox
-                ? HitsBox(p, sun, o)
-                : HitsCylinder(p, sun, o) ||
-                      (tree && HitsSphere(p, sun, crown_center, TreeCrownRadius(o)));
-        lit += blocked ? 0 : 1;
-      }
-      map->sunlit[static_cast<std::size_t>(j) * map->width + i] *= 0.25f * static_cast<float>(lit);
-    }
-  }
+  ShadeTexels(world.terrain(), sun, lo, hi, top, map, [&](const Eigen::Vector3d& p) {
+    return o.shape == sim::StaticObject::Shape::kBox
+               ? HitsBox(p, sun, o)
+               : HitsCylinder(p, sun, o) ||
+                     (tree && HitsSphere(p, sun, crown_center, TreeCrownRadius(o)));
+  });
 }
 
 // Multiplies `map.sunlit` by the fraction of each texel's ground, in 2 × 2 points, that
@@ -182,25 +189,12 @@ void CastMeshShadow(const sim::World& world, const sim::MeshObject& m, const Eig
                                   static_cast<float>(w.z()));
   }
   const sim::PlacedMesh placed(sheared, Eigen::Vector3d::Ones(), Eigen::Isometry3d::Identity());
-  const sim::Terrain& terrain = world.terrain();
-  const double fall = (box.max().z() - terrain.min_height_bound_m()) / std::max(sun.z(), 1e-3);
-  const Eigen::Vector2d lo = box.min().head<2>(), hi = box.max().head<2>();
-  const Eigen::Vector2d away = -sun.head<2>() * fall;
-  const Eigen::Vector2d a = lo.cwiseMin(lo + away), b = hi.cwiseMax(hi + away);
-  const Eigen::Vector2i first = map->Texel(a.x(), a.y()), last = map->Texel(b.x(), b.y());
-  for (int j = first.y(); j <= last.y(); ++j) {
-    for (int i = first.x(); i <= last.x(); ++i) {
-      int lit = 0;
-      for (int k = 0; k < 4; ++k) {
-        const double x = map->x_min + (i + 0.25 + 0.5 * (k % 2)) * map->texel_m;
-        const double y = map->y_min + (j + 0.25 + 0.5 * (k / 2)) * map->texel_m;
-        const double z = terrain.Height(x, y) + 1e-3;
-        const std::optional<double> top = placed.HighestAt(x - z * run.x(), y - z * run.y());
-        lit += top && *top > z ? 0 : 1;
-      }
-      map->sunlit[static_cast<std::size_t>(j) * map->width + i] *= 0.25f * static_cast<float>(lit);
-    }
-  }
+  ShadeTexels(world.terrain(), sun, box.min().head<2>(), box.max().head<2>(), box.max().z(), map,
+              [&](const Eigen::Vector3d& p) {
+                const std::optional<double> top =
+                    placed.HighestAt(p.x() - p.z() * run.x(), p.y() - p.z() * run.y());
+                return top && *top > p.z();
+              });
 }
 
 }  // namespace
