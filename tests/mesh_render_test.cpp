@@ -25,6 +25,8 @@
 namespace trackbed {
 namespace {
 
+using render::test::Looking;
+
 using Vec2 = Eigen::Vector2d;
 
 // A camera of 320 × 240 px, f = 300 px, looking along +y_dir from `eye` (level).
@@ -36,18 +38,6 @@ geometry::PinholeCamera Camera() {
   K.cx = 159.5;
   K.cy = 119.5;
   return K;
-}
-
-// A level camera at `eye` looking horizontally along `forward` (OpenCV axes).
-Eigen::Isometry3d Looking(const Eigen::Vector3d& eye, const Eigen::Vector3d& forward) {
-  const Eigen::Vector3d z = forward.normalized();
-  const Eigen::Vector3d x = z.cross(Eigen::Vector3d::UnitZ()).normalized();
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear().col(0) = x;
-  T.linear().col(1) = z.cross(x);
-  T.linear().col(2) = z;
-  T.translation() = eye;
-  return T;
 }
 
 // A mesh object read from `file`, its origin at (x, y, z).

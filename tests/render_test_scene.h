@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "trackbed/render/renderer.h"
 #include "trackbed/sim/world.h"
@@ -44,6 +45,19 @@ inline sim::StaticObject Plate(const Eigen::Vector3d& c, double width, double he
   o.size_m = {0.001, width, height};
   o.collides = false;
   return o;
+}
+
+/// A level camera at `eye` looking horizontally along `forward` (OpenCV axes: x right,
+/// y down, z forward).
+inline Eigen::Isometry3d Looking(const Eigen::Vector3d& eye, const Eigen::Vector3d& forward) {
+  const Eigen::Vector3d z = forward.normalized();
+  const Eigen::Vector3d x = z.cross(Eigen::Vector3d::UnitZ()).normalized();
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear().col(0) = x;
+  T.linear().col(1) = z.cross(x);
+  T.linear().col(2) = z;
+  T.translation() = eye;
+  return T;
 }
 
 }  // namespace trackbed::render::test

@@ -329,14 +329,7 @@ TEST(RendererTest, BodyMotionTurnsAboutTheWorldFramesAngularVelocity) {
 
 // A level camera at `eye` looking horizontally towards `target` (OpenCV axes).
 Eigen::Isometry3d LookAt(const Eigen::Vector3d& eye, const Eigen::Vector3d& target) {
-  const Eigen::Vector3d z = (target - eye).normalized();
-  const Eigen::Vector3d x = z.cross(Eigen::Vector3d::UnitZ()).normalized();
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear().col(0) = x;
-  T.linear().col(1) = z.cross(x);
-  T.linear().col(2) = z;
-  T.translation() = eye;
-  return T;
+  return test::Looking(eye, target - eye);
 }
 
 // Back faces are culled, so a surface wound the wrong way would vanish and
