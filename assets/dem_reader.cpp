@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -57,6 +59,20 @@ struct OpenDem {
   DemHeader header;
 };
 
+// An ASCII grid holds each height as at least one character and a separator: one
+// that declares more pixels than its bytes can hold is refused before GDAL reads it
+// (GDAL finds a row of such a grid by reading every row before it, one error each).
+void CheckTextGridHoldsItsPixels(const sim::DemOptions& o, const DemHeader& h) {
+  if (h.driver != "AAIGrid") return;
+  std::error_code error;
+  const std::uintmax_t bytes = std::filesystem::file_size(o.file, error);
+  const double needed = 2.0 * static_cast<double>(h.cols) * h.rows - 1.0;
+  if (!error && static_cast<double>(bytes) < needed) {
+    Fail(o, "declares " + std::to_string(h.cols) + " × " + std::to_string(h.rows) +
+                " heights, more than its " + std::to_string(bytes) + " bytes can hold");
+  }
+}
+
 OpenDem Open(const sim::DemOptions& o) {
   static std::once_flag registered;
   std::call_once(registered, [] { GDALAllRegister(); });
@@ -103,6 +119,7 @@ OpenDem Open(const sim::DemOptions& o) {
   for (char** f = files; f && *f; ++f) d.header.files.emplace_back(*f);
   CSLDestroy(files);
   if (d.header.cols < 2 || d.header.rows < 2) Fail(o, "has fewer than 2 × 2 pixels");
+  CheckTextGridHoldsItsPixels(o, d.header);
   return d;
 }
 

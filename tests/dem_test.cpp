@@ -206,6 +206,14 @@ TEST(DemReaderTest, ErrorsNameTheFileAndTheProblem) {
     GDALClose(ds);
   }
   ExpectError(Dem(fine, 50.0, 50.0), "more than 64 million");
+  // An ASCII grid whose header declares 2.5 million rows and whose file ends after two.
+  const fs::path short_grid = fs::path(testing::TempDir()) / "dem_short.asc";
+  std::ofstream(short_grid.string().substr(0, short_grid.string().size() - 3) + "prj")
+      << Utm33nWkt();
+  std::ofstream(short_grid) << "ncols 5\nnrows 2500000\nxllcorner " << kEast << "\nyllcorner "
+                            << kNorth << "\ncellsize 30\n1 2 3 4 5\n6 7 8 9 10\n";
+  ExpectError(Dem(short_grid, kEast + 60.0, kNorth + 60.0),
+              "declares 5 × 2500000 heights, more than its");
   const fs::path text = fs::path(testing::TempDir()) / "dem_text.tif";
   std::ofstream(text) << "not a raster\n";
   ExpectError(Dem(text, e, n), "not a raster");
