@@ -32,6 +32,7 @@
 #endif
 
 // After the pragma, so that the blocks' inline functions are compiled under it too.
+#include "facade_texture.h"
 #include "ground_asphalt.h"
 #include "texture_blocks.h"
 
@@ -812,6 +813,7 @@ constexpr Recipe kRecipes[] = {
     {"clay", 1.0, Clay, kAnyWay},
     {"door", 2.0, Door},
     {"dry_sand", 1.0, DrySand, kRipples},
+    {"facade", kFacadeTileM, Facade},
     {"grass", 1.0, Grass, kAnyWay},
     {"gravel", 1.0, Gravel, kAnyWay},
     {"hard_floor", 1.0, HardFloor, {4, true, 2, 1}},

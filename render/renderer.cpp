@@ -32,6 +32,7 @@
 #include "surface_program.h"
 #include "trackbed/common/option_error.h"
 #include "trackbed/common/units.h"
+#include "trackbed/render/car_model.h"
 #include "trackbed/render/far_terrain.h"
 #include "trackbed/render/object_detail.h"
 #include "trackbed/render/procedural_texture.h"
@@ -476,6 +477,9 @@ struct Renderer::Gl {
     // A box's faces (walls, seen at grazing angles) read by footprint, as the ground.
     const bool flat = o.shape == sim::StaticObject::Shape::kBox;
     const GlTexture& tex = Texture(o.appearance, 0.5, flat);
+    const std::vector<CarPart> parts =
+        flat && o.kind == "car" ? CarParts(o.size_m) : std::vector<CarPart>{};
+    for (const CarPart& p : parts) PartTexture(o, p);
     const bool crown = DrawsCrown(o);
     const GlTexture& leaves = crown ? Texture("leaves") : tex;
     const GLuint list = glGenLists(1);
@@ -483,7 +487,10 @@ struct Renderer::Gl {
     glBindTexture(GL_TEXTURE_2D_ARRAY, tex.name);
     glPushMatrix();
     glTranslated(o.center_m.x(), o.center_m.y(), o.base_z_m);
-    if (o.shape == sim::StaticObject::Shape::kBox) {
+    if (!parts.empty()) {
+      glRotated(units::Degrees(o.yaw_rad), 0, 0, 1);
+      DrawCarParts(o, parts);
+    } else if (o.shape == sim::StaticObject::Shape::kBox) {
       glRotated(units::Degrees(o.yaw_rad), 0, 0, 1);
       glTranslated(0, 0, o.size_m.z() / 2);
       DrawBox(o.size_m, tex.meters_per_repeat);
@@ -502,6 +509,28 @@ struct Renderer::Gl {
     glPopMatrix();
     glEndList();
     return list;
+  }
+
+  // A car part's texture (car_model.h): the car's own for its painted parts.
+  const GlTexture& PartTexture(const sim::StaticObject& o, const CarPart& p) {
+    return p.appearance.empty() ? Texture(o.appearance, 0.5, true)
+                                : Texture(p.appearance, p.albedo, true);
+  }
+
+  void DrawCarParts(const sim::StaticObject& o, const std::vector<CarPart>& parts) {
+    for (const CarPart& p : parts) {
+      const GlTexture& t = PartTexture(o, p);
+      glBindTexture(GL_TEXTURE_2D_ARRAY, t.name);
+      if (p.shape == CarPart::Shape::kWheel) {
+        glPushMatrix();
+        glTranslated(p.center.x(), p.center.y(), p.center.z());
+        DrawWheel(p.radius, p.width, p.side, t.meters_per_repeat);
+        glPopMatrix();
+      } else {
+        DrawPrism(p.x0, p.x1, p.top_x0, p.top_x1, p.half_width, p.top_half_width, p.z0, p.z1,
+                  t.meters_per_repeat);
+      }
+    }
   }
 
   // The display list of the bands about a cylinder object's outlines (its trunk's and

@@ -10,14 +10,28 @@ file is the same on every run of this script:
 Measures (metres) are those of a suburban street: an 8 m carriageway with a parking
 lane on each side, 2 m verges with trees, 2 m pavements, house fronts 12-20 m from the
 centreline.
+
+The street's clutter (docs/rendering.md, "Facades" and "Parked cars"): parked cars of
+type `car`, drawn from parts, each facing the way its side's traffic goes (the right
+side's along +x); house fronts with the `facade` texture (storeys and windows), a door
+of DIN 18101's 1.0 x 2.125 m opening on each, at a pier between two windows, and a DN 100
+downpipe (DIN EN 612) at each front corner. `--cars boxes --houses plain` writes the
+street as it was before them: plain boxes of metal or paint, houses of brick or paint
+(the layout drawn from the seed is the same either way).
 """
+import argparse
 import random
 
 ROAD_START, ROAD_END = -30.0, 640.0
 
 
-def fmt(x):
-    return f"{x:.2f}".rstrip("0").rstrip(".")
+DOOR_WIDTH, DOOR_HEIGHT, DOOR_DEPTH = 1.0, 2.125, 0.05
+PIPE_RADIUS = 0.05
+BAY = 3.0  # the facade texture's bay (render/facade_texture.h)
+
+
+def fmt(x, digits=2):
+    return f"{x:.{digits}f}".rstrip("0").rstrip(".")
 
 
 def cars(rng):
@@ -60,8 +74,44 @@ def houses(rng):
     return out
 
 
+def car_line(x, y, length, width, height, look, parts):
+    if not parts:
+        return (f"    - {{type: box, center: [{fmt(x)}, {fmt(y)}], size_m: [{fmt(length)}, "
+                f"{fmt(width)}, {fmt(height)}], appearance: {look}}}")
+    yaw = 0 if y < 0 else 180  # facing the way the traffic on its side goes
+    return (f"    - {{type: car, center: [{fmt(x)}, {fmt(y)}], size_m: [{fmt(length)}, "
+            f"{fmt(width)}, {fmt(height)}], yaw_deg: {yaw}, appearance: {look}}}")
+
+
+def house_front(x, y, length, depth, height, rng):
+    """A door at a pier between two windows and a downpipe at each front corner of the
+    house at (x, y), as scene lines."""
+    side = 1 if y > 0 else -1
+    front = abs(y) - depth / 2  # the face towards the road, |y|
+    bays = int(length / BAY)
+    out = []
+    if bays >= 2:
+        # The facade's bays start at the face's corner where its texture does
+        # (render/gl_primitives.cpp's DrawBox): the +x end on the right side.
+        k = rng.randint(1, bays - 1)
+        door_x = x + length / 2 - k * BAY if side < 0 else x - length / 2 + k * BAY
+        door_y = side * (front - DOOR_DEPTH / 2)
+        out.append(f"    - {{type: door, center: [{fmt(door_x, 3)}, {fmt(door_y, 3)}], "
+                   f"size_m: [{fmt(DOOR_WIDTH)}, {fmt(DOOR_DEPTH)}, {fmt(DOOR_HEIGHT, 3)}]}}")
+    for end in (-1, 1):
+        out.append(f"    - {{type: post, center: [{fmt(x + end * (length / 2 - 0.15))}, "
+                   f"{fmt(side * (front - 0.08))}], radius_m: {fmt(PIPE_RADIUS)}, "
+                   f"height_m: {fmt(height)}}}")
+    return out
+
+
 def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--cars", choices=["parts", "boxes"], default="parts")
+    parser.add_argument("--houses", choices=["facades", "plain"], default="facades")
+    args = parser.parse_args()
     rng = random.Random(20121001)
+    dressing = random.Random(20121002)  # doors: their own stream, the layout unchanged
     print("""# The KITTI twin (docs/localization.md): 450 m of a straight residential road (it goes
 # on 190 m beyond, so the view ahead never runs out) as KITTI's car drives it, seen
 # through KITTI's stereo geometry. Written by
@@ -98,14 +148,17 @@ scene:
     ground_look: detailed
   objects:""")
     for x, y, length, width, height, look in cars(rng):
-        print(f"    - {{type: box, center: [{fmt(x)}, {fmt(y)}], size_m: [{fmt(length)}, "
-              f"{fmt(width)}, {fmt(height)}], appearance: {look}}}")
+        print(car_line(x, y, length, width, height, look, args.cars == "parts"))
     for x, y, r, h in trees(rng):
         print(f"    - {{type: tree, center: [{fmt(x)}, {fmt(y)}], radius_m: {fmt(r)}, "
               f"height_m: {fmt(h)}}}")
     for x, y, length, depth, height, look in houses(rng):
+        if args.houses == "facades":
+            look = "facade"
         print(f"    - {{type: box, center: [{fmt(x)}, {fmt(y)}], size_m: [{fmt(length)}, "
               f"{fmt(depth)}, {fmt(height)}], appearance: {look}}}")
+        if args.houses == "facades":
+            print("\n".join(house_front(x, y, length, depth, height, dressing)))
     print("""robot:
   vehicle:
     # The carrier's footprint: a car's wheelbase and track (its pitch and roll follow

@@ -75,7 +75,8 @@ double FootprintRadius(const StaticObject& o) {
 
 void ObjectScatter::Validate() const {
   const ObjectType* t = FindObjectType(type);
-  if (t == nullptr || type == "wall" || type == "door" || type == "poster" || type == "mesh") {
+  if (t == nullptr || type == "wall" || type == "door" || type == "poster" || type == "mesh" ||
+      type == "car") {
     throw OptionError("type", "must be tree, post, cylinder, bench or box (got '" + type + "')");
   }
   option_check::InRange("density_per_100m2", density_per_100m2, 1e-6, 100.0);

@@ -45,6 +45,7 @@ const std::vector<ObjectType>& ObjectTypes() {
       {"door", StaticObject::Shape::kBox, "door"},
       {"poster", StaticObject::Shape::kBox, "poster"},
       {"mesh", StaticObject::Shape::kMesh, "mesh"},
+      {"car", StaticObject::Shape::kBox, "metal"},
   };
   return types;
 }

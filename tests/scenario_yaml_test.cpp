@@ -663,17 +663,22 @@ TEST(ScenarioYamlTest, WallFromToBecomesRotatedBox) {
 TEST(ScenarioYamlTest, ObjectTypesPickShapeAndAppearance) {
   const Scenario s = ParseScenario(std::string(kMinimal) +
                                        "scene:\n  objects:\n    - {type: bench}\n"
-                                       "    - {type: tree}\n    - {type: post, appearance: rust}\n",
+                                       "    - {type: tree}\n    - {type: post, appearance: rust}\n"
+                                       "    - {type: car, size_m: [4.2, 1.8, 1.5]}\n",
                                    "test.yaml");
-  ASSERT_EQ(s.scene.objects.size(), 3u);
+  ASSERT_EQ(s.scene.objects.size(), 4u);
   EXPECT_EQ(s.scene.objects[0].shape, sim::StaticObject::Shape::kBox);
   EXPECT_EQ(s.scene.objects[0].appearance, "wood");
   EXPECT_EQ(s.scene.objects[1].shape, sim::StaticObject::Shape::kCylinder);
   EXPECT_EQ(s.scene.objects[1].appearance, "bark");
   EXPECT_EQ(s.scene.objects[2].appearance, "rust");
+  // A parked car is a box to everything but the renderer, which draws its parts.
+  EXPECT_EQ(s.scene.objects[3].shape, sim::StaticObject::Shape::kBox);
+  EXPECT_EQ(s.scene.objects[3].appearance, "metal");
+  EXPECT_TRUE(s.scene.objects[3].collides);
   EXPECT_EQ(ErrorOf(std::string(kMinimal) + "scene: {objects: [{type: rock}]}"),
             "test.yaml: scene.objects[0].type: must be one of wall, box, bench, cylinder, tree, "
-            "post, door, poster, mesh (got 'rock')");
+            "post, door, poster, mesh, car (got 'rock')");
 }
 
 }  // namespace

@@ -72,7 +72,8 @@ struct ObjectType {
   StaticObject::Shape shape;
   const char* appearance;
 };
-/// Every type: wall, box, bench, cylinder, tree, post, door, poster, mesh.
+/// Every type: wall, box, bench, cylinder, tree, post, door, poster, mesh, car (a
+/// box to everything but the renderer, which draws a parked car: render/car_model.h).
 const std::vector<ObjectType>& ObjectTypes();
 /// The type called `name`, or null.
 const ObjectType* FindObjectType(const std::string& name);
