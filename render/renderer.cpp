@@ -173,7 +173,9 @@ struct Renderer::Gl {
   std::vector<std::pair<double, int>> draw_order;  // per frame, kept to avoid reallocation
   std::unique_ptr<SurfaceProgram> program;         // draws every surface
   bool lit = false;                                // with scene lighting: pre-exposed
-  double exposure = 1.0;                           // what a lit render is pre-exposed for
+  std::vector<ShadowBox> robot_boxes;              // the robot's shadow's boxes, body frame
+  Eigen::Isometry3d T_world_robot = Eigen::Isometry3d::Identity();
+  double exposure = 1.0;  // what a lit render is pre-exposed for
 
   ~Gl() {
     if (context) OSMesaDestroyContext(context);
@@ -709,8 +711,9 @@ Renderer::Renderer(const sim::World& world, const SceneAppearance& appearance,
     light_map = BakeLightMap(world, *appearance.lighting, sun, appearance.tree_crowns);
   }
   g.lit = light_map.has_value();
-  g.program = std::make_unique<SurfaceProgram>(light_map ? &*light_map : nullptr,
-                                               appearance.ambient, appearance.diffuse);
+  g.program =
+      std::make_unique<SurfaceProgram>(light_map ? &*light_map : nullptr, appearance.ambient,
+                                       appearance.diffuse, appearance.robot_shadow);
   if (glGetError() != GL_NO_ERROR)
     throw std::runtime_error("Renderer: OpenGL error while building");
 }
@@ -738,6 +741,15 @@ void Renderer::ReplaceTexture(const std::string& appearance, const Texture& text
   }
   gl_->MakeCurrent();
   Gl::UploadTexture(it->second, {texture});
+}
+
+void Renderer::SetRobotShape(std::vector<ShadowBox> boxes_body) {
+  if (!boxes_body.empty()) MakeShadowFrame(boxes_body, {}, Eigen::Matrix4d::Identity(), {0, 0, 1});
+  gl_->robot_boxes = std::move(boxes_body);
+}
+
+void Renderer::SetRobotPose(const Eigen::Isometry3d& T_world_body) {
+  gl_->T_world_robot = T_world_body;
 }
 
 std::string Renderer::gl_description() const {
@@ -778,7 +790,11 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
   glLoadMatrixd(view.data());
   const Eigen::Vector3d sun_world =
       SunDirection(g.appearance.sun_azimuth_deg, g.appearance.sun_elevation_deg);
-  g.program->Begin(view, sun_world, g.lit ? g.exposure : 1.0, K);
+  std::optional<ShadowFrame> shadow;
+  if (g.appearance.robot_shadow && !g.robot_boxes.empty()) {
+    shadow = MakeShadowFrame(g.robot_boxes, g.T_world_robot, view, sun_world);
+  }
+  g.program->Begin(view, sun_world, g.lit ? g.exposure : 1.0, K, shadow ? &*shadow : nullptr);
 
   // Frustum culling in camera coordinates: a box is skipped when all its
   // corners are outside one of the six planes.
