@@ -29,6 +29,7 @@
 #include "gl_primitives.h"
 #include "ground_tiling.h"
 #include "mesh_surfaces.h"
+#include "sky_program.h"
 #include "surface_program.h"
 #include "trackbed/common/option_error.h"
 #include "trackbed/common/units.h"
@@ -172,6 +173,7 @@ struct Renderer::Gl {
   std::vector<GLuint> occluder_lists;
   std::vector<std::pair<double, int>> draw_order;  // per frame, kept to avoid reallocation
   std::unique_ptr<SurfaceProgram> program;         // draws every surface
+  std::unique_ptr<SkyProgram> sky;                 // a sky not flat
   bool lit = false;                                // with scene lighting: pre-exposed
   std::vector<ShadowBox> robot_boxes;              // the robot's shadow's boxes, body frame
   Eigen::Isometry3d T_world_robot = Eigen::Isometry3d::Identity();
@@ -714,6 +716,7 @@ Renderer::Renderer(const sim::World& world, const SceneAppearance& appearance,
   g.program =
       std::make_unique<SurfaceProgram>(light_map ? &*light_map : nullptr, appearance.ambient,
                                        appearance.diffuse, appearance.robot_shadow);
+  if (appearance.sky != SkyLook::kFlat) g.sky = std::make_unique<SkyProgram>(appearance.sky, seed);
   if (glGetError() != GL_NO_ERROR)
     throw std::runtime_error("Renderer: OpenGL error while building");
 }
@@ -866,6 +869,7 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
     glCallList(g.occluder_lists[k]);
     glPopMatrix();
   }
+  if (g.sky) g.sky->Draw(view, sun_world, g.appearance.sky_gray, g.lit ? g.exposure : 1.0, K);
   g.DrawOutlineFringes(order);
   g.program->End();
   g.ReadBack(gray, depth);

@@ -20,6 +20,7 @@
 #include "trackbed/render/procedural_texture.h"
 #include "trackbed/render/robot_shadow.h"
 #include "trackbed/render/scene_lighting.h"
+#include "trackbed/render/sky.h"
 #include "trackbed/sim/occluder.h"
 #include "trackbed/sim/world.h"
 
@@ -40,8 +41,11 @@ struct SceneAppearance {
   double ambient = 0.45;
   /// Directional light level [0, 1].
   double diffuse = 0.6;
-  /// Grey level of the background (sky) [0, 1].
+  /// Grey level of the background (sky) [0, 1]; under a clear or cloudy sky, the
+  /// horizon's 90° from the sun.
   double sky_gray = 0.85;
+  /// How the sky looks (sky.h): flat (`sky_gray`), clear or cloudy.
+  SkyLook sky = SkyLook::kFlat;
   /// Height of a ceiling over the whole terrain [m]; 0 for none (outdoors).
   double ceiling_height_m = 0.0;
   /// Foliage crowns on objects of kind "tree" (visual only).
@@ -88,6 +92,9 @@ struct SceneAppearance {
     a->Visit("classic_look_materials", &classic_look_materials, archive::kOmitEmpty);
     a->Visit("lighting", &lighting, archive::kOmitEmpty);
     a->Visit("robot_shadow", &robot_shadow);
+    a->VisitEnum(
+        "sky", &sky,
+        {{"flat", SkyLook::kFlat}, {"clear", SkyLook::kClear}, {"cloudy", SkyLook::kCloudy}});
   }
 };
 
