@@ -80,12 +80,17 @@ double RobotSunlit(const std::vector<ShadowBox>& boxes, const Eigen::Isometry3d&
     T_world_box.translation() += T_world_body.linear() * all[k].center_m;
     const Eigen::Vector3d q = T_world_box.inverse() * p;
     const Eigen::Vector3d d = T_world_box.linear().transpose() * sun;
-    const double w = kSunAngularRadiusRad * std::max(-q.dot(d), 0.0) + 1e-4;
-    const double s = SmoothStep(-w, w, Growth(0.5 * all[k].size_m, q, d));
+    const double along = -q.dot(d);  // to the box's centre along the ray
+    const double w = kSunAngularRadiusRad * std::max(along, 0.0) + 1e-4;
     if (k == 0) {
-      if (s >= 1.0) return 1.0;  // clear of the bounds: clear of every box
+      // Clear of the bounds grown by w along their axes (inside a sphere √3 w wider
+      // than theirs): clear of every box. The sphere first, the box if need be.
+      const double r = 0.5 * all[k].size_m.norm() + std::sqrt(3.0) * w;
+      if (along < -r || q.squaredNorm() - along * along > r * r) return 1.0;
+      if (Growth(0.5 * all[k].size_m, q, d) >= w) return 1.0;
       continue;
     }
+    const double s = SmoothStep(-w, w, Growth(0.5 * all[k].size_m, q, d));
     lit *= s;
   }
   return lit;
@@ -98,31 +103,36 @@ uniform vec3 caster_half[MAX_CASTERS];
 uniform vec3 caster_sun[MAX_CASTERS];
 uniform int caster_count;
 
-// The least growth of box k at which the ray from `p` (its axes) towards the sun meets it.
+// The least growth of box k at which the ray from `p` (its axes) towards the sun meets
+// it: the terms of every pair of axes (i, j) three at a time, no component indexed in a
+// loop (llvmpipe runs such loops slowly).
 float CasterGrowth(int k, vec3 p) {
   vec3 d = caster_sun[k];
   vec3 s = vec3(d.x < 0.0 ? -1.0 : 1.0, d.y < 0.0 ? -1.0 : 1.0, d.z < 0.0 ? -1.0 : 1.0);
   vec3 ad = max(abs(d), vec3(1e-6));
   vec3 a = -caster_half[k] - p * s;
   vec3 b = caster_half[k] - p * s;
-  float g = max(max(-b.x, -b.y), -b.z);
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) g = max(g, (a[i] * ad[j] - b[j] * ad[i]) / (ad[i] + ad[j]));
-  }
-  return g;
+  vec3 tx = (a.x * ad - b * ad.x) / (ad.x + ad);
+  vec3 ty = (a.y * ad - b * ad.y) / (ad.y + ad);
+  vec3 tz = (a.z * ad - b * ad.z) / (ad.z + ad);
+  vec3 m = max(max(max(tx, ty), tz), -b);
+  return max(max(m.x, m.y), m.z);
 }
 
 float RobotSunlit(vec3 eye) {
+  // The bounds first: a ray clear of their sphere grown by √3 w, or of them grown by w,
+  // is clear of every box.
+  vec3 p = (caster_from_eye[0] * vec4(eye, 1.0)).xyz;
+  float along = -dot(p, caster_sun[0]);
+  float w = SUN_RADIUS * max(along, 0.0) + 1e-4;
+  float r = length(caster_half[0]) + 1.7320508 * w;
+  if (along < -r || dot(p, p) - along * along > r * r) return 1.0;
+  if (CasterGrowth(0, p) >= w) return 1.0;
   float lit = 1.0;
-  for (int k = 0; k < caster_count; ++k) {
-    vec3 p = (caster_from_eye[k] * vec4(eye, 1.0)).xyz;
-    float w = SUN_RADIUS * max(-dot(p, caster_sun[k]), 0.0) + 1e-4;
-    float s = smoothstep(-w, w, CasterGrowth(k, p));
-    if (k == 0) {
-      if (s >= 1.0) return 1.0;
-      continue;
-    }
-    lit *= s;
+  for (int k = 1; k < caster_count; ++k) {
+    p = (caster_from_eye[k] * vec4(eye, 1.0)).xyz;
+    w = SUN_RADIUS * max(-dot(p, caster_sun[k]), 0.0) + 1e-4;
+    lit *= smoothstep(-w, w, CasterGrowth(k, p));
   }
   return lit;
 }

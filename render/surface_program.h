@@ -3,7 +3,8 @@
 // Light, per vertex as the fixed-function pipeline lights: ambient and the sun's
 // diffuse term; with scene lighting (scene_lighting.h) the sun's term is shadowed and
 // the whole scaled by the light map's gain, read per fragment at the fragment's world
-// x, y, then by the exposure.
+// x, y, then by the exposure; with the robot's shadow (robot_shadow.h) the sun's term
+// is also scaled per fragment by the share of the sun's disc the robot's boxes leave.
 //
 // Texture, per fragment, as a camera pixel sees it: the mean of the texture over the
 // pixel's footprint, in one trilinear lookup. The footprint is the ellipse
