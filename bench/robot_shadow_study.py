@@ -4,8 +4,8 @@ own shadow"): scenes/studies/robot_shadow.yaml, a 60 s straight drive with the s
 behind the robot, so that its shadow lies ahead in the camera's view and moves with it,
 with the shadow on and off, per seed and realism profile. Per run: VO's path-length
 ratio (VO's path over the true path, both at the camera's frames), its heading error at
-the end (VO's yaw minus the true yaw, degrees), its end-point error and the run's
-aligned ATE from metrics.json. A study: it prints a table and writes it as CSV; it never
+the end (VO's yaw minus the true yaw, degrees), its end-point error, the run's aligned
+ATE from metrics.json and VO's mean inliers per frame (fusion.csv). A study: it prints a table and writes it as CSV; it never
 fails on the figures.
 
     python3 bench/robot_shadow_study.py [--seeds 1 2 3] [--realism typical ideal]
@@ -50,6 +50,8 @@ def score(run_dir):
     vo = read_tum(run_dir / "visual_odometry.tum")
     truth = at_times(read_tum(run_dir / "ground_truth.tum"), [r[0] for r in vo])
     heading = math.degrees(math.remainder(vo[-1][4] - truth[-1][4], 2 * math.pi))
+    with open(run_dir / "fusion.csv") as f:
+        inliers = [float(r["features"]) for r in csv.DictReader(f) if r["features"]]
     metrics = json.loads((run_dir / "metrics.json").read_text())
     vo_metrics = metrics["estimators"]["visual_odometry"]
     return {
@@ -58,6 +60,7 @@ def score(run_dir):
         "heading_error_deg": heading,
         "end_error_m": math.dist(vo[-1][1:4], truth[-1][1:4]),
         "ate_m": vo_metrics.get("ate_rmse_m"),
+        "mean_inliers": sum(inliers) / len(inliers),
     }
 
 
@@ -89,7 +92,8 @@ def main():
                 print(f"{realism:8s} seed {seed} shadow {shadow:5s}: path-length ratio "
                       f"{row['path_length_ratio']:.4f}, heading error "
                       f"{row['heading_error_deg']:+.2f} deg, end error {row['end_error_m']:.3f} m "
-                      f"over {row['true_path_m']:.2f} m, ATE {row['ate_m']}", flush=True)
+                      f"over {row['true_path_m']:.2f} m, ATE {row['ate_m']:.3f} m, VO inliers "
+                      f"{row['mean_inliers']:.1f}", flush=True)
     with open(out / "robot_shadow_study.csv", "w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=list(rows[0]))
         writer.writeheader()
