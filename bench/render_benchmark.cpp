@@ -19,6 +19,7 @@
 #include "trackbed/perception/opencv_views.h"
 #include "trackbed/render/renderer.h"
 #include "trackbed/robot/stereo_rig.h"
+#include "trackbed/robot/tracked_vehicle.h"
 #include "trackbed/runner/closed_loop.h"
 #include "trackbed/scenario/scenario_yaml.h"
 
@@ -67,12 +68,18 @@ int main(int argc, char** argv) {
                                 split_mix::Stream(s.seed, 2), s.robot.stereo.width_px,
                                 s.robot.stereo.height_px, s.robot.stereo.near_m,
                                 s.robot.stereo.far_m);
+      // The robot's shadow (when the appearance asks for it) at the design rig's body pose.
+      renderer.SetRobotShape(robot::ShadowBoxes(s.robot.vehicle));
+      const auto place_robot = [&](std::size_t k) {
+        renderer.SetRobotPose(left[k] * rig.T_body_left().inverse());
+      };
       GrayImage l, r;
       const int n = std::min<int>(pairs, static_cast<int>(left.size()));
       // Rendering speed on n pairs spread along the whole route.
       const auto start = std::chrono::steady_clock::now();
       for (int i = 0; i < n; ++i) {
         const std::size_t k = static_cast<std::size_t>(i) * left.size() / n;
+        place_robot(k);
         renderer.Render(rig.intrinsics(), left[k], 0.1 * k, &l, nullptr, &centers[k]);
         renderer.Render(rig.intrinsics(), right[k], 0.1 * k, &r, nullptr, &centers[k]);
       }
@@ -82,6 +89,7 @@ int main(int argc, char** argv) {
       std::vector<cv::Mat> lefts, rights;
       for (int i = 0; i < n; ++i) {
         const std::size_t k = static_cast<std::size_t>(i);
+        place_robot(k);
         renderer.Render(rig.intrinsics(), left[k], 0.1 * i, &l, nullptr, &centers[k]);
         renderer.Render(rig.intrinsics(), right[k], 0.1 * i, &r, nullptr, &centers[k]);
         lefts.push_back(perception::AsCvMat(l).clone());

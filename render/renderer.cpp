@@ -29,6 +29,7 @@
 #include "gl_primitives.h"
 #include "ground_tiling.h"
 #include "mesh_surfaces.h"
+#include "sky_program.h"
 #include "surface_program.h"
 #include "trackbed/common/option_error.h"
 #include "trackbed/common/units.h"
@@ -40,28 +41,6 @@
 #include "trackbed/render/terrain_window.h"
 
 namespace trackbed::render {
-
-void SceneAppearance::Validate() const {
-  option_check::InRange("sun_elevation_deg", sun_elevation_deg, 1.0, 90.0);
-  option_check::Finite("sun_azimuth_deg", sun_azimuth_deg);
-  option_check::InRange("ambient", ambient, 0.0, 1.0);
-  option_check::InRange("diffuse", diffuse, 0.0, 1.0);
-  option_check::InRange("sky_gray", sky_gray, 0.0, 1.0);
-  option_check::NonNegative("terrain_full_detail_m", terrain_full_detail_m);
-  option_check::NonNegative("object_far_error_px", object_far_error_px);
-  option_check::NonNegative("ceiling_height_m", ceiling_height_m);
-  if (lighting) option_check::Nested("lighting", *lighting);
-  for (const std::string& name : classic_look_materials) {
-    if (!HasTexture(name)) {
-      throw OptionError("classic_look_materials", "'" + name + "' has no texture of its own");
-    }
-  }
-  if (texture_size_px < 16 || texture_size_px > 2048 ||
-      (texture_size_px & (texture_size_px - 1)) != 0) {
-    throw OptionError("texture_size_px", "must be a power of two in [16, 2048] (got " +
-                                             std::to_string(texture_size_px) + ")");
-  }
-}
 
 namespace {
 
@@ -173,8 +152,11 @@ struct Renderer::Gl {
   std::vector<GLuint> occluder_lists;
   std::vector<std::pair<double, int>> draw_order;  // per frame, kept to avoid reallocation
   std::unique_ptr<SurfaceProgram> program;         // draws every surface
+  std::unique_ptr<SkyProgram> sky;                 // a sky not flat
   bool lit = false;                                // with scene lighting: pre-exposed
-  double exposure = 1.0;                           // what a lit render is pre-exposed for
+  std::vector<ShadowBox> robot_boxes;              // the robot's shadow's boxes, body frame
+  Eigen::Isometry3d T_world_robot = Eigen::Isometry3d::Identity();
+  double exposure = 1.0;  // what a lit render is pre-exposed for
 
   ~Gl() {
     if (context) OSMesaDestroyContext(context);
@@ -738,8 +720,10 @@ Renderer::Renderer(const sim::World& world, const SceneAppearance& appearance,
     light_map = BakeLightMap(world, *appearance.lighting, sun, appearance.tree_crowns);
   }
   g.lit = light_map.has_value();
-  g.program = std::make_unique<SurfaceProgram>(light_map ? &*light_map : nullptr,
-                                               appearance.ambient, appearance.diffuse);
+  g.program =
+      std::make_unique<SurfaceProgram>(light_map ? &*light_map : nullptr, appearance.ambient,
+                                       appearance.diffuse, appearance.robot_shadow);
+  if (appearance.sky != SkyLook::kFlat) g.sky = std::make_unique<SkyProgram>(appearance.sky, seed);
   if (glGetError() != GL_NO_ERROR)
     throw std::runtime_error("Renderer: OpenGL error while building");
 }
@@ -767,6 +751,15 @@ void Renderer::ReplaceTexture(const std::string& appearance, const Texture& text
   }
   gl_->MakeCurrent();
   Gl::UploadTexture(it->second, {texture});
+}
+
+void Renderer::SetRobotShape(std::vector<ShadowBox> boxes_body) {
+  if (!boxes_body.empty()) MakeShadowFrame(boxes_body, {}, Eigen::Matrix4d::Identity(), {0, 0, 1});
+  gl_->robot_boxes = std::move(boxes_body);
+}
+
+void Renderer::SetRobotPose(const Eigen::Isometry3d& T_world_body) {
+  gl_->T_world_robot = T_world_body;
 }
 
 std::string Renderer::gl_description() const {
@@ -807,7 +800,11 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
   glLoadMatrixd(view.data());
   const Eigen::Vector3d sun_world =
       SunDirection(g.appearance.sun_azimuth_deg, g.appearance.sun_elevation_deg);
-  g.program->Begin(view, sun_world, g.lit ? g.exposure : 1.0, K);
+  std::optional<ShadowFrame> shadow;
+  if (g.appearance.robot_shadow && !g.robot_boxes.empty()) {
+    shadow = MakeShadowFrame(g.robot_boxes, g.T_world_robot, view, sun_world);
+  }
+  g.program->Begin(view, sun_world, g.lit ? g.exposure : 1.0, K, shadow ? &*shadow : nullptr);
 
   // Frustum culling in camera coordinates: a box is skipped when all its
   // corners are outside one of the six planes.
@@ -879,6 +876,7 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
     glCallList(g.occluder_lists[k]);
     glPopMatrix();
   }
+  if (g.sky) g.sky->Draw(view, sun_world, g.appearance.sky_gray, g.lit ? g.exposure : 1.0, K);
   g.DrawOutlineFringes(order);
   g.program->End();
   g.ReadBack(gray, depth);

@@ -30,6 +30,8 @@ out float direct;
 #ifdef OUTLINE
 flat out vec4 shape_eye;  // the shape's centre in eye coordinates, its signed radius
 flat out vec3 axis_eye;   // a cylinder's axis
+#endif
+#if defined(OUTLINE) || defined(ROBOT_SHADOW)
 out vec3 position_eye;
 #endif
 void main() {
@@ -40,6 +42,8 @@ void main() {
   vec4 shape = gl_MultiTexCoord1;
   shape_eye = vec4((gl_ModelViewMatrix * vec4(shape.xyz, 1.0)).xyz, shape.w);
   axis_eye = gl_NormalMatrix * vec3(0.0, 0.0, 1.0);
+#endif
+#if defined(OUTLINE) || defined(ROBOT_SHADOW)
   position_eye = eye.xyz;
 #endif
 #ifdef LIGHT_MAP
@@ -63,6 +67,9 @@ uniform float exposure;
 in vec2 albedo_st;
 in vec2 light_st;
 in float direct;
+#if defined(OUTLINE) || defined(ROBOT_SHADOW)
+in vec3 position_eye;
+#endif
 
 float FootprintMean() {
   vec3 size = vec3(textureSize(albedo, 0));
@@ -111,7 +118,6 @@ float IsotropicMean() { return texture(albedo, vec3(albedo_st, 0.0)).r; }
 uniform float outline_px_per_depth;
 flat in vec4 shape_eye;
 flat in vec3 axis_eye;
-in vec3 position_eye;
 // How far the pixel centre's ray passes inside the outline of the true sphere
 // (radius > 0) or cylinder (radius < 0, about axis_eye) [px]: the ray's distance from
 // the centre or the axis, against the radius, at the depth of its closest approach.
@@ -142,6 +148,9 @@ void main() {
   vec2 l = texture(light, light_st).rg;
 #else
   vec2 l = vec2(1.0);
+#endif
+#ifdef ROBOT_SHADOW
+  l.r *= RobotSunlit(position_eye);  // the robot's own shadow (robot_shadow.h)
 #endif
   float shade = min(ambient + direct * l.r, 1.0) * l.g;
 #ifdef FOOTPRINT
@@ -330,6 +339,9 @@ void main() {
 #else
   vec2 l = vec2(1.0);
 #endif
+#ifdef ROBOT_SHADOW
+  l.r *= RobotSunlit(point);
+#endif
   float shade = min(ambient + diffuse * max(dot(n, sun_eye), 0.0) * l.r, 1.0) * l.g;
   float albedo_mean = texture(albedo, vec3(st, 0.0)).r;
   gl_FragColor = vec4(vec3(albedo_mean * shade * exposure), clamp(0.5 + inside, 0.0, 1.0));
@@ -387,18 +399,23 @@ GLuint UploadLightMap(const LightMap& map) {
 
 }  // namespace
 
-SurfaceProgram::SurfaceProgram(const LightMap* map, double ambient, double diffuse) {
+SurfaceProgram::SurfaceProgram(const LightMap* map, double ambient, double diffuse,
+                               bool robot_shadow) {
   for (Kind kind : {Kind::kFootprint, Kind::kIsotropic, Kind::kOutlineCore, Kind::kOutlineFringe,
                     Kind::kOutlineDepth, Kind::kFootprintTiled}) {
-    programs_[static_cast<int>(kind)] = Link(kind, map, ambient, diffuse);
+    programs_[static_cast<int>(kind)] = Link(kind, map, ambient, diffuse, robot_shadow);
   }
   if (map) light_texture_ = UploadLightMap(*map);
 }
 
 SurfaceProgram::Linked SurfaceProgram::Link(Kind kind, const LightMap* map, double ambient,
-                                            double diffuse) {
+                                            double diffuse, bool robot_shadow) {
   const std::string defines =
       std::string(map ? "#define LIGHT_MAP\n" : "") +
+      (robot_shadow
+           ? "#define ROBOT_SHADOW\n#define MAX_CASTERS " + std::to_string(kMaxShadowBoxes + 1) +
+                 "\n#define SUN_RADIUS " + std::to_string(kSunAngularRadiusRad) + "\n"
+           : std::string()) +
       (kind == Kind::kFootprint || kind == Kind::kFootprintTiled ? "#define FOOTPRINT\n" : "") +
       (kind == Kind::kFootprintTiled ? "#define TILED\n" : "") +
       (kind == Kind::kOutlineCore ? "#define OUTLINE\n" : "") +
@@ -412,9 +429,12 @@ SurfaceProgram::Linked SurfaceProgram::Link(Kind kind, const LightMap* map, doub
   const GLuint program_ = out.program;
   glAttachShader(program_,
                  Compile(GL_VERTEX_SHADER, defines, band ? kBandVertexShader : kVertexShader));
+  const std::string functions =
+      std::string(kind == Kind::kFootprintTiled ? TilingShaderSource() : "") +
+      (robot_shadow ? RobotShadowShaderSource() : "");
   glAttachShader(program_,
                  Compile(GL_FRAGMENT_SHADER, defines, band ? kBandFragmentShader : kFragmentShader,
-                         kind == Kind::kFootprintTiled ? TilingShaderSource() : ""));
+                         functions.c_str()));
   glLinkProgram(program_);
   GLint ok = GL_FALSE;
   glGetProgramiv(program_, GL_LINK_STATUS, &ok);
@@ -438,12 +458,16 @@ SurfaceProgram::Linked SurfaceProgram::Link(Kind kind, const LightMap* map, doub
   out.ray_from_window = glGetUniformLocation(program_, "ray_from_window");
   out.tile_seed = glGetUniformLocation(program_, "tile_seed");
   out.tile_variation = glGetUniformLocation(program_, "tile_variation");
+  out.caster_from_eye = glGetUniformLocation(program_, "caster_from_eye");
+  out.caster_half = glGetUniformLocation(program_, "caster_half");
+  out.caster_sun = glGetUniformLocation(program_, "caster_sun");
+  out.caster_count = glGetUniformLocation(program_, "caster_count");
   glUseProgram(0);
   return out;
 }
 
 void SurfaceProgram::Begin(const Eigen::Matrix4d& view, const Eigen::Vector3d& sun, double exposure,
-                           const geometry::PinholeCamera& K) {
+                           const geometry::PinholeCamera& K, const ShadowFrame* shadow) {
   const Eigen::Matrix4f world_from_eye = view.inverse().cast<float>();
   const Eigen::Vector3f sun_eye = (view.topLeftCorner<3, 3>() * sun).cast<float>();
   for (const Linked& p : programs_) {
@@ -460,6 +484,15 @@ void SurfaceProgram::Begin(const Eigen::Matrix4d& view, const Eigen::Vector3d& s
       glUniform4f(p.ray_from_window, static_cast<float>(1.0 / K.fx),
                   static_cast<float>(-(K.cx + 0.5) / K.fx), static_cast<float>(1.0 / K.fy),
                   static_cast<float>((K.cy + 0.5 - K.height_px) / K.fy));
+    }
+    if (p.caster_count >= 0) {
+      const int n = shadow ? shadow->count : 0;
+      glUniform1i(p.caster_count, n);
+      if (n > 0) {
+        glUniformMatrix4fv(p.caster_from_eye, n, GL_FALSE, shadow->box_from_eye.data());
+        glUniform3fv(p.caster_half, n, shadow->half_m.data());
+        glUniform3fv(p.caster_sun, n, shadow->sun_box.data());
+      }
     }
   }
   current_ = Kind::kIsotropic;

@@ -3,7 +3,8 @@
 // Light, per vertex as the fixed-function pipeline lights: ambient and the sun's
 // diffuse term; with scene lighting (scene_lighting.h) the sun's term is shadowed and
 // the whole scaled by the light map's gain, read per fragment at the fragment's world
-// x, y, then by the exposure.
+// x, y, then by the exposure; with the robot's shadow (robot_shadow.h) the sun's term
+// is also scaled per fragment by the share of the sun's disc the robot's boxes leave.
 //
 // Texture, per fragment, as a camera pixel sees it: the mean of the texture over the
 // pixel's footprint, in one trilinear lookup. The footprint is the ellipse
@@ -42,6 +43,7 @@
 
 #include "trackbed/common/pinhole_camera.h"
 #include "trackbed/render/procedural_texture.h"
+#include "trackbed/render/robot_shadow.h"
 #include "trackbed/render/scene_lighting.h"
 
 namespace trackbed::render {
@@ -52,8 +54,9 @@ inline constexpr int kOutlineRingSegments = 24;
 class SurfaceProgram {
  public:
   /// Compiles the program in the current context; with a light map (scene lighting),
-  /// uploads it on texture unit 1. Throws std::runtime_error when the driver cannot.
-  SurfaceProgram(const LightMap* map, double ambient, double diffuse);
+  /// uploads it on texture unit 1; with `robot_shadow`, the sun's light shadowed by the
+  /// robot's boxes (robot_shadow.h). Throws std::runtime_error when the driver cannot.
+  SurfaceProgram(const LightMap* map, double ambient, double diffuse, bool robot_shadow = false);
   SurfaceProgram(const SurfaceProgram&) = delete;
   SurfaceProgram& operator=(const SurfaceProgram&) = delete;
 
@@ -72,9 +75,10 @@ class SurfaceProgram {
 
   /// Draws with the programs until End, the isotropic one first: `view` maps world to
   /// OpenGL eye coordinates, `sun` is the unit vector towards the sun in the world,
-  /// `exposure` scales the output (1 without a light map), `focal_px` the camera's.
+  /// `exposure` scales the output (1 without a light map), `K` the camera; `shadow` the
+  /// robot's boxes in this frame (with robot_shadow; null: no box).
   void Begin(const Eigen::Matrix4d& view, const Eigen::Vector3d& sun, double exposure,
-             const geometry::PinholeCamera& K);
+             const geometry::PinholeCamera& K, const ShadowFrame* shadow = nullptr);
   /// Draws what follows with the program of `kind`.
   void Use(Kind kind);
   /// Draws what follows with the tiled footprint program, for a material of tiling seed
@@ -87,9 +91,11 @@ class SurfaceProgram {
   struct Linked {
     GLuint program = 0;
     GLint world_from_eye = -1, sun_eye = -1, exposure = -1, outline_px_per_depth = -1,
-          ray_from_window = -1, tile_seed = -1, tile_variation = -1;
+          ray_from_window = -1, tile_seed = -1, tile_variation = -1, caster_from_eye = -1,
+          caster_half = -1, caster_sun = -1, caster_count = -1;
   };
-  static Linked Link(Kind kind, const LightMap* map, double ambient, double diffuse);
+  static Linked Link(Kind kind, const LightMap* map, double ambient, double diffuse,
+                     bool robot_shadow);
 
   Linked programs_[6];
   bool tiled_set_ = false;  // the tiled program's uniforms, as last set

@@ -55,6 +55,10 @@ StereoCamera::StereoCamera(const StereoRigOptions& options,
 
 StereoCamera::~StereoCamera() = default;
 
+void StereoCamera::SetBodyShape(std::vector<render::ShadowBox> boxes_body) {
+  renderer_->SetRobotShape(std::move(boxes_body));
+}
+
 StereoCapture StereoCamera::Capture(double t_s, const render::BodyMotion& body, GrayImage* left,
                                     GrayImage* right) {
   const StereoCapture capture = Expose(t_s, body, left, right);
@@ -88,6 +92,7 @@ StereoCapture StereoCamera::Expose(double t_s, const render::BodyMotion& body, G
   c.clipped_render = renderer_->pre_exposed();
   if (c.clipped_render) renderer_->SetExposure(light);
   c.sensor_exposure = c.clipped_render ? 1.0 : light;
+  renderer_->SetRobotPose(motion.T_world_body);  // for its shadow
   exposures_[0]->Render(*renderer_, motion, rig_.T_body_left(), t_s + time_offset_s_,
                         c.exposure_time_s, c.left, &rig_xy);
   exposures_[1]->Render(*renderer_, motion, rig_.T_body_right(), t_s + time_offset_s_,

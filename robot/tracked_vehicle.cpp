@@ -69,6 +69,18 @@ void ValidateStations(const TrackedVehicleOptions& o) {
 
 }  // namespace
 
+std::vector<render::ShadowBox> ShadowBoxes(const TrackedVehicleOptions& o) {
+  const double hull_bottom = -(o.com_height_m - o.ground_clearance_m);
+  std::vector<render::ShadowBox> boxes;
+  boxes.push_back({Eigen::Vector3d(0, 0, hull_bottom + 0.5 * o.hull_size_m.z()), o.hull_size_m});
+  const double d = 2.0 * o.sprocket_radius_m;
+  for (double side : {0.5, -0.5}) {
+    boxes.push_back({Eigen::Vector3d(0, side * o.track_gauge_m, -o.com_height_m + 0.5 * d),
+                     Eigen::Vector3d(o.track_contact_length_m + d, o.track_width_m, d)});
+  }
+  return boxes;
+}
+
 void TrackedVehicleOptions::Validate() const {
   option_check::Positive("mass_kg", mass_kg);
   option_check::Positive("hull_size_m[0]", hull_size_m.x());

@@ -39,10 +39,12 @@ std::unique_ptr<robot::StereoCamera> BuildCamera(const scenario::Scenario& scena
   seeds.scene = split_mix::Stream(scenario.seed, 2);
   seeds.noise = split_mix::Stream(scenario.seed, 3);
   seeds.pattern = split_mix::Stream(scenario.seed, 6);
-  return std::make_unique<robot::StereoCamera>(
+  auto camera = std::make_unique<robot::StereoCamera>(
       robot::WithCameraEffectsResolved(rs.stereo, rs.realism), *robot.truth.stereo,
       robot.truth.imu.camera_time_offset_s, world, scenario.scene.appearance,
       scenario.scene.occluders, seeds);
+  camera->SetBodyShape(robot::ShadowBoxes(rs.vehicle));
+  return camera;
 }
 
 }  // namespace

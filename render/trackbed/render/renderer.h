@@ -18,7 +18,9 @@
 #include "trackbed/render/image.h"
 #include "trackbed/render/pinhole.h"
 #include "trackbed/render/procedural_texture.h"
+#include "trackbed/render/robot_shadow.h"
 #include "trackbed/render/scene_lighting.h"
+#include "trackbed/render/sky.h"
 #include "trackbed/sim/occluder.h"
 #include "trackbed/sim/world.h"
 
@@ -39,8 +41,11 @@ struct SceneAppearance {
   double ambient = 0.45;
   /// Directional light level [0, 1].
   double diffuse = 0.6;
-  /// Grey level of the background (sky) [0, 1].
+  /// Grey level of the background (sky) [0, 1]; under a clear or cloudy sky, the
+  /// horizon's 90° from the sun.
   double sky_gray = 0.85;
+  /// How the sky looks (sky.h): flat (`sky_gray`), clear or cloudy.
+  SkyLook sky = SkyLook::kFlat;
   /// Height of a ceiling over the whole terrain [m]; 0 for none (outdoors).
   double ceiling_height_m = 0.0;
   /// Foliage crowns on objects of kind "tree" (visual only).
@@ -63,6 +68,8 @@ struct SceneAppearance {
   /// Light that changes across the scene: shadows and lit zones (scene_lighting.h).
   /// Absent: the whole scene is lit alike.
   std::optional<SceneLighting> lighting;
+  /// The robot's own shadow from the sun, drawn each frame at its pose (robot_shadow.h).
+  bool robot_shadow = false;
 
   void Validate() const;
 
@@ -84,6 +91,10 @@ struct SceneAppearance {
                  {{"classic", GroundLook::kClassic}, {"detailed", GroundLook::kDetailed}});
     a->Visit("classic_look_materials", &classic_look_materials, archive::kOmitEmpty);
     a->Visit("lighting", &lighting, archive::kOmitEmpty);
+    a->Visit("robot_shadow", &robot_shadow);
+    a->VisitEnum(
+        "sky", &sky,
+        {{"flat", SkyLook::kFlat}, {"clear", SkyLook::kClear}, {"cloudy", SkyLook::kCloudy}});
   }
 };
 
@@ -123,6 +134,13 @@ class Renderer {
   /// effect when no surface has that appearance. Throws std::invalid_argument when its
   /// meters_per_repeat is not the procedural one's (the meshes are scaled by it).
   void ReplaceTexture(const std::string& appearance, const Texture& texture);
+
+  /// The boxes of the robot (its body frame) whose shadow the sun casts when the
+  /// appearance's `robot_shadow` is set; none by default. Throws std::invalid_argument
+  /// for more than kMaxShadowBoxes or a size not > 0.
+  void SetRobotShape(std::vector<ShadowBox> boxes_body);
+  /// Where the robot is for the following renders (its body frame in the world).
+  void SetRobotPose(const Eigen::Isometry3d& T_world_body);
 
   /// OpenGL renderer and version strings, e.g. "llvmpipe (LLVM 15.0.6, 256 bits) / 4.5
   /// (Compatibility Profile) Mesa 22.3.6".

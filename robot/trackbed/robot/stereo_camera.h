@@ -76,6 +76,10 @@ class StereoCamera {
   std::int64_t frames() const { return frames_; }
   bool has_auto_exposure() const { return auto_exposure_.has_value(); }
 
+  /// The boxes of the body (its frame) whose shadow the sun casts in the images when
+  /// the scene's appearance asks for it (render::Renderer::SetRobotShape).
+  void SetBodyShape(std::vector<render::ShadowBox> boxes_body);
+
   /// The pair stamped `t_s`, the body moving as `body` then: Expose, then Finish.
   StereoCapture Capture(double t_s, const render::BodyMotion& body, GrayImage* left = nullptr,
                         GrayImage* right = nullptr);

@@ -20,6 +20,7 @@
 #include <Eigen/Geometry>
 
 #include "trackbed/common/robot_calibration.h"
+#include "trackbed/render/robot_shadow.h"
 #include "trackbed/robot/platform.h"
 #include "trackbed/robot/sprocket_motor.h"
 #include "trackbed/sim/world.h"
@@ -120,6 +121,11 @@ struct TrackedVehicleOptions {
     a->Visit("motor", &motor);
   }
 };
+
+/// The boxes whose shadow the vehicle casts (render/robot_shadow.h), in its body frame:
+/// the hull, and each track as a box its contact length plus a sprocket diameter long,
+/// its width wide, from the ground to a sprocket diameter high (wheels drawn as tracks).
+std::vector<render::ShadowBox> ShadowBoxes(const TrackedVehicleOptions& o);
 
 /// A tracked vehicle in a World. Not copyable; removes its body on destruction.
 class TrackedVehicle : public Platform {
