@@ -93,17 +93,33 @@ void WriteInputsJson(const scenario::Scenario& scenario, const fs::path& dir) {
   WriteFileAtomically(dir / "inputs.json", j.dump(2) + "\n");
 }
 
-void WriteSdfUnmapped(const scenario::Scenario& scenario, const fs::path& dir) {
-  if (!scenario.scene.sdf || scenario.scene.sdf->unmapped.empty()) return;
+namespace {
+
+// `entries` one a line in `dir`/`name`, and in one warning line on stderr.
+void WriteUnmappedList(const std::string& file, const std::vector<std::string>& entries,
+                       const fs::path& dir, const char* name) {
+  if (entries.empty()) return;
   std::string text, line;
-  for (const std::string& entry : scenario.scene.sdf->unmapped) {
+  for (const std::string& entry : entries) {
     text += entry + "\n";
     line += (line.empty() ? "" : "; ") + entry;
   }
-  WriteFileAtomically(dir / "sdf_unmapped.txt", text);
-  std::cerr << "warning: " << scenario.scene.sdf->file << ": "
-            << scenario.scene.sdf->unmapped.size()
-            << " elements not mapped (sdf_unmapped.txt): " << line << "\n";
+  WriteFileAtomically(dir / name, text);
+  std::cerr << "warning: " << file << ": " << entries.size() << " not mapped (" << name
+            << "): " << line << "\n";
+}
+
+}  // namespace
+
+void WriteUnmapped(const scenario::Scenario& scenario, const fs::path& dir) {
+  if (scenario.scene.sdf) {
+    WriteUnmappedList(scenario.scene.sdf->file, scenario.scene.sdf->unmapped, dir,
+                      "sdf_unmapped.txt");
+  }
+  if (scenario.robot.description) {
+    WriteUnmappedList(scenario.robot.description->file, scenario.robot.description->unmapped, dir,
+                      "urdf_unmapped.txt");
+  }
 }
 
 }  // namespace trackbed::runner

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include <unistd.h>
@@ -16,6 +17,7 @@
 #include "trackbed/description/sdf_world.h"
 #include "trackbed/scenario/scenario_yaml.h"
 #include "trackbed/sim/triangle_mesh.h"
+#include "trackbed/sim/world.h"
 
 namespace trackbed {
 namespace {
@@ -169,6 +171,30 @@ TEST_F(SdfWorldTest, EachShapeWhereTheWorldPutsIt) {
   EXPECT_NEAR(crate.yaw_rad, 0.5, 1e-12);
   EXPECT_EQ(crate.mesh.collision, sim::MeshSource::Collision::kMesh);
   EXPECT_TRUE(crate.collides);
+}
+
+// Bullet's ray tests (what the range sensor casts and the hull collides with) meet each
+// mapped solid where the world puts its surface.
+TEST_F(SdfWorldTest, RaysMeetEachSolidWhereTheWorldPutsIt) {
+  const scenario::Scenario s = Load(kWorld);
+  const assets::SceneMeshes meshes = assets::LoadSceneMeshes(s.scene.objects);
+  const sim::World world(s.scene.world, sim::Terrain(s.scene.terrain, 1), meshes.primitives,
+                         meshes.obstacles);
+  const auto hit = [&world](Eigen::Vector3d from, Eigen::Vector3d to) {
+    const std::optional<sim::RayHit> h = world.CastRay(from, to, sim::kGroupObstacle);
+    return h ? h->point_world : Eigen::Vector3d::Constant(std::nan(""));
+  };
+  // The box, turned 90°: its 2 m along y, so its face towards −y at y = 1.
+  EXPECT_NEAR(hit({2, -5, 0.5}, {2, 5, 0.5}).y(), 1.0, 1e-6);
+  // The lying log (radius 0.3 about the line x = −3, z = 0.3): a facet's vertex at x = −3.3.
+  EXPECT_NEAR(hit({-6, 2, 0.3}, {0, 2, 0.3}).x(), -3.3, 1e-6);
+  // The ball (radius 0.4 at (−2, −3, 0.4)): a vertex of its equator at y = −3.4.
+  EXPECT_NEAR(hit({-2, -6, 0.4}, {-2, 0, 0.4}).y(), -3.4, 1e-6);
+  // The post (radius 0.1 at (4, −4)), from 0 to 3 m high.
+  EXPECT_NEAR(hit({4, -8, 1}, {4, 0, 1}).y(), -4.1, 1e-6);
+  EXPECT_TRUE(std::isnan(hit({4, -8, 3.1}, {4, 0, 3.1}).y()));
+  // The crate (a 1 m cube through model://): its top at z = 1.
+  EXPECT_NEAR(hit({5, 3, 5}, {5, 3, -1}).z(), 1.0, 1e-6);
 }
 
 TEST_F(SdfWorldTest, PhysicsSunAndGroundFrictionMapped) {
