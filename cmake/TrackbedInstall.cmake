@@ -8,7 +8,7 @@ include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
 set(TRACKBED_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/trackbed)
-set(_trackbed_libraries common recording sim assets render robot perception estimation navigation teach_repeat scenario plot
+set(_trackbed_libraries common recording sim assets render robot description perception estimation navigation teach_repeat scenario plot
                         runner experiments)
 foreach(library ${_trackbed_libraries})
   set_target_properties(trackbed_${library} PROPERTIES EXPORT_NAME ${library})

@@ -2,8 +2,11 @@
 #include "trackbed/runner/input_files.h"
 
 #include <algorithm>
+#include <iostream>
 #include <set>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -33,6 +36,11 @@ void AddFolder(const std::string& key, const std::string& folder,
 
 std::vector<InputFile> InputFiles(const scenario::Scenario& s) {
   std::vector<std::pair<std::string, std::string>> named;
+  if (s.scene.sdf && !s.scene.sdf->file.empty())
+    named.emplace_back("scene.sdf.file", s.scene.sdf->file);
+  if (s.robot.description && !s.robot.description->file.empty()) {
+    named.emplace_back("robot.description.file", s.robot.description->file);
+  }
   const sim::DemOptions& dem = s.scene.terrain.dem;
   if (dem.enabled()) {
     for (const std::string& f : assets::ReadDemHeader(dem).files) {
@@ -83,6 +91,35 @@ void WriteInputsJson(const scenario::Scenario& scenario, const fs::path& dir) {
         {{"key", f.key}, {"path", f.path}, {"bytes", f.bytes}, {"sha256", f.sha256}});
   }
   WriteFileAtomically(dir / "inputs.json", j.dump(2) + "\n");
+}
+
+namespace {
+
+// `entries` one a line in `dir`/`name`, and in one warning line on stderr.
+void WriteUnmappedList(const std::string& file, const std::vector<std::string>& entries,
+                       const fs::path& dir, const char* name) {
+  if (entries.empty()) return;
+  std::string text, line;
+  for (const std::string& entry : entries) {
+    text += entry + "\n";
+    line += (line.empty() ? "" : "; ") + entry;
+  }
+  WriteFileAtomically(dir / name, text);
+  std::cerr << "warning: " << file << ": " << entries.size() << " not mapped (" << name
+            << "): " << line << "\n";
+}
+
+}  // namespace
+
+void WriteUnmapped(const scenario::Scenario& scenario, const fs::path& dir) {
+  if (scenario.scene.sdf) {
+    WriteUnmappedList(scenario.scene.sdf->file, scenario.scene.sdf->unmapped, dir,
+                      "sdf_unmapped.txt");
+  }
+  if (scenario.robot.description) {
+    WriteUnmappedList(scenario.robot.description->file, scenario.robot.description->unmapped, dir,
+                      "urdf_unmapped.txt");
+  }
 }
 
 }  // namespace trackbed::runner

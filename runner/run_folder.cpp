@@ -494,6 +494,7 @@ RunFolderWriter::RunFolderWriter(const scenario::Scenario& scenario, const fs::p
                       scenario::ScenarioToYaml(scenario::WithBuiltinMaterialsResolved(
                           scenario::WithRealismResolved(scenario))));
   WriteInputsJson(scenario, dir);
+  WriteUnmapped(scenario, dir);
   files_ = std::make_unique<Files>(dir, scenario);
   if (scenario.navigation.enabled) {
     files_->navigation_csv =

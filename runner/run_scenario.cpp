@@ -30,6 +30,7 @@ RunMetrics RunKinematicToFolder(const scenario::Scenario& scenario, const fs::pa
                       scenario::ScenarioToYaml(scenario::WithBuiltinMaterialsResolved(
                           scenario::WithRealismResolved(scenario))));
   WriteInputsJson(scenario, dir);
+  WriteUnmapped(scenario, dir);
   RunMetrics metrics;
   try {
     metrics = RunKinematicNavigation(scenario, dir, observers);

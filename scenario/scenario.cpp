@@ -132,6 +132,7 @@ void SceneSpec::Validate() const {
     }
   }
   option_check::Nested("appearance", appearance);
+  if (sdf) option_check::Nested("sdf", *sdf);
   for (std::size_t k = 0; k < occluders.size(); ++k) {
     option_check::Nested(Indexed("occluders", k), occluders[k]);
   }
@@ -147,6 +148,7 @@ void RobotSpec::Validate() const {
   option_check::Nested("stereo", stereo);
   option_check::Nested("range_sensor", range_sensor);
   option_check::Nested("imperfections", imperfections);
+  if (description) option_check::Nested("description", *description);
 }
 
 std::uint64_t RobotSpec::AsBuiltSeed(std::uint64_t run_seed) const {

@@ -26,6 +26,8 @@
 #include "trackbed/common/archive.h"
 #include "trackbed/common/option_error.h"
 #include "trackbed/common/units.h"
+#include "trackbed/description/sdf_world.h"
+#include "trackbed/description/urdf_robot.h"
 #include "trackbed/scenario/key_aliases.h"
 
 namespace trackbed::scenario {
@@ -353,6 +355,70 @@ void CheckMeshes(const std::string& path, const Scenario& scenario) {
   }
 }
 
+// The SDF world (scene.sdf) mapped into the scene once: its objects appended, its
+// physics, gravity, sun and ground friction set; `mapped` and `unmapped` recorded, so
+// that a run folder's scenario.yaml, which holds the objects, is not mapped again.
+void MapSdfWorld(const std::string& path, Scenario* scenario, DriveSource drive_source) {
+  std::optional<description::SdfWorldOptions>& sdf = scenario->scene.sdf;
+  if (!sdf || sdf->mapped) return;
+  description::SdfScene mapped;
+  try {
+    mapped = description::ReadSdfWorld(*sdf, description::DefaultShapesDir());
+  } catch (const description::DescriptionError& e) {
+    throw ScenarioError(path, "scene.sdf.file", e.what());
+  }
+  SceneSpec& scene = scenario->scene;
+  scene.objects.insert(scene.objects.end(), mapped.objects.begin(), mapped.objects.end());
+  if (mapped.physics_step_s) scene.world.physics_step_s = *mapped.physics_step_s;
+  if (mapped.gravity_mps2) scene.world.gravity_mps2 = *mapped.gravity_mps2;
+  if (mapped.sun_azimuth_deg) scene.appearance.sun_azimuth_deg = *mapped.sun_azimuth_deg;
+  if (mapped.sun_elevation_deg) scene.appearance.sun_elevation_deg = *mapped.sun_elevation_deg;
+  if (mapped.ground_material) scene.terrain.default_material = *mapped.ground_material;
+  sdf->mapped = true;
+  sdf->unmapped = std::move(mapped.unmapped);
+  try {
+    scenario->Validate(drive_source);
+  } catch (const OptionError& e) {
+    throw ScenarioError(path, "scene.sdf.file",
+                        sdf->file + " maps onto " + KeyOfField(e.field()) + ": " + e.reason());
+  }
+}
+
+// The URDF robot (robot.description) mapped into the vehicle's keys and the stereo
+// camera's mount once, recorded as `mapped` with what has no key.
+void MapUrdfRobot(const std::string& path, Scenario* scenario, DriveSource drive_source) {
+  std::optional<description::UrdfRobotOptions>& urdf = scenario->robot.description;
+  if (!urdf || urdf->mapped) return;
+  description::UrdfRobot r;
+  try {
+    r = description::ReadUrdfRobot(*urdf);
+  } catch (const description::DescriptionError& e) {
+    throw ScenarioError(path, "robot.description.file", e.what());
+  }
+  robot::TrackedVehicleOptions& v = scenario->robot.vehicle;
+  v.mass_kg = r.mass_kg;
+  v.hull_size_m = r.hull_size_m;
+  v.com_height_m = r.com_height_m;
+  v.ground_clearance_m = r.ground_clearance_m;
+  v.track_gauge_m = r.track_gauge_m;
+  v.track_width_m = r.track_width_m;
+  v.sprocket_radius_m = r.sprocket_radius_m;
+  v.station_x_m = r.station_x_m;
+  v.contact = r.tracks ? robot::TrackedVehicleOptions::Contact::kTracks
+                       : robot::TrackedVehicleOptions::Contact::kWheels;
+  if (r.track_contact_length_m) v.track_contact_length_m = *r.track_contact_length_m;
+  if (r.camera_mount_m) scenario->robot.stereo.mount_m = *r.camera_mount_m;
+  if (r.camera_pitch_down_deg) scenario->robot.stereo.pitch_down_deg = *r.camera_pitch_down_deg;
+  urdf->mapped = true;
+  urdf->unmapped = std::move(r.unmapped);
+  try {
+    scenario->Validate(drive_source);
+  } catch (const OptionError& e) {
+    throw ScenarioError(path, "robot.description.file",
+                        urdf->file + " maps onto " + KeyOfField(e.field()) + ": " + e.reason());
+  }
+}
+
 }  // namespace
 
 Override ParseOverride(const std::string& key_equals_value) {
@@ -433,6 +499,19 @@ Scenario LoadScenario(const std::string& path, const std::vector<Override>& over
   resolve("teach_repeat.map", &scenario.teach_repeat.map, true);
   resolve("robot.calibration_dir", &scenario.robot.calibration_dir, true);
   resolve("scene.terrain.dem.file", &scenario.scene.terrain.dem.file, false);
+  if (scenario.scene.sdf) {
+    description::SdfWorldOptions& sdf = *scenario.scene.sdf;
+    resolve("scene.sdf.file", &sdf.file, false);
+    for (std::size_t k = 0; k < sdf.model_paths.size(); ++k) {
+      resolve(("scene.sdf.model_paths[" + std::to_string(k) + "]").c_str(), &sdf.model_paths[k],
+              true);
+    }
+    MapSdfWorld(path, &scenario, drive_source);
+  }
+  if (scenario.robot.description) {
+    resolve("robot.description.file", &scenario.robot.description->file, false);
+    MapUrdfRobot(path, &scenario, drive_source);
+  }
   CheckDemCoversTerrain(path, scenario.scene.terrain);
   for (std::size_t k = 0; k < scenario.scene.objects.size(); ++k) {
     sim::MeshSource& m = scenario.scene.objects[k].mesh;

@@ -511,7 +511,7 @@ TEST(ScenarioYamlTest, BadOverrideIsAttributedToSet) {
   EXPECT_EQ(typo,
             "--set robot.vehicel.mass_kg=50: robot.vehicel: unknown key (allowed: start, vehicle, "
             "encoders, imu, stereo, range_sensor, realism, imperfections, as_built_seed, "
-            "calibration_dir)");
+            "calibration_dir, description)");
   EXPECT_EQ(ErrorOf(m, {ParseOverride("duration_s=soon")}),
             "--set duration_s=soon: duration_s: expected a number, got 'soon'");
   EXPECT_EQ(

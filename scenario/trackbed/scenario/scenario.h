@@ -16,6 +16,8 @@
 
 #include "trackbed/common/archive.h"
 #include "trackbed/common/archive_eigen.h"
+#include "trackbed/description/sdf_world.h"
+#include "trackbed/description/urdf_robot.h"
 #include "trackbed/estimation/localization.h"
 #include "trackbed/navigation/kinematic_simulation.h"
 #include "trackbed/navigation/navigator_factory.h"
@@ -70,6 +72,10 @@ struct SceneSpec {
   render::SceneAppearance appearance;
   /// People walking scripted paths (seen by the cameras).
   std::vector<sim::OccluderSpec> occluders;
+  /// An SDF world mapped into this scene when the scenario is loaded
+  /// (docs/gazebo_users.md): its objects join `objects`, its physics, gravity, sun
+  /// and ground friction set `world`, `appearance` and `terrain.default_material`.
+  std::optional<description::SdfWorldOptions> sdf;
 
   void Validate() const;
 
@@ -84,6 +90,7 @@ struct SceneSpec {
     a->Visit("scatter", &scatter);
     a->Visit("appearance", &appearance);
     a->Visit("occluders", &occluders);
+    a->Visit("sdf", &sdf, archive::kOmitEmpty);
   }
 };
 
@@ -118,6 +125,9 @@ struct RobotSpec {
   /// Seed of the robot as built and of its calibration's errors; none: derived from
   /// the run's seed.
   std::optional<std::uint64_t> as_built_seed;
+  /// A URDF robot mapped into `vehicle` and `stereo`'s mount when the scenario is
+  /// loaded (docs/gazebo_users.md): the keys it gives replace the scenario's.
+  std::optional<description::UrdfRobotOptions> description;
   /// A folder of calibration files (stereo_calibration.json, imu_calibration.json,
   /// vehicle_calibration.json) given to the software instead of the profile's,
   /// relative to the scenario file; empty: none.
@@ -144,6 +154,7 @@ struct RobotSpec {
     a->Visit("imperfections", &imperfections);
     a->Visit("as_built_seed", &as_built_seed, archive::kOmitEmpty);
     a->Visit("calibration_dir", &calibration_dir, archive::kOmitEmpty);
+    a->Visit("description", &description, archive::kOmitEmpty);
   }
 };
 

@@ -1,0 +1,295 @@
+// SDF worlds written here, read through sdformat and mapped onto the scene
+// (docs/gazebo_users.md): each shape where the world puts it, what is not mapped
+// listed, errors naming the file and the element.
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include "trackbed/assets/scene_meshes.h"
+#include "trackbed/description/sdf_world.h"
+#include "trackbed/scenario/scenario_yaml.h"
+#include "trackbed/sim/triangle_mesh.h"
+#include "trackbed/sim/world.h"
+
+namespace trackbed {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kPi = 3.14159265358979323846;
+
+void Write(const fs::path& p, const std::string& text) {
+  fs::create_directories(p.parent_path());
+  std::ofstream(p) << text;
+}
+
+class SdfWorldTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!description::CanReadDescriptions()) {
+      GTEST_SKIP() << "built without sdformat (TRACKBED_WITH_SDF=OFF)";
+    }
+    dir_ = fs::temp_directory_path() / ("sdf_world_test_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    // A crate model found through model://: a 1 m cube as an OBJ, its origin at its base.
+    Write(dir_ / "models/crate/model.config",
+          "<?xml version='1.0'?><model><name>crate</name><sdf version='1.9'>model.sdf</sdf>"
+          "</model>\n");
+    Write(dir_ / "models/crate/model.sdf", R"(<?xml version='1.0'?>
+<sdf version='1.9'><model name='crate'><static>true</static><link name='body'>
+  <visual name='v'><geometry><mesh><uri>model://crate/meshes/crate.obj</uri></mesh></geometry></visual>
+  <collision name='c'><geometry><mesh><uri>model://crate/meshes/crate.obj</uri></mesh></geometry></collision>
+</link></model></sdf>
+)");
+    Write(dir_ / "models/crate/meshes/crate.obj",
+          "v -0.5 -0.5 0\nv 0.5 -0.5 0\nv 0.5 0.5 0\nv -0.5 0.5 0\n"
+          "v -0.5 -0.5 1\nv 0.5 -0.5 1\nv 0.5 0.5 1\nv -0.5 0.5 1\n"
+          "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\n"
+          "f 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n");
+  }
+  void TearDown() override {
+    if (!dir_.empty()) fs::remove_all(dir_);
+  }
+
+  // A scenario naming `world` (written as world.sdf) with the models folder.
+  scenario::Scenario Load(const std::string& world) {
+    Write(dir_ / "world.sdf", world);
+    Write(dir_ / "scenario.yaml",
+          "scene:\n  terrain: {extent_m: [-10, -10, 10, 10]}\n"
+          "  sdf: {file: world.sdf, model_paths: [models]}\n"
+          "drive: {waypoints: [[0, 0], [1, 0]]}\n");
+    return scenario::LoadScenario((dir_ / "scenario.yaml").string());
+  }
+
+  fs::path dir_;
+};
+
+// A world with every kind of thing the mapping meets.
+const char* kWorld = R"(<?xml version='1.0'?>
+<sdf version='1.9'>
+<world name='yard'>
+  <physics name='fast' type='ode'><max_step_size>0.002</max_step_size></physics>
+  <gravity>0 0 -9.8</gravity>
+  <light type='directional' name='sun'><direction>-0.5 0.1 -0.9</direction></light>
+  <light type='point' name='lamp'><pose>0 0 3 0 0 0</pose></light>
+  <spherical_coordinates><latitude_deg>45</latitude_deg></spherical_coordinates>
+  <plugin filename='gz-sim-physics-system' name='gz::sim::systems::Physics'/>
+  <model name='ground_plane'><static>true</static><link name='link'>
+    <collision name='c'><geometry><plane><normal>0 0 1</normal><size>100 100</size></plane></geometry>
+      <surface><friction><ode><mu>0.5</mu></ode></friction></surface></collision>
+    <visual name='v'><geometry><plane><normal>0 0 1</normal><size>100 100</size></plane></geometry></visual>
+  </link></model>
+  <frame name='yard_corner'><pose>2 1 0 0 0 1.5707963267948966</pose></frame>
+  <model name='box'><static>true</static><pose relative_to='yard_corner'>1 0 0.5 0 0 0</pose>
+    <link name='l'>
+      <visual name='v'><geometry><box><size>2 1 1</size></box></geometry>
+        <material><diffuse>0.8 0.1 0.1 1</diffuse></material></visual>
+      <collision name='c'><geometry><box><size>2 1 1</size></box></geometry>
+        <surface><friction><ode><mu>0.9</mu></ode></friction></surface></collision>
+    </link></model>
+  <model name='log'><static>true</static><pose>-3 2 0.3 1.5707963267948966 0 0</pose>
+    <link name='l'>
+      <visual name='v'><geometry><cylinder><radius>0.3</radius><length>2</length></cylinder></geometry></visual>
+      <collision name='c'><geometry><cylinder><radius>0.3</radius><length>2</length></cylinder></geometry></collision>
+    </link></model>
+  <model name='post'><static>true</static><pose>4 -4 1 0 0 0</pose>
+    <link name='l'><pose>0 0 0.5 0 0 0</pose>
+      <visual name='v'><geometry><cylinder><radius>0.1</radius><length>3</length></cylinder></geometry></visual>
+      <collision name='c'><geometry><cylinder><radius>0.1</radius><length>3</length></cylinder></geometry></collision>
+    </link></model>
+  <model name='ball'><static>true</static><pose>-2 -3 0.4 0 0 0</pose>
+    <link name='l'>
+      <visual name='v'><geometry><sphere><radius>0.4</radius></sphere></geometry></visual>
+      <collision name='c'><geometry><sphere><radius>0.4</radius></sphere></geometry></collision>
+    </link></model>
+  <include><uri>model://crate</uri><pose>5 3 0 0 0 0.5</pose></include>
+  <model name='hill'><static>true</static><link name='l'>
+    <visual name='v'><geometry><heightmap><uri>hill.png</uri><size>10 10 2</size></heightmap></geometry></visual>
+  </link></model>
+  <model name='cart'><pose>0 5 0.2 0 0 0</pose><link name='l'>
+    <visual name='v'><geometry><box><size>1 1 0.4</size></box></geometry></visual></link></model>
+</world>
+</sdf>
+)";
+
+TEST_F(SdfWorldTest, EachShapeWhereTheWorldPutsIt) {
+  const scenario::Scenario s = Load(kWorld);
+  const std::vector<sim::StaticObject>& objects = s.scene.objects;
+  ASSERT_EQ(objects.size(), 5u);
+  // The box: its frame's pose composed through relative_to (yard_corner turned 90°).
+  const sim::StaticObject& box = objects[0];
+  EXPECT_EQ(box.shape, sim::StaticObject::Shape::kBox);
+  EXPECT_NEAR(box.center_m.x(), 2.0, 1e-12);
+  EXPECT_NEAR(box.center_m.y(), 2.0, 1e-12);
+  EXPECT_NEAR(box.base_z_m, 0.0, 1e-12);
+  EXPECT_NEAR(box.yaw_rad, kPi / 2, 1e-12);
+  EXPECT_EQ(box.size_m, Eigen::Vector3d(2, 1, 1));
+  EXPECT_TRUE(box.collides);
+  // The log: a cylinder lying along y, as the unit cylinder's mesh scaled and turned.
+  const sim::StaticObject& log = objects[1];
+  EXPECT_EQ(log.shape, sim::StaticObject::Shape::kMesh);
+  EXPECT_EQ(fs::path(log.mesh.file).filename(), "unit_cylinder.ply");
+  EXPECT_EQ(log.mesh.scale, Eigen::Vector3d(0.3, 0.3, 2.0));
+  EXPECT_NEAR(log.roll_rad, kPi / 2, 1e-12);
+  EXPECT_NEAR(log.center_m.x(), -3.0, 1e-12);
+  EXPECT_NEAR(log.base_z_m, 0.3, 1e-12);
+  // Its triangles placed: the log spans y 1..3 and z 0..0.6 (the facets' chords inside).
+  const assets::SceneMeshes meshes = assets::LoadSceneMeshes({log});
+  const sim::PlacedMesh placed(*meshes.obstacles[0].visual, log.mesh.scale,
+                               meshes.obstacles[0].Pose());
+  EXPECT_NEAR(placed.bounds().min().y(), 1.0, 1e-9);
+  EXPECT_NEAR(placed.bounds().max().y(), 3.0, 1e-9);
+  EXPECT_NEAR(placed.bounds().min().z(), 0.0, 1e-9);
+  EXPECT_NEAR(placed.bounds().max().z(), 0.6, 1e-9);
+  EXPECT_NEAR(placed.bounds().min().x(), -3.3, 1e-9);
+  // The post: upright, its link's pose on top of the model's.
+  const sim::StaticObject& post = objects[2];
+  EXPECT_EQ(post.shape, sim::StaticObject::Shape::kCylinder);
+  EXPECT_EQ(post.center_m, Eigen::Vector2d(4, -4));
+  EXPECT_NEAR(post.base_z_m, 0.0, 1e-12);
+  EXPECT_EQ(post.radius_m, 0.1);
+  EXPECT_EQ(post.height_m, 3.0);
+  // The ball: the unit sphere scaled by its radius, centred where the model is.
+  const sim::StaticObject& ball = objects[3];
+  EXPECT_EQ(fs::path(ball.mesh.file).filename(), "unit_sphere.ply");
+  EXPECT_EQ(ball.mesh.scale, Eigen::Vector3d::Constant(0.4));
+  EXPECT_EQ(ball.center_m, Eigen::Vector2d(-2, -3));
+  EXPECT_NEAR(ball.base_z_m, 0.4, 1e-12);
+  // The crate, included through model://: its OBJ file, turned by the include's yaw.
+  const sim::StaticObject& crate = objects[4];
+  EXPECT_EQ(crate.mesh.file, (dir_ / "models/crate/meshes/crate.obj").string());
+  EXPECT_EQ(crate.center_m, Eigen::Vector2d(5, 3));
+  EXPECT_NEAR(crate.yaw_rad, 0.5, 1e-12);
+  EXPECT_EQ(crate.mesh.collision, sim::MeshSource::Collision::kMesh);
+  EXPECT_TRUE(crate.collides);
+}
+
+// Bullet's ray tests (what the range sensor casts and the hull collides with) meet each
+// mapped solid where the world puts its surface.
+TEST_F(SdfWorldTest, RaysMeetEachSolidWhereTheWorldPutsIt) {
+  const scenario::Scenario s = Load(kWorld);
+  const assets::SceneMeshes meshes = assets::LoadSceneMeshes(s.scene.objects);
+  const sim::World world(s.scene.world, sim::Terrain(s.scene.terrain, 1), meshes.primitives,
+                         meshes.obstacles);
+  const auto hit = [&world](Eigen::Vector3d from, Eigen::Vector3d to) {
+    const std::optional<sim::RayHit> h = world.CastRay(from, to, sim::kGroupObstacle);
+    return h ? h->point_world : Eigen::Vector3d::Constant(std::nan(""));
+  };
+  // The box, turned 90°: its 2 m along y, so its face towards −y at y = 1.
+  EXPECT_NEAR(hit({2, -5, 0.5}, {2, 5, 0.5}).y(), 1.0, 1e-6);
+  // The lying log (radius 0.3 about the line x = −3, z = 0.3): a facet's vertex at x = −3.3.
+  EXPECT_NEAR(hit({-6, 2, 0.3}, {0, 2, 0.3}).x(), -3.3, 1e-6);
+  // The ball (radius 0.4 at (−2, −3, 0.4)): a vertex of its equator at y = −3.4.
+  EXPECT_NEAR(hit({-2, -6, 0.4}, {-2, 0, 0.4}).y(), -3.4, 1e-6);
+  // The post (radius 0.1 at (4, −4)), from 0 to 3 m high.
+  EXPECT_NEAR(hit({4, -8, 1}, {4, 0, 1}).y(), -4.1, 1e-6);
+  EXPECT_TRUE(std::isnan(hit({4, -8, 3.1}, {4, 0, 3.1}).y()));
+  // The crate (a 1 m cube through model://): its top at z = 1.
+  EXPECT_NEAR(hit({5, 3, 5}, {5, 3, -1}).z(), 1.0, 1e-6);
+}
+
+TEST_F(SdfWorldTest, PhysicsSunAndGroundFrictionMapped) {
+  const scenario::Scenario s = Load(kWorld);
+  EXPECT_EQ(s.scene.world.physics_step_s, 0.002);
+  EXPECT_EQ(s.scene.world.gravity_mps2, 9.8);
+  EXPECT_NEAR(s.scene.appearance.sun_azimuth_deg, std::atan2(-0.1, 0.5) * 180 / kPi, 1e-12);
+  EXPECT_NEAR(s.scene.appearance.sun_elevation_deg,
+              std::asin(0.9 / std::sqrt(0.25 + 0.01 + 0.81)) * 180 / kPi, 1e-12);
+  // μ 0.5: the built-in material whose tan φ is nearest.
+  double best = 1e9;
+  std::string nearest;
+  for (const sim::TerrainMaterial& m : sim::BuiltinMaterials()) {
+    const double d = std::abs(std::tan(m.friction_angle_deg * kPi / 180) - 0.5);
+    if (d < best) best = d, nearest = m.name;
+  }
+  EXPECT_EQ(s.scene.terrain.default_material, nearest);
+}
+
+TEST_F(SdfWorldTest, WhatIsNotMappedIsListed) {
+  const scenario::Scenario s = Load(kWorld);
+  ASSERT_TRUE(s.scene.sdf && s.scene.sdf->mapped);
+  const std::vector<std::string>& u = s.scene.sdf->unmapped;
+  const auto listed = [&u](const std::string& part) {
+    for (const std::string& entry : u) {
+      if (entry.find(part) != std::string::npos) return true;
+    }
+    return false;
+  };
+  EXPECT_TRUE(listed("<plugin>") || listed("/plugin")) << ::testing::PrintToString(u);
+  EXPECT_TRUE(listed("spherical_coordinates"));
+  EXPECT_TRUE(listed("only the sun"));
+  EXPECT_TRUE(listed("heightmap"));
+  EXPECT_TRUE(listed("not static"));
+  EXPECT_TRUE(listed("diffuse colour"));
+  EXPECT_TRUE(listed("mu 0.9"));
+  // Each entry names the world's file.
+  for (const std::string& entry : u) EXPECT_NE(entry.find("world.sdf"), std::string::npos) << entry;
+}
+
+TEST_F(SdfWorldTest, MappedScenarioReadsBackWithoutMappingAgain) {
+  const scenario::Scenario s = Load(kWorld);
+  const std::string yaml = scenario::ScenarioToYaml(s);
+  const scenario::Scenario again = scenario::ParseScenario(yaml, "resolved");
+  EXPECT_EQ(again.scene.objects.size(), s.scene.objects.size());
+  EXPECT_EQ(scenario::ScenarioToYaml(again), yaml);
+  Write(dir_ / "resolved.yaml", yaml);
+  EXPECT_EQ(scenario::LoadScenario((dir_ / "resolved.yaml").string()).scene.objects.size(),
+            s.scene.objects.size());
+}
+
+// The message of the ScenarioError loading `world` throws.
+std::string ErrorOf(SdfWorldTest* t, const std::function<void()>& load) {
+  (void)t;
+  try {
+    load();
+  } catch (const scenario::ScenarioError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST_F(SdfWorldTest, ErrorsNameTheFileAndTheElement) {
+  // Malformed: a box without its size's numbers.
+  std::string e = ErrorOf(this, [this] {
+    Load(
+        "<?xml version='1.0'?><sdf version='1.9'><world name='w'><model name='m'><link name='l'>"
+        "<visual name='v'><geometry><box><size>1 x</size></box></geometry></visual>"
+        "</link></model></world></sdf>");
+  });
+  EXPECT_NE(e.find("scene.sdf.file"), std::string::npos) << e;
+  EXPECT_NE(e.find("world.sdf"), std::string::npos) << e;
+  EXPECT_NE(e.find("size"), std::string::npos) << e;
+  // A model:// URI in none of the paths.
+  e = ErrorOf(this, [this] {
+    Load(
+        "<?xml version='1.0'?><sdf version='1.9'><world name='w'><model name='m'>"
+        "<static>true</static><link name='l'><visual name='v'><geometry><mesh>"
+        "<uri>model://nowhere/a.obj</uri></mesh></geometry></visual></link></model></world></sdf>");
+  });
+  EXPECT_NE(e.find("model://nowhere/a.obj"), std::string::npos) << e;
+  EXPECT_NE(e.find("visual[@name=\"v\"]"), std::string::npos) << e;
+  // A Fuel URL, refused by name.
+  e = ErrorOf(this, [this] {
+    Load(
+        "<?xml version='1.0'?><sdf version='1.9'><world name='w'><include><uri>"
+        "https://fuel.gazebosim.org/1.0/OpenRobotics/models/Oak tree</uri></include>"
+        "</world></sdf>");
+  });
+  EXPECT_NE(e.find("Fuel"), std::string::npos) << e;
+  EXPECT_NE(e.find("https://fuel.gazebosim.org"), std::string::npos) << e;
+  // Not XML at all.
+  e = ErrorOf(this, [this] { Load("this is not a world"); });
+  EXPECT_NE(e.find("world.sdf"), std::string::npos) << e;
+}
+
+}  // namespace
+}  // namespace trackbed
