@@ -1,6 +1,8 @@
 // The program that draws the sky (see sky_program.h).
 #include "sky_program.h"
 
+#include "gl_shader.h"
+
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -9,22 +11,11 @@ namespace trackbed::render {
 namespace {
 
 GLuint Compile(GLenum type, const std::string& defines, const char* source) {
-  const GLuint shader = glCreateShader(type);
   // The version line first, then the defines.
   const std::string text(source);
   const std::size_t eol = text.find('\n') + 1;
-  const std::string full = text.substr(0, eol) + defines + text.substr(eol);
-  const char* parts[] = {full.c_str()};
-  glShaderSource(shader, 1, parts, nullptr);
-  glCompileShader(shader);
-  GLint ok = GL_FALSE;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (ok != GL_TRUE) {
-    char log[1024] = {};
-    glGetShaderInfoLog(shader, sizeof(log), nullptr, log);
-    throw std::runtime_error(std::string("Renderer: the sky shader does not compile: ") + log);
-  }
-  return shader;
+  const std::string version = text.substr(0, eol);
+  return CompileShader(type, {version.c_str(), defines.c_str(), source + eol}, "the sky shader");
 }
 
 }  // namespace

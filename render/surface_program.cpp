@@ -2,6 +2,7 @@
 #include "surface_program.h"
 
 #include "footprint_mips.h"
+#include "gl_shader.h"
 #include "ground_tiling.h"
 
 #include <cmath>
@@ -358,18 +359,7 @@ constexpr const char* kLodBias = "-0.5";
 
 GLuint Compile(GLenum type, const std::string& defines, const char* source,
                const char* functions = "") {
-  const GLuint shader = glCreateShader(type);
-  const char* parts[] = {kVersion, defines.c_str(), functions, source};
-  glShaderSource(shader, 4, parts, nullptr);
-  glCompileShader(shader);
-  GLint ok = GL_FALSE;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (ok != GL_TRUE) {
-    char log[1024] = {};
-    glGetShaderInfoLog(shader, sizeof(log), nullptr, log);
-    throw std::runtime_error(std::string("Renderer: the surface shader does not compile: ") + log);
-  }
-  return shader;
+  return CompileShader(type, {kVersion, defines.c_str(), functions, source}, "the surface shader");
 }
 
 // The light map as one two-channel float texture on unit 1: sunlit fraction, gain.

@@ -47,8 +47,8 @@ inline sim::StaticObject Plate(const Eigen::Vector3d& c, double width, double he
   return o;
 }
 
-/// A level camera at `eye` looking horizontally along `forward` (OpenCV axes: x right,
-/// y down, z forward).
+/// A camera at `eye` looking along `forward` (not vertical) without roll: its x axis
+/// level (OpenCV axes: x right, y down, z forward).
 inline Eigen::Isometry3d Looking(const Eigen::Vector3d& eye, const Eigen::Vector3d& forward) {
   const Eigen::Vector3d z = forward.normalized();
   const Eigen::Vector3d x = z.cross(Eigen::Vector3d::UnitZ()).normalized();

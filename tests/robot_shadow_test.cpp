@@ -45,14 +45,7 @@ Eigen::Isometry3d Body(double x, double y, double yaw_deg) {
 // pixels are about 1 cm on the ground, wider than the penumbra.
 Eigen::Isometry3d Camera() {
   const Eigen::Vector3d eye(1.2, -3.2, 2.6), target(0.8, 0.0, 0.0);
-  const Eigen::Vector3d z = (target - eye).normalized();
-  const Eigen::Vector3d x = z.cross(Eigen::Vector3d::UnitZ()).normalized();
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear().col(0) = x;
-  T.linear().col(1) = z.cross(x);
-  T.linear().col(2) = z;
-  T.translation() = eye;
-  return T;
+  return test::Looking(eye, target - eye);
 }
 
 // Whether the ray from `p` towards `sun` meets an oriented box grown by `grow` on every

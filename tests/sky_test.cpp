@@ -32,16 +32,8 @@ SceneAppearance Sky(SkyLook look, double gray = 0.12) {
 // A camera at `eye` looking along azimuth `yaw_deg`, pitched up by `pitch_deg`.
 Eigen::Isometry3d Camera(const Eigen::Vector3d& eye, double yaw_deg, double pitch_deg) {
   const double yaw = yaw_deg * M_PI / 180.0, pitch = pitch_deg * M_PI / 180.0;
-  const Eigen::Vector3d forward(std::cos(yaw) * std::cos(pitch), std::sin(yaw) * std::cos(pitch),
-                                std::sin(pitch));
-  const Eigen::Vector3d z = forward;
-  const Eigen::Vector3d x = z.cross(Eigen::Vector3d::UnitZ()).normalized();
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear().col(0) = x;
-  T.linear().col(1) = z.cross(x);
-  T.linear().col(2) = z;
-  T.translation() = eye;
-  return T;
+  return test::Looking(eye, Eigen::Vector3d(std::cos(yaw) * std::cos(pitch),
+                                            std::sin(yaw) * std::cos(pitch), std::sin(pitch)));
 }
 
 struct View {
