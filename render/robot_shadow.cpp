@@ -25,7 +25,8 @@ double Growth(const Eigen::Vector3d& half, const Eigen::Vector3d& p, const Eigen
   return g;
 }
 
-double SmoothStep(double e0, double e1, double x) {
+// GLSL's smoothstep, as the shader's RobotSunlit computes it.
+double GlslSmoothstep(double e0, double e1, double x) {
   const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
   return t * t * (3.0 - 2.0 * t);
 }
@@ -90,7 +91,7 @@ double RobotSunlit(const std::vector<ShadowBox>& boxes, const Eigen::Isometry3d&
       if (Growth(0.5 * all[k].size_m, q, d) >= w) return 1.0;
       continue;
     }
-    const double s = SmoothStep(-w, w, Growth(0.5 * all[k].size_m, q, d));
+    const double s = GlslSmoothstep(-w, w, Growth(0.5 * all[k].size_m, q, d));
     lit *= s;
   }
   return lit;

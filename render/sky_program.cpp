@@ -10,7 +10,7 @@
 namespace trackbed::render {
 namespace {
 
-GLuint Compile(GLenum type, const std::string& defines, const char* source) {
+GLuint CompileWithDefines(GLenum type, const std::string& defines, const char* source) {
   // The version line first, then the defines.
   const std::string text(source);
   const std::size_t eol = text.find('\n') + 1;
@@ -23,8 +23,8 @@ GLuint Compile(GLenum type, const std::string& defines, const char* source) {
 SkyProgram::SkyProgram(SkyLook look, std::uint64_t seed) {
   const std::string defines = look == SkyLook::kCloudy ? "#define CLOUDS\n" : "";
   program_ = glCreateProgram();
-  glAttachShader(program_, Compile(GL_VERTEX_SHADER, "", SkyVertexShader()));
-  glAttachShader(program_, Compile(GL_FRAGMENT_SHADER, defines, SkyFragmentShader()));
+  glAttachShader(program_, CompileWithDefines(GL_VERTEX_SHADER, "", SkyVertexShader()));
+  glAttachShader(program_, CompileWithDefines(GL_FRAGMENT_SHADER, defines, SkyFragmentShader()));
   glLinkProgram(program_);
   GLint ok = GL_FALSE;
   glGetProgramiv(program_, GL_LINK_STATUS, &ok);
