@@ -22,9 +22,9 @@
 // - Tones: grey = 255 × reflectance, the sand at `dry_sand`'s albedo 0.68
 //   (sim/terrain_material.cpp), lit by the textures' light.
 //
-// Variants agree at the tile's edges (no shift, no turn: the ripples keep the wind's
-// direction and continue across edges) and differ inside: within 2 % of a tile of an edge
-// a variant is the shared field only, and from 16 % on it is its own.
+// Variants agree at the tile's edges and differ inside: within 2 % of a tile of an edge
+// a variant is the shared field only, and from 16 % on it is its own; tiles of equal shift
+// meet with their crests continuous (the tiling's shifts are free: docs/rendering.md).
 //
 // Bit-exact as procedural_texture.cpp: no floating-point contraction, no libm.
 #if defined(__clang__)

@@ -835,9 +835,10 @@ constexpr Recipe kRecipes[] = {
 // The detailed look's own recipes of the robot's ground materials (docs/rendering.md,
 // "Ground recipes"), each with variants: they replace the classic texture's variations
 // under `ground_look: detailed`; MakeTexture keeps the classic one. Dry sand's variants
-// agree at the tile's edges, so its tiles take no shift (their ripples continue).
+// agree at the tile's edges, but its tiles take any shift: without shifts the shared edges
+// repeat at the tile's pitch (docs/rendering.md, "Ground recipes of the robot's materials").
 constexpr Recipe kDetailedRecipes[] = {
-    {"dry_sand", kSandTileM, SandSurface, {1, false, 1, kSandVariants}, SandFeatures},
+    {"dry_sand", kSandTileM, SandSurface, {1, false, 0, kSandVariants}, SandFeatures},
     {"grass", kGrassTileM, GrassSurface, {4, true, 0, kGrassVariants}, GrassFeatures},
     {"sandy_loam", kSoilTileM, SoilSurface, {4, true, 0, kSoilVariants}, SoilFeatures},
 };

@@ -90,8 +90,9 @@ TEST(GroundRecipesTest, VariantsDiffer) {
 }
 
 // The dry sand's variants are the same bytes within 4 texels (8 mm) of the tile's edges
-// and each wraps seamlessly, so that tiles of any variants meet without a step: its
-// tiling takes no shift, turn or mirror.
+// and each wraps seamlessly, so that tiles of any variants meet without a step where
+// their shifts agree; its tiling takes no turn or mirror (the wind's direction) and any
+// shift (docs/rendering.md: no shift would leave a period).
 TEST(GroundRecipesTest, SandVariantsAgreeAtTheirEdges) {
   constexpr int kSize = 256;
   const std::vector<Texture> v = MakeTextureVariants("dry_sand", 3, kSize);
@@ -108,7 +109,7 @@ TEST(GroundRecipesTest, SandVariantsAgreeAtTheirEdges) {
   const TileVariation t = GroundTileVariation("dry_sand");
   EXPECT_EQ(t.quarter_turns, 1);
   EXPECT_FALSE(t.mirror);
-  EXPECT_EQ(t.offsets_per_side, 1);
+  EXPECT_EQ(t.offsets_per_side, 0);
   EXPECT_EQ(t.variants, kSandVariants);
   // Across the wrap (column 255 to 0) the texels step as much as within the tile.
   double across = 0.0, within = 0.0;
