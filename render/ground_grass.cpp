@@ -74,10 +74,12 @@ void PaintBlade(Field& f, const GrassBlade& b, double light, double reflectance)
   const Eigen::Vector2d box = EllipseExtent(0.5 * len + half_w, half_w, d);
   // Each half's normal, folded about the midrib: lit apart by the textures' light.
   const double flat = Lambert(0.0, 0.0, 1.0, kLightX, kLightY, kLightZ);
-  const double left = Lambert(kFoldSin * across.x(), kFoldSin * across.y(), kFoldCos, kLightX,
-                              kLightY, kLightZ) / flat;
-  const double right = Lambert(-kFoldSin * across.x(), -kFoldSin * across.y(), kFoldCos,
-                               kLightX, kLightY, kLightZ) / flat;
+  const double left =
+      Lambert(kFoldSin * across.x(), kFoldSin * across.y(), kFoldCos, kLightX, kLightY, kLightZ) /
+      flat;
+  const double right =
+      Lambert(-kFoldSin * across.x(), -kFoldSin * across.y(), kFoldCos, kLightX, kLightY, kLightZ) /
+      flat;
   const double tip_px = 1.5e-3 / kGrassTileM * n;  // the mown tip's brown end
   ForEachInBox(f, mid.x(), mid.y(), box.x() + 1.0, box.y() + 1.0,
                [&](double& value, double dx, double dy, int, int) {
@@ -114,8 +116,9 @@ std::vector<GrassBlade> GrassSward(std::uint64_t seed, int variant) {
     for (int s = 0; s < tillers; ++s, ++placed) {
       const Eigen::Vector2d around = rng.Direction();
       const Eigen::Vector2d off = around * rng.Uniform(0.0, 0.01 / kGrassTileM);
-      const int leaves = kLeavesPerShootMin +
-                         static_cast<int>(rng.Uniform() * (kLeavesPerShootMax - kLeavesPerShootMin + 1));
+      const int leaves =
+          kLeavesPerShootMin +
+          static_cast<int>(rng.Uniform() * (kLeavesPerShootMax - kLeavesPerShootMin + 1));
       for (int l = 0; l < leaves; ++l) {
         GrassBlade b;
         b.x = cx + off.x();
@@ -147,7 +150,8 @@ void GrassFeatures(Field& f, std::uint64_t seed, int variant) {
   // Soil with thatch over it, half lit in the gaps.
   const Field mottle = NoiseField(n, Fbm(Stream(s, 1), 8, 8, 3, 0.5, n));
   ForEachTexel(f, [&](int x, int y, double, double, double& value) {
-    value = 0.5 * 255.0 * kLawnSoilReflectance * (1.0 + 0.2 * Clamp01(0.5 + 0.25 * mottle.at(x, y)));
+    value =
+        0.5 * 255.0 * kLawnSoilReflectance * (1.0 + 0.2 * Clamp01(0.5 + 0.25 * mottle.at(x, y)));
   });
   Rng rng(Stream(s, 2));
   constexpr int kThatch = 1500;  // dead blades per tile, authored

@@ -167,8 +167,8 @@ void PaintSandArc(Field& f, double cx, double cy, double radius, const Eigen::Ve
   // The rotation of one step: cos and sin of a small angle from their Taylor series
   // (no libm), renormalised at each step.
   const double step_len = sweep * 2.0 * kSandPi / steps;  // [rad]
-  const double c1 = 1.0 - 0.5 * step_len * step_len + step_len * step_len * step_len *
-                                                           step_len / 24.0;
+  const double c1 =
+      1.0 - 0.5 * step_len * step_len + step_len * step_len * step_len * step_len / 24.0;
   const double s1 = step_len - step_len * step_len * step_len / 6.0;
   Eigen::Vector2d d = from;
   for (int k = 0; k <= steps; ++k) {

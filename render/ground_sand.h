@@ -29,8 +29,8 @@ inline constexpr double kRippleIndexMax = 70.0;
 
 /// The ripple field every variant of a seed shares at its edges.
 struct RippleField {
-  int kx = 0;                ///< crests' wave number along u [per tile]
-  int ky = 0;                ///< along v [per tile]
+  int kx = 0;                 ///< crests' wave number along u [per tile]
+  int ky = 0;                 ///< along v [per tile]
   double wavelength_m = 0.0;  ///< 1 / |k| of the tile
   double height_m = 0.0;      ///< crest above trough: wavelength / ripple index
 };

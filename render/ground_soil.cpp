@@ -136,8 +136,8 @@ void PaintClods(Field& f, const Crust& crust, std::uint64_t s) {
     int count;  // per 0.5 m tile, authored
   };
   // Medium, coarse and very coarse granules (USDA), clods; the largest last, on top.
-  constexpr SizeClass kClasses[] = {{2.0, 5.0, 1800}, {5.0, 10.0, 300}, {10.0, 20.0, 40},
-                                    {20.0, 50.0, 6}};
+  constexpr SizeClass kClasses[] = {
+      {2.0, 5.0, 1800}, {5.0, 10.0, 300}, {10.0, 20.0, 40}, {20.0, 50.0, 6}};
   for (const SizeClass& sc : kClasses) {
     for (int k = 0; k < sc.count; ++k) {
       const double cx = rng.Uniform() * n;

@@ -153,7 +153,8 @@ TEST(GroundRecipesTest, RippleWavelengthFromTheTexturesSpectrum) {
         double re = 0.0, im = 0.0;
         for (int y = 0; y < kSize; ++y) {
           for (int x = 0; x < kSize; ++x) {
-            const int j = ((2 * (kx * x + ky * y) + kx + ky) % (2 * kSize) + 2 * kSize) % (2 * kSize);
+            const int j =
+                ((2 * (kx * x + ky * y) + kx + ky) % (2 * kSize) + 2 * kSize) % (2 * kSize);
             const double g = t.at(x, y) - mean;
             re += g * cosine[j];
             im += g * sine[j];
