@@ -34,6 +34,9 @@
 // After the pragma, so that the blocks' inline functions are compiled under it too.
 #include "facade_texture.h"
 #include "ground_asphalt.h"
+#include "ground_grass.h"
+#include "ground_sand.h"
+#include "ground_soil.h"
 #include "texture_blocks.h"
 
 namespace trackbed::render {
@@ -829,11 +832,31 @@ constexpr Recipe kRecipes[] = {
     {"wood", 1.0, Wood},
 };
 
+// The detailed look's own recipes of the robot's ground materials (docs/rendering.md,
+// "Ground recipes"), each with variants: they replace the classic texture's variations
+// under `ground_look: detailed`; MakeTexture keeps the classic one. Dry sand's variants
+// agree at the tile's edges, but its tiles take any shift: without shifts the shared edges
+// repeat at the tile's pitch (docs/rendering.md, "Ground recipes of the robot's materials").
+constexpr Recipe kDetailedRecipes[] = {
+    {"dry_sand", kSandTileM, SandSurface, {1, false, 0, kSandVariants}, SandFeatures},
+    {"grass", kGrassTileM, GrassSurface, {4, true, 0, kGrassVariants}, GrassFeatures},
+    {"sandy_loam", kSoilTileM, SoilSurface, {4, true, 0, kSoilVariants}, SoilFeatures},
+};
+
 const Recipe* FindRecipe(const std::string& name) {
   for (const Recipe& r : kRecipes) {
     if (name == r.name) return &r;
   }
   return nullptr;
+}
+
+// The recipe a ground of `name` is drawn with under the detailed look: its own detailed
+// recipe if it has one, else `classic`.
+const Recipe& GroundRecipe(const std::string& name, const Recipe& classic) {
+  for (const Recipe& r : kDetailedRecipes) {
+    if (name == r.name) return r;
+  }
+  return classic;
 }
 
 void CheckSize(const char* function, int size_px) {
@@ -895,12 +918,12 @@ Texture MakeTexture(const std::string& appearance, std::uint64_t seed, int size_
 }
 
 TileVariation GroundTileVariation(const std::string& appearance) {
-  return KnownRecipe(appearance).tiling;
+  return GroundRecipe(appearance, KnownRecipe(appearance)).tiling;
 }
 
 std::vector<Texture> MakeTextureVariants(const std::string& appearance, std::uint64_t seed,
                                          int size_px) {
-  const Recipe& recipe = KnownRecipe(appearance);
+  const Recipe& recipe = GroundRecipe(appearance, KnownRecipe(appearance));
   if (recipe.features == nullptr) return {MakeTexture(appearance, seed, size_px)};
   CheckSize("MakeTextureVariants", size_px);
   Field surface(size_px);

@@ -89,6 +89,18 @@ TEST(GroundTilingRenderTest, DetailedGroundHasNoPeriodAtTheTilePitch) {
   }
 }
 
+// The detailed recipes' own 0.5 m tiles (ground_sand.h, ground_grass.h, ground_soil.h):
+// no period at that pitch either. The dry sand's variants share their edges (their
+// ripples continue across them), so its tiles correlate more, within the same bound.
+TEST(GroundTilingRenderTest, DetailedRecipesHaveNoPeriodAtTheirOwnTile) {
+  for (const std::string material : {"grass", "sandy_loam", "dry_sand"}) {
+    const GrayImage detailed = Draw(material, Look(GroundLook::kDetailed));
+    std::printf("%s: detailed at 0.5 m %.3f\n", material.c_str(),
+                Correlation(detailed, kPitchPx / 2));
+    EXPECT_LT(Correlation(detailed, kPitchPx / 2), 0.2) << material;
+  }
+}
+
 TEST(GroundTilingRenderTest, ClassicListedMaterialDrawsAsTheClassicLook) {
   SceneAppearance listed = Look(GroundLook::kDetailed);
   listed.classic_look_materials = {"grass"};

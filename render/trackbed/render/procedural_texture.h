@@ -54,14 +54,19 @@ struct TileVariation {
   int variants = 1;          ///< textures the tiles choose among (MakeTextureVariants)
 };
 
-/// The tile variation of `appearance`'s texture as a ground: free for textures without a
-/// direction or a grid, whole cells for a grid (paving, hard floor), none of turns and
-/// mirrors for wind ripples (sand). Throws std::invalid_argument as MakeTexture.
+/// The tile variation of `appearance`'s texture as a ground under the detailed look: free
+/// for textures without a direction or a grid, whole cells for a grid (paving, hard
+/// floor), none of turns and mirrors for wind ripples (sand; the detailed dry sand's
+/// variants agree at their edges and take no shift either). Throws
+/// std::invalid_argument as MakeTexture.
 TileVariation GroundTileVariation(const std::string& appearance);
 
-/// The `GroundTileVariation(appearance).variants` textures of `appearance`: one common
-/// surface with each variant's own features (variant 0 is MakeTexture's); one texture
-/// for an appearance of one variant. Throws as MakeTexture.
+/// The `GroundTileVariation(appearance).variants` textures of `appearance` as a ground
+/// under the detailed look: one common surface with each variant's own features (variant 0
+/// is MakeTexture's); one texture for an appearance of one variant. `dry_sand`, `grass` and
+/// `sandy_loam` are made by their own detailed recipes instead (ground_sand.h,
+/// ground_grass.h, ground_soil.h: 0.5 m tiles, four variants), which MakeTexture does not
+/// use. Throws as MakeTexture.
 std::vector<Texture> MakeTextureVariants(const std::string& appearance, std::uint64_t seed,
                                          int size_px = 256);
 
