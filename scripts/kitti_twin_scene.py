@@ -146,11 +146,12 @@ def lamps_and_signs(rng, tree_xs):
     x = ROAD_START + rng.uniform(0, 10)
     while x < ROAD_END:
         y = -(FOOTWAY_BACK - 0.5)
-        out.append(f"    - {{type: post, center: [{fmt(x)}, {fmt(y)}], radius_m: {fmt(LAMP_RADIUS)}, "
-                   f"height_m: {fmt(LAMP_HEIGHT)}}}")
+        out.append(f"    - {{type: post, center: [{fmt(x)}, {fmt(y)}], "
+                   f"radius_m: {fmt(LAMP_RADIUS)}, height_m: {fmt(LAMP_HEIGHT)}}}")
         # The lantern: 0.6 x 0.25 x 0.12 m on top, reaching 0.3 m over the footway.
-        out.append(f"    - {{type: box, center: [{fmt(x)}, {fmt(y + 0.3)}], size_m: [0.25, 0.6, 0.12], "
-                   f"base_z_m: {fmt(LAMP_HEIGHT - 0.12)}, collides: false, appearance: metal}}")
+        out.append(f"    - {{type: box, center: [{fmt(x)}, {fmt(y + 0.3)}], "
+                   f"size_m: [0.25, 0.6, 0.12], base_z_m: {fmt(LAMP_HEIGHT - 0.12)}, "
+                   f"collides: false, appearance: metal}}")
         x += rng.uniform(25, 35)
     for side in (-1, 1):
         x = ROAD_START + rng.uniform(0, 30)
