@@ -115,7 +115,8 @@ GrayImage DrawTree(int scale, CrownLook look) {
   K.fx = K.fy = 150.0 * scale;
   K.cx = scale * (79.5 + 0.5) - 0.5;  // the same view, pixel for pixel at scale 1
   K.cy = scale * (59.5 + 0.5) - 0.5;
-  Renderer renderer(OneTree(), a, {}, 5, w, h, 0.05, 100.0);
+  const sim::World world = OneTree();  // outlives the renderer, which keeps its terrain
+  Renderer renderer(world, a, {}, 5, w, h, 0.05, 100.0);
   GrayImage img;
   renderer.Render(K, test::Looking({0.0, 0.0, 4.0}, Eigen::Vector3d::UnitX()), 0.0, &img, nullptr);
   return img;
