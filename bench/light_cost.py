@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
-"""What the robot's shadow and the sky cost (docs/camera_model.md, docs/rendering.md): the
-same short run of a scene with each element off and on, in turn, --repeats times, by the
-CPU time of the whole `trackbed run` process (user + system, every thread: less
-disturbed than the wall time by other jobs on the machine). A benchmark: it prints the
-figures and the ratios to the plain run, pair by pair; it never fails on them.
+"""What the robot's shadow, the sky and leafy crowns cost (docs/camera_model.md,
+docs/rendering.md): the same short run of a scene with each element off and on, in turn,
+--repeats times, by the CPU time of the whole `trackbed run` process (user + system,
+every thread: less disturbed than the wall time by other jobs on the machine). A
+benchmark: it prints the figures and the ratios to the plain run, pair by pair; it never
+fails on them.
 
     python3 bench/light_cost.py [--scene scenes/studies/robot_shadow.yaml] [--duration 10]
         [--repeats 3]
@@ -16,11 +17,14 @@ import subprocess
 import tempfile
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
+PLAIN = ["scene.appearance.robot_shadow=false", "scene.appearance.sky=flat",
+         "scene.appearance.crowns=spheres"]
 VARIANTS = {
-    "plain": ["scene.appearance.robot_shadow=false", "scene.appearance.sky=flat"],
-    "robot shadow": ["scene.appearance.robot_shadow=true", "scene.appearance.sky=flat"],
-    "clear sky": ["scene.appearance.robot_shadow=false", "scene.appearance.sky=clear"],
-    "cloudy sky": ["scene.appearance.robot_shadow=false", "scene.appearance.sky=cloudy"],
+    "plain": PLAIN,
+    "robot shadow": PLAIN[1:] + ["scene.appearance.robot_shadow=true"],
+    "clear sky": [PLAIN[0], PLAIN[2], "scene.appearance.sky=clear"],
+    "cloudy sky": [PLAIN[0], PLAIN[2], "scene.appearance.sky=cloudy"],
+    "leafy crowns": PLAIN[:2] + ["scene.appearance.crowns=leaves"],
 }
 
 

@@ -28,6 +28,7 @@
 #include "footprint_mips.h"
 #include "gl_primitives.h"
 #include "ground_tiling.h"
+#include "leaf_crown_drawing.h"
 #include "mesh_surfaces.h"
 #include "sky_program.h"
 #include "surface_program.h"
@@ -71,6 +72,7 @@ struct Drawable {
   bool curved = false;                   // a cylinder's outline: drawn antialiased
   GLuint band_list = 0;                  // the band about a curved object's outline
   bool flat = false;                     // a box or the ceiling: read by footprint
+  GLuint leaf_list = 0;                  // a tree's crown of leaf cards (leaf_crown_drawing.h)
 };
 
 // A texture as uploaded: GL name and world size of one repeat.
@@ -153,6 +155,7 @@ struct Renderer::Gl {
   std::vector<std::pair<double, int>> draw_order;  // per frame, kept to avoid reallocation
   std::unique_ptr<SurfaceProgram> program;         // draws every surface
   std::unique_ptr<SkyProgram> sky;                 // a sky not flat
+  std::unique_ptr<LeafCrowns> leaf_crowns;         // crowns of leaf cards
   bool lit = false;                                // with scene lighting: pre-exposed
   std::vector<ShadowBox> robot_boxes;              // the robot's shadow's boxes, body frame
   Eigen::Isometry3d T_world_robot = Eigen::Isometry3d::Identity();
@@ -414,6 +417,7 @@ struct Renderer::Gl {
       const Drawable& d = drawables[static_cast<std::size_t>(it->second)];
       if (d.curved) glCallList(d.band_list);
     }
+    if (leaf_crowns) leaf_crowns->Draw(LeafCrowns::Pass::kFringe, order, drawables);
     glDisable(GL_BLEND);
     glDepthMask(GL_TRUE);
     glDepthFunc(GL_LESS);
@@ -423,6 +427,7 @@ struct Renderer::Gl {
       const Drawable& d = drawables[static_cast<std::size_t>(k)];
       if (d.curved) glCallList(d.band_list);
     }
+    if (leaf_crowns) leaf_crowns->Draw(LeafCrowns::Pass::kDepth, order, drawables);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glEnable(GL_CULL_FACE);
   }
@@ -451,6 +456,7 @@ struct Renderer::Gl {
     return o.kind == "tree" && o.shape == sim::StaticObject::Shape::kCylinder;
   }
   bool DrawsCrown(const sim::StaticObject& o) const { return IsTree(o) && appearance.tree_crowns; }
+  bool SphereCrown(const sim::StaticObject& o) const { return DrawsCrown(o) && !leaf_crowns; }
 
   // One object's display list; a tree's with the facets of `level`. Its textures
   // are made before the list is compiled: made inside it, their upload would be
@@ -462,7 +468,7 @@ struct Renderer::Gl {
     const std::vector<CarPart> parts =
         flat && o.kind == "car" ? CarParts(o.size_m) : std::vector<CarPart>{};
     for (const CarPart& p : parts) PartTexture(o, p);
-    const bool crown = DrawsCrown(o);
+    const bool crown = SphereCrown(o);
     const GlTexture& leaves = crown ? Texture("leaves") : tex;
     const GLuint list = glGenLists(1);
     glNewList(list, GL_COMPILE);
@@ -521,7 +527,7 @@ struct Renderer::Gl {
   // unit 2, where each vertex lies on the band on unit 0.
   GLuint CompileBands(const sim::StaticObject& o) {
     const GlTexture& tex = Texture(o.appearance);
-    const bool crown = DrawsCrown(o);
+    const bool crown = SphereCrown(o);
     const GlTexture& leaves = crown ? Texture("leaves") : tex;
     const GLuint list = glGenLists(1);
     glNewList(list, GL_COMPILE);
@@ -610,9 +616,11 @@ struct Renderer::Gl {
       d.box = DrawnBounds(o);
       d.curved = o.shape == sim::StaticObject::Shape::kCylinder;
       if (d.curved) d.band_list = CompileBands(o);
+      if (DrawsCrown(o) && leaf_crowns)
+        d.leaf_list = leaf_crowns->Compile(o, TreeCrownRadius(o), seed);
       d.flat = o.shape == sim::StaticObject::Shape::kBox;
       if (IsTree(o) && appearance.object_far_error_px > 0.0) {
-        const double crown = DrawsCrown(o) ? TreeCrownRadius(o) : 0.0;
+        const double crown = SphereCrown(o) ? TreeCrownRadius(o) : 0.0;
         for (std::size_t l = 1; l < kTreeLevels.size(); ++l) {
           d.far_versions.push_back({CompileObject(o, kTreeLevels[l]),
                                     TreeLevelDeparture(crown, o.radius_m, kTreeLevels[l])});
@@ -711,6 +719,8 @@ Renderer::Renderer(const sim::World& world, const SceneAppearance& appearance,
   // follows the detail centre from the first frame.
   g.window = std::make_unique<TerrainWindow>(*g.terrain, appearance.terrain_full_detail_m);
   if (!g.window->paged()) g.FollowDetailCenter(Eigen::Vector2d::Zero());
+  if (appearance.crowns == CrownLook::kLeaves)
+    g.leaf_crowns = std::make_unique<LeafCrowns>(seed, appearance.ambient, appearance.diffuse);
   g.BuildObjects(world);
   g.BuildMeshes(world);
   std::optional<LightMap> light_map;
@@ -866,6 +876,8 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
   glDisableClientState(GL_VERTEX_ARRAY);
   glDisableClientState(GL_NORMAL_ARRAY);
   glDisableClientState(GL_TEXTURE_COORD_ARRAY);
+  if (g.leaf_crowns) g.leaf_crowns->Begin(view, sun_world, g.lit ? g.exposure : 1.0);
+  if (g.leaf_crowns) g.leaf_crowns->Draw(LeafCrowns::Pass::kCore, order, g.drawables);
   g.program->Use(SurfaceProgram::Kind::kIsotropic);
   for (std::size_t k = 0; k < g.occluders.size(); ++k) {
     const sim::OccluderPose pose = sim::OccluderPoseAt(g.occluders[k], t_s);

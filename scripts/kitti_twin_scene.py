@@ -18,12 +18,28 @@ of DIN 18101's 1.0 x 2.125 m opening on each, at a pier between two windows, and
 downpipe (DIN EN 612) at each front corner. `--cars boxes --houses plain` writes the
 street as it was before them: plain boxes of metal or paint, houses of brick or paint
 (the layout drawn from the seed is the same either way).
+
+Leafy crowns and street furniture (docs/rendering.md, "Leafy crowns" and "Street
+furniture"): the trees' crowns drawn as leaf cards (`scene.appearance.crowns: leaves`);
+kerbstones of DIN 483's H 15 x 30 (1 m long, 0.15 m wide) along both carriageway edges,
+showing 0.12 m above the road (RASt 06's 10-12 cm); street lamps of 6 m at the rear of
+the right footway every 25-35 m (a residential road's mounting height and spacing under
+EN 13201); sign posts of 60.3 mm tube with a 0.6 m square sign (VwV-StVO's size 2) whose
+lower edge is 2.0 m up and whose edge is 0.5 m from the carriageway (VwV-StVO). Their
+layout is drawn from a stream of its own, so the street's layout is unchanged.
+`--crowns spheres --furniture off` writes the street without them.
 """
 import argparse
 import random
 
 ROAD_START, ROAD_END = -30.0, 640.0
 
+
+CARRIAGEWAY_EDGE = 4.0  # |y| of the asphalt's edge
+FOOTWAY_BACK = 9.0  # |y| of the pavement's back edge
+KERB_LENGTH, KERB_WIDTH, KERB_REVEAL, KERB_JOINT = 1.0, 0.15, 0.12, 0.005
+LAMP_HEIGHT, LAMP_RADIUS = 6.0, 0.07
+SIGN_SIDE, SIGN_LOWER_EDGE, SIGN_CLEARANCE, SIGN_POST_RADIUS = 0.6, 2.0, 0.5, 0.03015
 
 DOOR_WIDTH, DOOR_HEIGHT, DOOR_DEPTH = 1.0, 2.125, 0.05
 PIPE_RADIUS = 0.05
@@ -105,13 +121,65 @@ def house_front(x, y, length, depth, height, rng):
     return out
 
 
+def kerbs():
+    """Kerbstones along both carriageway edges, a joint between each two, as scene lines."""
+    out = []
+    for side in (-1, 1):
+        y = side * (CARRIAGEWAY_EDGE + KERB_WIDTH / 2)
+        x = -40.0
+        while x + KERB_LENGTH <= 650.0:
+            out.append(f"    - {{type: box, center: [{fmt(x + KERB_LENGTH / 2, 3)}, {fmt(y, 3)}], "
+                       f"size_m: [{fmt(KERB_LENGTH - KERB_JOINT, 3)}, {fmt(KERB_WIDTH)}, "
+                       f"{fmt(KERB_REVEAL)}], appearance: paving}}")
+            x += KERB_LENGTH
+    return out
+
+
+def clear_of(x, taken, gap):
+    return all(abs(x - t) >= gap for t in taken)
+
+
+def lamps_and_signs(rng, tree_xs):
+    """Street lamps at the rear of the right footway and sign posts by both kerbs, clear of
+    the trees along the street, as scene lines."""
+    out = []
+    x = ROAD_START + rng.uniform(0, 10)
+    while x < ROAD_END:
+        y = -(FOOTWAY_BACK - 0.5)
+        out.append(f"    - {{type: post, center: [{fmt(x)}, {fmt(y)}], "
+                   f"radius_m: {fmt(LAMP_RADIUS)}, height_m: {fmt(LAMP_HEIGHT)}}}")
+        # The lantern: 0.6 x 0.25 x 0.12 m on top, reaching 0.3 m over the footway.
+        out.append(f"    - {{type: box, center: [{fmt(x)}, {fmt(y + 0.3)}], "
+                   f"size_m: [0.25, 0.6, 0.12], base_z_m: {fmt(LAMP_HEIGHT - 0.12)}, "
+                   f"collides: false, appearance: metal}}")
+        x += rng.uniform(25, 35)
+    for side in (-1, 1):
+        x = ROAD_START + rng.uniform(0, 30)
+        while x < ROAD_END:
+            if clear_of(x, tree_xs[side], 1.0):
+                y = side * (CARRIAGEWAY_EDGE + SIGN_CLEARANCE + SIGN_SIDE / 2)
+                out.append(f"    - {{type: post, center: [{fmt(x)}, {fmt(y)}], "
+                           f"radius_m: {fmt(SIGN_POST_RADIUS, 5)}, "
+                           f"height_m: {fmt(SIGN_LOWER_EDGE + SIGN_SIDE)}}}")
+                # The sign faces the traffic on its side, just before the post.
+                out.append(f"    - {{type: box, center: [{fmt(x - side * 0.045, 3)}, {fmt(y)}], "
+                           f"size_m: [0.02, {fmt(SIGN_SIDE)}, {fmt(SIGN_SIDE)}], "
+                           f"base_z_m: {fmt(SIGN_LOWER_EDGE)}, collides: false, "
+                           f"appearance: plain_paint}}")
+            x += rng.uniform(40, 90)
+    return out
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--cars", choices=["parts", "boxes"], default="parts")
     parser.add_argument("--houses", choices=["facades", "plain"], default="facades")
+    parser.add_argument("--crowns", choices=["leaves", "spheres"], default="leaves")
+    parser.add_argument("--furniture", choices=["on", "off"], default="on")
     args = parser.parse_args()
     rng = random.Random(20121001)
     dressing = random.Random(20121002)  # doors: their own stream, the layout unchanged
+    furniture = random.Random(20121003)  # lamps and signs: theirs
     print("""# The KITTI twin (docs/localization.md): 450 m of a straight residential road (it goes
 # on 190 m beyond, so the view ahead never runs out) as KITTI's car drives it, seen
 # through KITTI's stereo geometry. Written by
@@ -145,11 +213,14 @@ scene:
   appearance:
     # Every ground material varied tile by tile (no period), asphalt's variants
     # (docs/rendering.md).
-    ground_look: detailed
+    ground_look: detailed""" + ("""
+    # The trees' crowns as leaf cards (docs/rendering.md, "Leafy crowns").
+    crowns: leaves""" if args.crowns == "leaves" else "") + """
   objects:""")
     for x, y, length, width, height, look in cars(rng):
         print(car_line(x, y, length, width, height, look, args.cars == "parts"))
-    for x, y, r, h in trees(rng):
+    tree_list = trees(rng)
+    for x, y, r, h in tree_list:
         print(f"    - {{type: tree, center: [{fmt(x)}, {fmt(y)}], radius_m: {fmt(r)}, "
               f"height_m: {fmt(h)}}}")
     for x, y, length, depth, height, look in houses(rng):
@@ -159,6 +230,10 @@ scene:
               f"{fmt(depth)}, {fmt(height)}], appearance: {look}}}")
         if args.houses == "facades":
             print("\n".join(house_front(x, y, length, depth, height, dressing)))
+    if args.furniture == "on":
+        print("\n".join(kerbs()))
+        tree_xs = {side: [t[0] for t in tree_list if t[1] * side > 0] for side in (-1, 1)}
+        print("\n".join(lamps_and_signs(furniture, tree_xs)))
     print("""robot:
   vehicle:
     # The carrier's footprint: a car's wheelbase and track (its pitch and roll follow

@@ -32,6 +32,10 @@ namespace trackbed::render {
 /// of its texture, turned, mirrored and shifted from the seed (no period).
 enum class GroundLook { kClassic, kDetailed };
 
+/// How a tree's crown is drawn (docs/rendering.md): `spheres`, a faceted sphere with the
+/// `leaves` texture; `leaves`, a cloud of leaf cards (leaf_crown.h).
+enum class CrownLook { kSpheres, kLeaves };
+
 struct SceneAppearance {
   /// Direction the sunlight comes from: azimuth counter-clockwise from +x [deg].
   double sun_azimuth_deg = 135.0;
@@ -50,6 +54,8 @@ struct SceneAppearance {
   double ceiling_height_m = 0.0;
   /// Foliage crowns on objects of kind "tree" (visual only).
   bool tree_crowns = true;
+  /// How the crowns are drawn: spheres, or leaf cards (leaf_crown.h).
+  CrownLook crowns = CrownLook::kSpheres;
   /// Side of the square procedural textures [px], a power of two in [16, 2048].
   int texture_size_px = 256;
   /// Distance from the detail centre within which the terrain is drawn from its
@@ -84,6 +90,8 @@ struct SceneAppearance {
     a->Visit("sky_gray", &sky_gray);
     a->Visit("ceiling_height_m", &ceiling_height_m);
     a->Visit("tree_crowns", &tree_crowns);
+    a->VisitEnum("crowns", &crowns,
+                 {{"spheres", CrownLook::kSpheres}, {"leaves", CrownLook::kLeaves}});
     a->Visit("texture_size_px", &texture_size_px);
     a->Visit("terrain_full_detail_m", &terrain_full_detail_m);
     a->Visit("object_far_error_px", &object_far_error_px);
