@@ -27,6 +27,7 @@
 
 #include "footprint_mips.h"
 #include "gl_primitives.h"
+#include "luminaire.h"
 #include "ground_tiling.h"
 #include "mesh_surfaces.h"
 #include "sky_program.h"
@@ -475,7 +476,8 @@ struct Renderer::Gl {
     } else if (o.shape == sim::StaticObject::Shape::kBox) {
       glRotated(units::Degrees(o.yaw_rad), 0, 0, 1);
       glTranslated(0, 0, o.size_m.z() / 2);
-      DrawBox(o.size_m, tex.meters_per_repeat);
+      if (o.kind == "luminaire") DrawLuminaire(o.size_m, tex.meters_per_repeat);
+      else DrawBox(o.size_m, tex.meters_per_repeat);
     } else {
       glMultiTexCoord4d(GL_TEXTURE1, 0, 0, 0, -o.radius_m);  // the outline's shape
       DrawCylinder(o.radius_m, o.height_m, tex.meters_per_repeat, level.trunk_slices);
