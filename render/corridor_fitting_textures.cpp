@@ -43,9 +43,7 @@ void Skirting(Field& f, std::uint64_t seed) { SmoothSurface(f, seed, 0.15, 1.0);
 
 void DoorFrame(Field& f, std::uint64_t seed) { SmoothSurface(f, seed, 0.5, 1.0); }
 
-void Luminaire(Field& f, std::uint64_t) {
-  for (double& v : f.v) v = 255.0;
-}
+void Luminaire(Field& f, std::uint64_t seed) { SmoothSurface(f, seed, 0.99, 0.5); }
 
 void SwitchPlate(Field& f, std::uint64_t seed) {
   SmoothSurface(f, seed, 0.85, 0.5);
@@ -59,44 +57,58 @@ void SwitchPlate(Field& f, std::uint64_t seed) {
 void Radiator(Field& f, std::uint64_t seed) {
   SmoothSurface(f, seed, 0.85, 0.8);
   // A channel every 50 mm (20 per metre tile): 15 mm wide, its left half in shade
-  // (-10 %) and its right half lit (+4 %).
+  // (-10 %) and its right half lit (+4 %); the tile's edge falls on plain panel between
+  // two channels, so the tile repeats without a seam.
   constexpr int kChannels = 20;
   ForEachTexel(f, [&](int, int, double u, double, double& value) {
-    const double w = u * kChannels - std::floor(u * kChannels);  // position in the pitch
-    if (w < 0.15) value *= 0.90;
-    else if (w < 0.30) value *= 1.04;
+    const double p = u * kChannels + 0.5;
+    const double w = p - std::floor(p);  // position in the pitch
+    if (w < 0.15) {
+      value *= 0.90;
+    } else if (w < 0.30) {
+      value *= 1.04;
+    }
   });
 }
 
 void NoticeBoard(Field& f, std::uint64_t seed) {
-  // Cork: a fine granular mottle.
+  // Cork: a fine granular mottle. The tile is the board's width (0.9 m); the board
+  // fills its lower 2/3, the rest (never seen) is frame, so the frame meets itself
+  // across every edge of the tile.
   f = NoiseField(f.n, Fbm(Stream(seed, 0), 64, 64, 2, 0.5, f.n));
   SetMeanStd(f, 255.0 * 0.35, 6.0);
-  constexpr double kW = 0.9, kH = 0.6, kFrame = 0.02;  // [m] = tile units (1 m tile)
+  constexpr double kTile = kBoardTileM;
+  constexpr double kW = 0.9 / kTile, kH = 0.6 / kTile, kFrame = 0.02 / kTile;  // tile units
   Rng rng(Stream(seed, 1));
   const int sheets = 3 + static_cast<int>(rng.Uniform(0.0, 3.0));
   for (int k = 0; k < sheets; ++k) {
     const bool portrait = rng.Uniform(0.0, 1.0) < 0.7;
-    const double w = portrait ? 0.21 : 0.297, h = portrait ? 0.297 : 0.21;
-    const double u0 = rng.Uniform(kFrame + 0.01, kW - kFrame - 0.01 - w);
-    const double v0 = rng.Uniform(kFrame + 0.01, kH - kFrame - 0.01 - h);
+    const double w = (portrait ? 0.21 : 0.297) / kTile, h = (portrait ? 0.297 : 0.21) / kTile;
+    const double margin = kFrame + 0.01 / kTile;
+    const double u0 = rng.Uniform(margin, kW - margin - w);
+    const double v0 = rng.Uniform(margin, kH - margin - h);
     FittingRect(f, u0, v0, u0 + w, v0 + h, 255.0 * 0.85);
-    // Lines of text 3 mm high every 6 mm, 20 mm margins; each line's end drawn.
-    for (double v = v0 + h - 0.03; v > v0 + 0.03; v -= 0.006) {
-      const double end = u0 + 0.02 + rng.Uniform(0.5, 1.0) * (w - 0.04);
-      FittingRect(f, u0 + 0.02, v - 0.003, end, v, 255.0 * 0.3);
+    // Lines of text 3 mm high every 6 mm within 20 mm margins, each ending where it ends.
+    const double line = 0.003 / kTile, pitch = 0.006 / kTile, side = 0.02 / kTile;
+    for (double v = v0 + h - 1.5 * side; v > v0 + 1.5 * side; v -= pitch) {
+      const double end = u0 + side + rng.Uniform(0.5, 1.0) * (w - 2 * side);
+      FittingRect(f, u0 + side, v - line, end, v, 255.0 * 0.3);
     }
   }
-  // The aluminium frame around the board.
-  FittingRect(f, 0.0, 0.0, kW, kFrame, 255.0 * 0.6);
-  FittingRect(f, 0.0, kH - kFrame, kW, kH, 255.0 * 0.6);
-  FittingRect(f, 0.0, 0.0, kFrame, kH, 255.0 * 0.6);
-  FittingRect(f, kW - kFrame, 0.0, kW, kH, 255.0 * 0.6);
+  // The aluminium frame: the board's rim, and the tile beyond the board (antialiased on
+  // the cork's side).
+  const double frame = 255.0 * 0.6;
+  ForEachTexel(f, [&](int, int, double u, double v, double& value) {
+    const double inside =
+        std::min(std::min(u - kFrame, kW - kFrame - u), std::min(v - kFrame, kH - kFrame - v));
+    const double c = Coverage(inside * f.n);
+    value += c * (frame - value);
+  });
 }
 
 void Extinguisher(Field& f, std::uint64_t seed) {
   SmoothSurface(f, seed, 0.1, 0.8);
-  FittingRect(f, 0.0, 0.20, 0.25, 0.35, 255.0 * 0.8);
+  FittingRect(f, 0.1, 0.20, 0.35, 0.35, 255.0 * 0.8);
 }
 
 }  // namespace trackbed::render

@@ -824,7 +824,7 @@ constexpr Recipe kRecipes[] = {
     {"lete_sand", 1.0, LeteSand, kRipples},
     {"luminaire", kFittingTileM, Luminaire},
     {"metal", 1.0, Metal},
-    {"notice_board", kFittingTileM, NoticeBoard},
+    {"notice_board", kBoardTileM, NoticeBoard},
     {"paving", 1.6, Paving, {4, true, 4, 1}},
     {"person", 1.0, Person},
     {"plain_paint", 1.0, PlainPaint},

@@ -43,7 +43,8 @@ double FittingUnit(std::uint64_t seed, std::uint64_t k) {
   return static_cast<double>(split_mix::Stream(seed, k) >> 11) * 0x1.0p-53;
 }
 
-Eigen::Vector2d NearestOnRoute(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>& route) {
+Eigen::Vector2d NearestOnRoute(const Eigen::Vector2d& p,
+                               const std::vector<Eigen::Vector2d>& route) {
   Eigen::Vector2d best = route.front();
   for (std::size_t k = 1; k < route.size(); ++k) {
     const Eigen::Vector2d d = route[k] - route[k - 1];
@@ -56,7 +57,9 @@ Eigen::Vector2d NearestOnRoute(const Eigen::Vector2d& p, const std::vector<Eigen
   return best;
 }
 
-bool IsWall(const StaticObject& o) { return o.kind == "wall" && o.shape == StaticObject::Shape::kBox; }
+bool IsWall(const StaticObject& o) {
+  return o.kind == "wall" && o.shape == StaticObject::Shape::kBox;
+}
 
 double BaseOf(const StaticObject& o) { return std::isnan(o.base_z_m) ? 0.0 : o.base_z_m; }
 
@@ -174,8 +177,8 @@ void AddDoorsAndSkirting(const CorridorFittings& spec, FittedFace& face, std::ui
       const double f = fs::kFrameFaceM, depth = fs::kFrameDepthM;
       out->push_back(BoxOnFace(face, "door_frame", leaf0 - 0.5 * f, f, 0, depth, 0, head, false));
       out->push_back(BoxOnFace(face, "door_frame", leaf1 + 0.5 * f, f, 0, depth, 0, head, false));
-      out->push_back(BoxOnFace(face, "door_frame", 0.5 * (s0 + s1), leaf1 - leaf0 + 2 * f, 0,
-                               depth, head, f, false));
+      out->push_back(BoxOnFace(face, "door_frame", 0.5 * (s0 + s1), leaf1 - leaf0 + 2 * f, 0, depth,
+                               head, f, false));
     }
     if (spec.switches) {
       const bool after = FittingUnit(seed, d) < 0.5;
@@ -199,7 +202,8 @@ void PlaceAlongFace(FittedFace& face, double spacing, std::uint64_t seed, Make&&
     const double share = face.length / count;
     const double centre = share * (k + 0.25 + 0.5 * FittingUnit(seed, 2 * k));
     const StaticObject o = make(centre, FittingUnit(seed, 2 * k + 1));
-    const double half = 0.5 * (o.shape == StaticObject::Shape::kBox ? o.size_m.x() : 2 * o.radius_m);
+    const double half =
+        0.5 * (o.shape == StaticObject::Shape::kBox ? o.size_m.x() : 2 * o.radius_m);
     const double s0 = centre - half - fs::kFittingGapM, s1 = centre + half + fs::kFittingGapM;
     if (s0 < 0.0 || s1 > face.length || !Free(face.walls, s0, s1) || !Free(face.taken, s0, s1)) {
       continue;
@@ -212,40 +216,41 @@ void PlaceAlongFace(FittedFace& face, double spacing, std::uint64_t seed, Make&&
 void AddWallFittings(const CorridorFittings& spec, FittedFace& face, std::uint64_t seed,
                      std::vector<StaticObject>* out) {
   if (spec.radiators) {
-    PlaceAlongFace(face, spec.radiator_spacing_m, split_mix::Stream(seed, 1),
-                   [&](double c, double u) {
-                     const double l = fs::kRadiatorLengthsM[std::min(3, static_cast<int>(4 * u))];
-                     return BoxOnFace(face, "radiator", c, l, fs::kRadiatorWallGapM,
-                                      fs::kRadiatorDepthM, fs::kRadiatorFloorGapM,
-                                      fs::kRadiatorHeightM, true);
-                   },
-                   out);
+    PlaceAlongFace(
+        face, spec.radiator_spacing_m, split_mix::Stream(seed, 1),
+        [&](double c, double u) {
+          const double l = fs::kRadiatorLengthsM[std::min(3, static_cast<int>(4 * u))];
+          return BoxOnFace(face, "radiator", c, l, fs::kRadiatorWallGapM, fs::kRadiatorDepthM,
+                           fs::kRadiatorFloorGapM, fs::kRadiatorHeightM, true);
+        },
+        out);
   }
   if (spec.notice_boards) {
-    PlaceAlongFace(face, spec.notice_board_spacing_m, split_mix::Stream(seed, 2),
-                   [&](double c, double) {
-                     const double h = fs::kBoardHeightM;
-                     return BoxOnFace(face, "notice_board", c, fs::kBoardWidthM, 0.0,
-                                      fs::kBoardDepthM, fs::kBoardCentreHeightM - 0.5 * h, h,
-                                      false);
-                   },
-                   out);
+    PlaceAlongFace(
+        face, spec.notice_board_spacing_m, split_mix::Stream(seed, 2),
+        [&](double c, double) {
+          const double h = fs::kBoardHeightM;
+          return BoxOnFace(face, "notice_board", c, fs::kBoardWidthM, 0.0, fs::kBoardDepthM,
+                           fs::kBoardCentreHeightM - 0.5 * h, h, false);
+        },
+        out);
   }
   if (spec.extinguishers) {
-    PlaceAlongFace(face, spec.extinguisher_spacing_m, split_mix::Stream(seed, 3),
-                   [&](double c, double) {
-                     StaticObject o;
-                     o.shape = StaticObject::Shape::kCylinder;
-                     o.kind = "extinguisher";
-                     o.appearance = "extinguisher";
-                     o.radius_m = fs::kExtinguisherRadiusM;
-                     o.height_m = fs::kExtinguisherHeightM;
-                     o.center_m = face.start + c * face.dir +
-                                  (fs::kExtinguisherWallGapM + o.radius_m) * face.normal;
-                     o.base_z_m = face.base_z + fs::kExtinguisherTopM - o.height_m;
-                     return o;
-                   },
-                   out);
+    PlaceAlongFace(
+        face, spec.extinguisher_spacing_m, split_mix::Stream(seed, 3),
+        [&](double c, double) {
+          StaticObject o;
+          o.shape = StaticObject::Shape::kCylinder;
+          o.kind = "extinguisher";
+          o.appearance = "extinguisher";
+          o.radius_m = fs::kExtinguisherRadiusM;
+          o.height_m = fs::kExtinguisherHeightM;
+          o.center_m =
+              face.start + c * face.dir + (fs::kExtinguisherWallGapM + o.radius_m) * face.normal;
+          o.base_z_m = face.base_z + fs::kExtinguisherTopM - o.height_m;
+          return o;
+        },
+        out);
   }
 }
 

@@ -20,8 +20,8 @@ namespace {
 namespace fs = fitting_size;
 
 scenario::Scenario Fitted(std::uint64_t seed) {
-  scenario::Scenario s = scenario::LoadScenario(std::string(TRACKBED_SOURCE_DIR) +
-                                                "/scenes/corridor_fitted.yaml");
+  scenario::Scenario s =
+      scenario::LoadScenario(std::string(TRACKBED_SOURCE_DIR) + "/scenes/corridor_fitted.yaml");
   s.seed = seed;
   return s;
 }
@@ -111,7 +111,8 @@ TEST(CorridorFittingsTest, FramesSurroundTheDoorsAndTheSkirtingStopsAtThem) {
     int jambs = 0;
     for (const StaticObject& o : fittings) {
       const double s_along = (o.center_m - door.center_m).dot(along);
-      const double across = std::abs((o.center_m - door.center_m).dot(Eigen::Vector2d(-along.y(), along.x())));
+      const double across =
+          std::abs((o.center_m - door.center_m).dot(Eigen::Vector2d(-along.y(), along.x())));
       if (across > 0.1) continue;  // not on this door's face
       if (o.kind == "door_frame" && o.size_m.z() > 1.0 && std::abs(s_along) < door.size_m.x()) {
         // A jamb: its inner edge on the leaf's edge, as high as the leaf.
@@ -122,7 +123,8 @@ TEST(CorridorFittingsTest, FramesSurroundTheDoorsAndTheSkirtingStopsAtThem) {
       if (o.kind == "skirting") {
         // No skirting across the door and its frame.
         const double reach = 0.5 * door.size_m.x() + fs::kFrameFaceM - 1e-9;
-        EXPECT_TRUE(s_along + 0.5 * o.size_m.x() <= -reach || s_along - 0.5 * o.size_m.x() >= reach);
+        EXPECT_TRUE(s_along + 0.5 * o.size_m.x() <= -reach ||
+                    s_along - 0.5 * o.size_m.x() >= reach);
       }
     }
     EXPECT_EQ(jambs, 2);
@@ -211,13 +213,15 @@ TEST(CorridorFittingsTest, BadFittingsKeysNameTheFileTheKeyAndTheReason) {
   EXPECT_EQ(ErrorOf(drive + "scene:\n  fittings: {radiatorz: true}\n" + ceiling)
                 .rfind("test.yaml: scene.fittings.radiatorz: ", 0),
             0u);
-  EXPECT_EQ(ErrorOf("drive: {mode: script, script: [{t_s: 0, v_mps: 0.2}]}\nscene:\n  fittings: {}\n" + ceiling),
-            "test.yaml: scene.fittings: needs drive.waypoints: the fittings face the route");
+  EXPECT_EQ(
+      ErrorOf("drive: {mode: script, script: [{t_s: 0, v_mps: 0.2}]}\nscene:\n  fittings: {}\n" +
+              ceiling),
+      "test.yaml: scene.fittings: needs drive.waypoints: the fittings face the route");
 }
 
 TEST(CorridorFittingsTest, WithoutTheSectionTheSceneHasNoFittings) {
-  const scenario::Scenario s = scenario::LoadScenario(std::string(TRACKBED_SOURCE_DIR) +
-                                                      "/scenes/corridor.yaml");
+  const scenario::Scenario s =
+      scenario::LoadScenario(std::string(TRACKBED_SOURCE_DIR) + "/scenes/corridor.yaml");
   EXPECT_FALSE(s.scene.fittings.has_value());
   EXPECT_EQ(scenario::SceneObjects(s).size(), s.scene.objects.size());
   // And the resolved scenario is written without the key.

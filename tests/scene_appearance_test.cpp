@@ -79,9 +79,10 @@ TEST(SceneAppearanceTest, FittedCorridorHasMoreCornersAndStaysALowFeatureScene) 
   const double corridor = MeanCornersAlongRoute("corridor.yaml", 12, min_response);
   const double fitted = MeanCornersAlongRoute("corridor_fitted.yaml", 12, min_response);
   const double outdoor = MeanCornersAlongRoute("outdoor.yaml", 12, min_response);
-  std::printf("Harris corners per 640x480 left image (min_response %g): corridor %.1f, "
-              "fitted corridor %.1f, outdoor %.1f\n",
-              min_response, corridor, fitted, outdoor);
+  std::printf(
+      "Harris corners per 640x480 left image (min_response %g): corridor %.1f, "
+      "fitted corridor %.1f, outdoor %.1f\n",
+      min_response, corridor, fitted, outdoor);
   RecordProperty("fitted_corridor_corners", std::to_string(fitted));
   EXPECT_GT(fitted, corridor);
   EXPECT_GE(outdoor, 5.0 * fitted);
