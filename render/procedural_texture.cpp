@@ -32,6 +32,7 @@
 #endif
 
 // After the pragma, so that the blocks' inline functions are compiled under it too.
+#include "corridor_fitting_textures.h"
 #include "facade_texture.h"
 #include "ground_asphalt.h"
 #include "ground_grass.h"
@@ -815,20 +816,27 @@ constexpr Recipe kRecipes[] = {
     {"ceiling", 1.0, Ceiling},
     {"clay", 1.0, Clay, kAnyWay},
     {"door", 2.0, Door},
+    {"door_frame", kFittingTileM, DoorFrame},
     {"dry_sand", 1.0, DrySand, kRipples},
+    {"extinguisher", kFittingTileM, Extinguisher},
     {"facade", kFacadeTileM, Facade},
     {"grass", 1.0, Grass, kAnyWay},
     {"gravel", 1.0, Gravel, kAnyWay},
     {"hard_floor", 1.0, HardFloor, {4, true, 2, 1}},
     {"leaves", 1.0, Leaves},
     {"lete_sand", 1.0, LeteSand, kRipples},
+    {"luminaire", kFittingTileM, Luminaire},
     {"metal", 1.0, Metal},
+    {"notice_board", kBoardTileM, NoticeBoard},
     {"paving", 1.6, Paving, {4, true, 4, 1}},
     {"person", 1.0, Person},
     {"plain_paint", 1.0, PlainPaint},
     {"poster", 1.0, Poster},
+    {"radiator", kFittingTileM, Radiator},
     {"sandy_loam", 1.0, SandyLoam, kAnyWay},
+    {"skirting", kFittingTileM, Skirting},
     {"soil", 1.0, Soil, kAnyWay},
+    {"switch_plate", kSwitchPlateTileM, SwitchPlate},
     {"wood", 1.0, Wood},
 };
 

@@ -29,6 +29,7 @@
 #include "gl_primitives.h"
 #include "ground_tiling.h"
 #include "leaf_crown_drawing.h"
+#include "luminaire.h"
 #include "mesh_surfaces.h"
 #include "sky_program.h"
 #include "surface_program.h"
@@ -481,7 +482,7 @@ struct Renderer::Gl {
     } else if (o.shape == sim::StaticObject::Shape::kBox) {
       glRotated(units::Degrees(o.yaw_rad), 0, 0, 1);
       glTranslated(0, 0, o.size_m.z() / 2);
-      DrawBox(o.size_m, tex.meters_per_repeat);
+      (o.kind == "luminaire" ? DrawLuminaire : DrawBox)(o.size_m, tex.meters_per_repeat);
     } else {
       glMultiTexCoord4d(GL_TEXTURE1, 0, 0, 0, -o.radius_m);  // the outline's shape
       DrawCylinder(o.radius_m, o.height_m, tex.meters_per_repeat, level.trunk_slices);

@@ -18,6 +18,8 @@ namespace {
 // The streams of the scene's seed that scatter objects, one per `scene.scatter`
 // entry from this one (the terrain's heights and soil use 0x4e16 and 0x5011).
 constexpr std::uint64_t kScatterStream = 0x5ca7;
+// The stream of the scene's seed that places the corridor fittings.
+constexpr std::uint64_t kFittingsStream = 0xf177;
 
 std::string Indexed(const std::string& name, std::size_t k) {
   return name + "[" + std::to_string(k) + "]";
@@ -129,6 +131,13 @@ void SceneSpec::Validate() const {
     for (std::size_t m = 0; m < scatter[k].materials.size(); ++m) {
       KnownMaterial(Indexed("scatter", k) + "." + Indexed("materials", m), scatter[k].materials[m],
                     terrain);
+    }
+  }
+  if (fittings) {
+    option_check::Nested("fittings", *fittings);
+    if (fittings->ceiling_lights && !(appearance.ceiling_height_m > 0.0)) {
+      throw OptionError("fittings.ceiling_lights",
+                        "needs a ceiling (scene.appearance.ceiling_height_m > 0)");
     }
   }
   option_check::Nested("appearance", appearance);
@@ -327,6 +336,9 @@ void Scenario::Validate(DriveSource drive_source) const {
     option_check::Nested("drive", drive);
   }
   if (drive_source != DriveSource::kExternal) CheckCommandedSpeeds(*this);
+  if (scene.fittings && drive.waypoints.empty()) {
+    throw OptionError("scene.fittings", "needs drive.waypoints: the fittings face the route");
+  }
   if (CarriedOnPosePath(drive_source)) CheckPosePathOnTerrain(*this);
   if (!(navigation.enabled && navigation.mode == NavigationSpec::Mode::kKinematic)) {
     CheckStartOnTerrain(*this);
@@ -421,6 +433,12 @@ std::vector<sim::StaticObject> SceneObjects(const Scenario& scenario) {
     const std::vector<sim::StaticObject> more = sim::ScatterObjects(
         scenario.scene.scatter[k], split_mix::Stream(scene_seed, kScatterStream + k),
         scenario.scene.terrain, clear);
+    objects.insert(objects.end(), more.begin(), more.end());
+  }
+  if (scenario.scene.fittings) {
+    const std::vector<sim::StaticObject> more = sim::CorridorFittingObjects(
+        *scenario.scene.fittings, objects, route, scenario.scene.appearance.ceiling_height_m,
+        split_mix::Stream(scene_seed, kFittingsStream));
     objects.insert(objects.end(), more.begin(), more.end());
   }
   return objects;

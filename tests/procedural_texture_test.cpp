@@ -21,8 +21,11 @@ namespace {
 // Indoor appearances that must starve a corner detector.
 const std::vector<std::string> kFeaturelessIndoor = {"ceiling", "hard_floor", "metal",
                                                      "plain_paint"};
-// Indoor appearances allowed some structure (a few edges, a poster's blocks and text).
-const std::vector<std::string> kStructuredIndoor = {"door", "poster"};
+// Indoor appearances allowed some structure (a few edges, a poster's blocks and text,
+// the corridor fittings' frames, sheets and channels).
+const std::vector<std::string> kStructuredIndoor = {"door",      "door_frame",   "extinguisher",
+                                                    "luminaire", "notice_board", "poster",
+                                                    "radiator",  "skirting",     "switch_plate"};
 // Built surfaces whose layout follows cited measures (street_clutter_test.cpp checks it).
 const std::vector<std::string> kBuilt = {"facade"};
 const std::vector<std::string> kOutdoor = {
@@ -171,17 +174,20 @@ TEST(ProceduralTextureTest, OtherSeedOtherBytes) {
 // these only for a deliberate change of an appearance.
 TEST(ProceduralTextureTest, BytesMatchPinnedChecksums) {
   const std::map<std::string, std::uint64_t> pinned = {
-      {"asphalt", 0xa63a469084de09baULL},     {"bark", 0x9bf3f1010b05b2c4ULL},
-      {"brick", 0xee2a3e2b690bc8daULL},       {"ceiling", 0x483b77e0cede2ad2ULL},
-      {"clay", 0xfe608a9d75edfd0dULL},        {"door", 0xdffb7f439d5324afULL},
-      {"dry_sand", 0xed27b46ba8220049ULL},    {"facade", 0xc40e2ea20bd86ddbULL},
-      {"grass", 0xff786d4f6a0f1b5aULL},       {"gravel", 0xfddc5b42f390878bULL},
-      {"hard_floor", 0x14310a1b258c8fe0ULL},  {"leaves", 0x832f574510efa3e2ULL},
-      {"lete_sand", 0x8eba559af918563dULL},   {"metal", 0x7762b3c7451f2394ULL},
-      {"paving", 0xd4779695f223c60cULL},      {"person", 0x36525cbfb2fe4018ULL},
-      {"plain_paint", 0x7d9eeddcae631945ULL}, {"poster", 0xdd09d6c5df95d06eULL},
-      {"sandy_loam", 0xa200f1e755fba4a6ULL},  {"soil", 0x947216b67881b63cULL},
-      {"wood", 0x554a18fb36c56dccULL},
+      {"asphalt", 0xa63a469084de09baULL},      {"bark", 0x9bf3f1010b05b2c4ULL},
+      {"brick", 0xee2a3e2b690bc8daULL},        {"ceiling", 0x483b77e0cede2ad2ULL},
+      {"clay", 0xfe608a9d75edfd0dULL},         {"door", 0xdffb7f439d5324afULL},
+      {"dry_sand", 0xed27b46ba8220049ULL},     {"facade", 0xc40e2ea20bd86ddbULL},
+      {"grass", 0xff786d4f6a0f1b5aULL},        {"gravel", 0xfddc5b42f390878bULL},
+      {"hard_floor", 0x14310a1b258c8fe0ULL},   {"leaves", 0x832f574510efa3e2ULL},
+      {"lete_sand", 0x8eba559af918563dULL},    {"metal", 0x7762b3c7451f2394ULL},
+      {"paving", 0xd4779695f223c60cULL},       {"person", 0x36525cbfb2fe4018ULL},
+      {"plain_paint", 0x7d9eeddcae631945ULL},  {"poster", 0xdd09d6c5df95d06eULL},
+      {"sandy_loam", 0xa200f1e755fba4a6ULL},   {"soil", 0x947216b67881b63cULL},
+      {"wood", 0x554a18fb36c56dccULL},         {"door_frame", 0x1067ec67d54fd62fULL},
+      {"extinguisher", 0xad7242b023295e55ULL}, {"luminaire", 0x05ca53746f5c8636ULL},
+      {"notice_board", 0xa9b0243ef117d655ULL}, {"radiator", 0x9331b3e502cff226ULL},
+      {"skirting", 0x50be8224b060999dULL},     {"switch_plate", 0x253c45590a7bbc67ULL},
   };
   EXPECT_EQ(pinned.size(), TextureNames().size());
   for (const auto& [name, checksum] : pinned) {

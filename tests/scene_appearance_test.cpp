@@ -19,7 +19,8 @@ namespace {
 double MeanCornersAlongRoute(const std::string& file, int views, double min_response) {
   const scenario::Scenario s =
       scenario::LoadScenario(std::string(TRACKBED_SOURCE_DIR) + "/scenes/" + file);
-  const sim::World world(s.scene.world, sim::Terrain(s.scene.terrain, s.seed), s.scene.objects);
+  const sim::World world(s.scene.world, sim::Terrain(s.scene.terrain, s.seed),
+                         scenario::SceneObjects(s));
   const robot::StereoRig rig(s.robot.stereo);
   render::Renderer renderer(world, s.scene.appearance, s.scene.occluders, s.seed,
                             s.robot.stereo.width_px, s.robot.stereo.height_px,
@@ -68,6 +69,23 @@ TEST(SceneAppearanceTest, OutdoorViewsHaveAtLeastFiveTimesTheCornersOfCorridorVi
   RecordProperty("outdoor_corners", std::to_string(outdoor));
   EXPECT_GT(corridor, 1.0);  // not blank: doors and posters give a few
   EXPECT_GE(outdoor, 5.0 * corridor);
+}
+
+TEST(SceneAppearanceTest, FittedCorridorHasMoreCornersAndStaysALowFeatureScene) {
+  // The corridor with its fittings (scene.fittings): skirting, door frames, switches,
+  // ceiling lights, radiators, notice boards and extinguishers add corners; plain walls
+  // still dominate, so the park keeps at least five times as many.
+  const double min_response = 1e-6;
+  const double corridor = MeanCornersAlongRoute("corridor.yaml", 12, min_response);
+  const double fitted = MeanCornersAlongRoute("corridor_fitted.yaml", 12, min_response);
+  const double outdoor = MeanCornersAlongRoute("outdoor.yaml", 12, min_response);
+  std::printf(
+      "Harris corners per 640x480 left image (min_response %g): corridor %.1f, "
+      "fitted corridor %.1f, outdoor %.1f\n",
+      min_response, corridor, fitted, outdoor);
+  RecordProperty("fitted_corridor_corners", std::to_string(fitted));
+  EXPECT_GT(fitted, corridor);
+  EXPECT_GE(outdoor, 5.0 * fitted);
 }
 
 }  // namespace

@@ -31,6 +31,7 @@
 #include "trackbed/robot/range_sensor.h"
 #include "trackbed/robot/stereo_rig.h"
 #include "trackbed/robot/tracked_vehicle.h"
+#include "trackbed/sim/corridor_fittings.h"
 #include "trackbed/sim/object_scatter.h"
 #include "trackbed/sim/occluder.h"
 #include "trackbed/sim/static_object.h"
@@ -68,6 +69,9 @@ struct SceneSpec {
   /// Objects scattered by density from the seed (sim/object_scatter.h), added to
   /// `objects`; the drive's route and the start are kept clear of them.
   std::vector<sim::ObjectScatter> scatter;
+  /// Corridor fittings (sim/corridor_fittings.h) on the walls facing the drive's
+  /// route, added to `objects` from the seed; absent: none.
+  std::optional<sim::CorridorFittings> fittings;
   /// Light and visual dressing for the cameras.
   render::SceneAppearance appearance;
   /// People walking scripted paths (seen by the cameras).
@@ -88,6 +92,7 @@ struct SceneSpec {
     a->Visit("terrain", &terrain);
     a->Visit("objects", &objects);  // a file form of their own: Codec<sim::StaticObject> above
     a->Visit("scatter", &scatter);
+    a->Visit("fittings", &fittings, archive::kOmitEmpty);
     a->Visit("appearance", &appearance);
     a->Visit("occluders", &occluders);
     a->Visit("sdf", &sdf, archive::kOmitEmpty);
