@@ -29,6 +29,7 @@
 #include "gl_primitives.h"
 #include "ground_tiling.h"
 #include "mesh_surfaces.h"
+#include "object_albedo.h"
 #include "sky_program.h"
 #include "surface_program.h"
 #include "trackbed/common/option_error.h"
@@ -235,6 +236,12 @@ struct Renderer::Gl {
     it->second.ground = ground;
     UploadTexture(it->second, {t});
     return it->second;
+  }
+
+  // An object's texture: a plain one of its own albedo where it has one (object_albedo.h).
+  const GlTexture& ObjectTexture(const sim::StaticObject& o, bool ground = false) {
+    return o.albedo ? Texture(AlbedoTextureName(*o.albedo), *o.albedo, ground)
+                    : Texture(o.appearance, 0.5, ground);
   }
 
   // A terrain material's texture: its variants, tiled, under the detailed look; else Texture's.
@@ -458,7 +465,7 @@ struct Renderer::Gl {
   GLuint CompileObject(const sim::StaticObject& o, const TreeTessellation& level) {
     // A box's faces (walls, seen at grazing angles) read by footprint, as the ground.
     const bool flat = o.shape == sim::StaticObject::Shape::kBox;
-    const GlTexture& tex = Texture(o.appearance, 0.5, flat);
+    const GlTexture& tex = ObjectTexture(o, flat);
     const std::vector<CarPart> parts =
         flat && o.kind == "car" ? CarParts(o.size_m) : std::vector<CarPart>{};
     for (const CarPart& p : parts) PartTexture(o, p);
@@ -520,7 +527,7 @@ struct Renderer::Gl {
   // band's shape on texture unit 1, its texture's repeat and a cylinder's height on
   // unit 2, where each vertex lies on the band on unit 0.
   GLuint CompileBands(const sim::StaticObject& o) {
-    const GlTexture& tex = Texture(o.appearance);
+    const GlTexture& tex = ObjectTexture(o);
     const bool crown = DrawsCrown(o);
     const GlTexture& leaves = crown ? Texture("leaves") : tex;
     const GLuint list = glGenLists(1);
@@ -579,14 +586,17 @@ struct Renderer::Gl {
   // One drawable per part of a mesh object, read by footprint as the ground and boxes.
   void BuildMeshes(const sim::World& world) {
     for (const sim::MeshObject& m : world.meshes()) {
+      const std::optional<double>& albedo = m.entry.albedo;
       for (MeshSurface& s : MeshSurfaces(m)) {
-        auto it = textures.find(s.texture_key);
+        const std::string key = albedo ? "mesh " + AlbedoTextureName(*albedo) : s.texture_key;
+        auto it = textures.find(key);
         if (it == textures.end()) {
           GlTexture g;
           g.ground = true;
           glGenTextures(1, &g.name);
-          UploadTexture(g, {MeshPartTexture(*s.part)});
-          it = textures.emplace(s.texture_key, g).first;
+          UploadTexture(g, {albedo ? MakePlainTexture(*albedo, seed ^ TextureNameHash(key), 64)
+                                   : MeshPartTexture(*s.part)});
+          it = textures.emplace(key, g).first;
         }
         TerrainDrawable t;
         t.fixed = true;
