@@ -30,16 +30,17 @@ cv::Mat ReadGreyImage(const sim::HeightmapOptions& o) {
   }
   if (image.empty()) FailHeightmap(o, "not an image OpenCV can decode (PNG, ...)");
   if (image.channels() != 1) {
-    FailHeightmap(o, "has " + std::to_string(image.channels()) +
-                " channels: a heightmap is one grey channel (Gazebo's), e.g. `convert in.png "
-                "-colorspace Gray -depth 16 out.png`");
+    FailHeightmap(o,
+                  "has " + std::to_string(image.channels()) +
+                      " channels: a heightmap is one grey channel (Gazebo's), e.g. `convert in.png "
+                      "-colorspace Gray -depth 16 out.png`");
   }
   if (image.depth() != CV_8U && image.depth() != CV_16U) {
     FailHeightmap(o, "its pixels are not 8 or 16 bits unsigned, as Gazebo reads a heightmap image");
   }
   if (image.cols != image.rows) {
     FailHeightmap(o, "is " + std::to_string(image.cols) + " × " + std::to_string(image.rows) +
-                " pixels: a heightmap image is square, as Gazebo requires");
+                         " pixels: a heightmap image is square, as Gazebo requires");
   }
   if (image.cols < 2) FailHeightmap(o, "has fewer than 2 × 2 pixels");
   // 64 million heights (512 MB), as for an elevation model's window (dem_reader.cpp).

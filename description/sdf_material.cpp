@@ -80,13 +80,13 @@ std::optional<double> MaterialAlbedo(const GeometryMapping& mapping, const sdf::
     unmapped->push_back(where + " <pbr><albedo_map>: drawn as its mean grey albedo " +
                         std::to_string(*albedo) + ", not as a pattern");
   } else if (has_diffuse) {
-    albedo = kLumaWeights[0] * colour[0] + kLumaWeights[1] * colour[1] +
-             kLumaWeights[2] * colour[2];
+    albedo =
+        kLumaWeights[0] * colour[0] + kLumaWeights[1] * colour[1] + kLumaWeights[2] * colour[2];
   }
   if (workflow != nullptr) {
-    for (const char* map : {"normal_map", "roughness_map", "metalness_map", "ambient_occlusion_map",
-                            "environment_map", "emissive_map", "light_map", "specular_map",
-                            "glossiness_map"}) {
+    for (const char* map :
+         {"normal_map", "roughness_map", "metalness_map", "ambient_occlusion_map",
+          "environment_map", "emissive_map", "light_map", "specular_map", "glossiness_map"}) {
       if (ExplicitlySet(workflow->Element(), map)) {
         unmapped->push_back(where + " <pbr> <" + map +
                             ">: not drawn (surfaces are grey albedo, lit by the sun and the sky)");

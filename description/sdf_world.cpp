@@ -300,8 +300,9 @@ class WorldMapper {
       why = "a turned heightmap (trackbed's terrain grid runs along x and y)";
     } else if (lower == ".tif" || lower == ".tiff" || lower == ".dem" || lower == ".asc" ||
                lower == ".img" || lower == ".hgt") {
-      why = "an elevation model as a heightmap: give it as scene.terrain.dem (a GeoTIFF with a "
-            "projected coordinate system; docs/user_files.md)";
+      why =
+          "an elevation model as a heightmap: give it as scene.terrain.dem (a GeoTIFF with a "
+          "projected coordinate system; docs/user_files.md)";
     } else if (!(size.minCoeff() > 0.0)) {
       why = "a heightmap whose <size> is not > 0 (Gazebo inverts the heights for a negative z)";
     }
@@ -316,7 +317,8 @@ class WorldMapper {
     o.pos_m = g.pose * ToEigen3(h.Position());
     out_->heightmap = o;
     if (h.TextureCount() > 0 || h.BlendCount() > 0) {
-      out_->unmapped.push_back(where + " <texture>, <blend>: the terrain is drawn with its "
+      out_->unmapped.push_back(where +
+                               " <texture>, <blend>: the terrain is drawn with its "
                                "materials' textures (scene.terrain.default_material, regions)");
     }
     const std::optional<double> mu = FrictionMu(g.element);

@@ -59,8 +59,7 @@ void Urdf(const std::string& text) {
       description::ReadUrdfRobotString(text, "fuzz.urdf", description::UrdfRobotOptions{});
   if (!(r.mass_kg > 0.0)) Finding(kTarget, "a robot mapped without a positive mass");
   if (r.station_x_m.size() < 2) Finding(kTarget, "a robot mapped with fewer than two stations");
-  if (r.sensors.camera && !r.sensors.camera->mount_m.allFinite() &&
-      r.camera_mount_m->allFinite()) {
+  if (r.sensors.camera && !r.sensors.camera->mount_m.allFinite() && r.camera_mount_m->allFinite()) {
     Finding(kTarget, "a camera block's mount is not finite on a finite link");
   }
 }
@@ -73,14 +72,19 @@ void SensorBlock(const std::string& text) {
       "<collision><geometry><box size='0.6 0.4 0.2'/></geometry></collision></link>";
   for (int k = 0; k < 4; ++k) {
     const std::string n = "w" + std::to_string(k);
-    u += "<link name='" + n + "'><collision><geometry><cylinder radius='0.1' length='0.05'/>"
-         "</geometry></collision></link><joint name='" + n + "j' type='continuous'><parent "
-         "link='base_link'/><child link='" + n + "'/><origin xyz='" +
-         (k < 2 ? "0.2 " : "-0.2 ") + (k % 2 ? "0.25" : "-0.25") + " 0'/></joint>";
+    u += "<link name='" + n +
+         "'><collision><geometry><cylinder radius='0.1' length='0.05'/>"
+         "</geometry></collision></link><joint name='" +
+         n +
+         "j' type='continuous'><parent "
+         "link='base_link'/><child link='" +
+         n + "'/><origin xyz='" + (k < 2 ? "0.2 " : "-0.2 ") + (k % 2 ? "0.25" : "-0.25") +
+         " 0'/></joint>";
   }
   u += "<link name='camera_link'/><joint name='cj' type='fixed'><parent link='base_link'/>"
        "<child link='camera_link'/><origin xyz='0.2 0 0.2'/></joint>"
-       "<gazebo reference='camera_link'>" + text + "</gazebo></robot>";
+       "<gazebo reference='camera_link'>" +
+       text + "</gazebo></robot>";
   Urdf(u);
 }
 

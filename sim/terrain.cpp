@@ -87,7 +87,8 @@ void TerrainOptions::Validate() const {
   if (heightmap) {
     option_check::Nested("heightmap", *heightmap);
     if (dem.enabled()) {
-      throw OptionError("heightmap", "a heightmap and dem exclude each other (both give the heights)");
+      throw OptionError("heightmap",
+                        "a heightmap and dem exclude each other (both give the heights)");
     }
   }
   for (std::size_t k = 0; k < regions.size(); ++k) {

@@ -48,7 +48,8 @@ TEST(SdfClosedLoopTest, ABoxOfTheWorldStopsTheRobotAtItsFaceAndReturnsTheBeam) {
   if (!description::CanReadDescriptions()) {
     GTEST_SKIP() << "built without sdformat (TRACKBED_WITH_SDF=OFF)";
   }
-  const fs::path dir = fs::temp_directory_path() / ("sdf_closed_loop_" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("sdf_closed_loop_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   // A crate 0.6 m deep and 3 m wide, its near face 3 m ahead of the start, placed through
   // a frame.
@@ -82,9 +83,10 @@ TEST(SdfClosedLoopTest, ABoxOfTheWorldStopsTheRobotAtItsFaceAndReturnsTheBeam) {
   }
   const std::vector<double> scan = FirstRow(dir / "run" / "scan.csv");
   ASSERT_GT(scan.size(), 5u);
-  std::printf("furthest body x %.4f m (hull front %.4f m, the face at 3 m); first beam ahead "
-              "%.4f m, expected %.4f m\n",
-              furthest, furthest + 0.35, scan[1], 3.0 - 0.2 - x0);
+  std::printf(
+      "furthest body x %.4f m (hull front %.4f m, the face at 3 m); first beam ahead "
+      "%.4f m, expected %.4f m\n",
+      furthest, furthest + 0.35, scan[1], 3.0 - 0.2 - x0);
   // The hull's front (0.35 m ahead of its centre) reaches the face at x = 3 and stays.
   EXPECT_GT(furthest, 3.0 - 0.35 - 0.1);
   EXPECT_LT(furthest, 3.0 - 0.35 + 0.02);

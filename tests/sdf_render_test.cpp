@@ -110,8 +110,8 @@ geometry::PinholeCamera Camera() {
 }
 
 // Which shape (0 box, 1 cylinder, 2 sphere) the ray through (u, v) meets; -1: none.
-int TrueShapeAt(const geometry::PinholeCamera& K, const Eigen::Isometry3d& T_world_camera,
-                double u, double v) {
+int TrueShapeAt(const geometry::PinholeCamera& K, const Eigen::Isometry3d& T_world_camera, double u,
+                double v) {
   const Ray ray{T_world_camera.translation(),
                 T_world_camera.linear() * Vec3((u - K.cx) / K.fx, (v - K.cy) / K.fy, 1.0)};
   Eigen::Isometry3d log = Eigen::Isometry3d::Identity();
@@ -126,8 +126,8 @@ int TrueShapeAt(const geometry::PinholeCamera& K, const Eigen::Isometry3d& T_wor
 
 // The distance from (u, v) to the nearest point where the true shapes' coverage
 // changes [px], searched in 0.01 px steps along 64 directions up to 3 px.
-double DistanceToTrueOutline(const geometry::PinholeCamera& K, const Eigen::Isometry3d& T,
-                             int u, int v) {
+double DistanceToTrueOutline(const geometry::PinholeCamera& K, const Eigen::Isometry3d& T, int u,
+                             int v) {
   const bool inside = TrueShapeAt(K, T, u, v) >= 0;
   for (int step = 1; step <= 300; ++step) {
     const double r = 0.01 * step;
@@ -151,8 +151,8 @@ TEST_F(SdfRenderTest, SilhouettesWithinHalfAPixelOfTheProjectedShapes) {
                          meshes.obstacles);
   const geometry::PinholeCamera K = Camera();
   const Eigen::Isometry3d T = render::test::Looking({0, 0, 1.0}, {1, 0, 0});
-  render::Renderer renderer(world, render::test::AmbientOnly(), {}, 7, K.width_px, K.height_px,
-                            0.1, 60.0);
+  render::Renderer renderer(world, render::test::AmbientOnly(), {}, 7, K.width_px, K.height_px, 0.1,
+                            60.0);
   GrayImage gray;
   render::DepthImage depth;
   renderer.Render(K, T, 0.0, &gray, &depth);
@@ -174,9 +174,10 @@ TEST_F(SdfRenderTest, SilhouettesWithinHalfAPixelOfTheProjectedShapes) {
       }
     }
   }
-  std::printf("pixels covered: box %d, cylinder %d, sphere %d; %d drawn otherwise, the farthest "
-              "%.3f px from the true outline\n",
-              covered[0], covered[1], covered[2], wrong, worst);
+  std::printf(
+      "pixels covered: box %d, cylinder %d, sphere %d; %d drawn otherwise, the farthest "
+      "%.3f px from the true outline\n",
+      covered[0], covered[1], covered[2], wrong, worst);
   for (int k = 0; k < 3; ++k) EXPECT_GT(covered[k], 1000) << k;
   EXPECT_LE(worst, 0.5);
   // Each colour as its grey albedo: Rec. 709 luma of the linear diffuse, drawn under

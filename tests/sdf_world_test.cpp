@@ -281,10 +281,10 @@ TEST_F(SdfWorldTest, TheHeightmapIsTheTerrainWithEachPixelWhereGazeboPutsIt) {
       EXPECT_NEAR(grid->Height(x, y), z, 1e-12) << c << ", " << r;
       worst = std::max(worst, std::abs(terrain.Height(x, y) - z));
       // Halfway between four pixels: their mean.
-      const double mean = 2.0 *
-                          (HillValue(c, r) + HillValue(c + 1, r) + HillValue(c, r + 1) +
-                           HillValue(c + 1, r + 1)) /
-                          (4 * brightest);
+      const double mean =
+          2.0 *
+          (HillValue(c, r) + HillValue(c + 1, r) + HillValue(c, r + 1) + HillValue(c + 1, r + 1)) /
+          (4 * brightest);
       EXPECT_NEAR(grid->Height(x + 0.375, y - 0.375), mean, 1e-12);
     }
   }

@@ -184,8 +184,8 @@ TEST_F(UrdfRobotTest, SensorBlocksMapOntoTheStereoPairAndTheRangeSensor) {
   EXPECT_NEAR(st.DesignIntrinsics().fx, 376.0 / std::tan(0.6), 1e-6);
   const robot::RangeSensorOptions& r = s.robot.range_sensor;
   // 270 samples over 270 deg, both ends included: 360 deg at the same spacing.
-  EXPECT_EQ(r.beams, static_cast<int>(std::lround(2 * 3.14159265358979323846 * 269 /
-                                                  (2 * 2.35619449))));
+  EXPECT_EQ(r.beams,
+            static_cast<int>(std::lround(2 * 3.14159265358979323846 * 269 / (2 * 2.35619449))));
   EXPECT_EQ(r.rate_hz, 20.0);
   EXPECT_EQ(r.min_range_m, 0.12);
   EXPECT_EQ(r.max_range_m, 12.0);

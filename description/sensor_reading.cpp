@@ -61,8 +61,7 @@ std::optional<double> GaussianStd(const sdf::Noise& noise, double scale, const s
 
 // The sensor element's own children that no key takes, listed when the file sets them.
 void ListSet(const sdf::ElementPtr& e, const std::vector<const char*>& names,
-             const std::string& where, const std::string& why,
-             std::vector<std::string>* unmapped) {
+             const std::string& where, const std::string& why, std::vector<std::string>* unmapped) {
   for (const char* name : names) {
     if (e && e->HasElement(name) && e->GetElement(name)->GetExplicitlySetInFile()) {
       unmapped->push_back(where + " <" + name + ">: " + why);
@@ -111,7 +110,7 @@ CameraSensorMapping CameraOf(const sdf::Camera& cam, const std::string& where,
 
 // The cameras of a multicamera block, each with its pose in the sensor's frame.
 std::vector<std::pair<sdf::Camera, Eigen::Isometry3d>> Cameras(const sdf::Sensor& sensor,
-                                                                const std::string& where) {
+                                                               const std::string& where) {
   std::vector<std::pair<sdf::Camera, Eigen::Isometry3d>> cameras;
   const sdf::ElementPtr e = sensor.Element();
   if (!e->HasElement("camera")) return cameras;
@@ -138,7 +137,8 @@ void MapCamera(const sdf::Sensor& sensor, const std::string& where, const Eigen:
   if (sensor.UpdateRate() > 0.0) {
     c.rate_hz = sensor.UpdateRate();
   } else {
-    unmapped->push_back(where + " <update_rate>: 0 (as fast as the simulation runs) has no key; "
+    unmapped->push_back(where +
+                        " <update_rate>: 0 (as fast as the simulation runs) has no key; "
                         "robot.stereo.rate_hz keeps its value");
   }
   const Eigen::Isometry3d T_left = T * cameras[0].second;
@@ -149,14 +149,16 @@ void MapCamera(const sdf::Sensor& sensor, const std::string& where, const Eigen:
     c.baseline_m = d.norm();
     c.mount_m = 0.5 * (T_left.translation() + T_right.translation()) - com;
     if (std::abs(d.x()) > 1e-9 || std::abs(d.z()) > 1e-9 || d.y() > 0.0) {
-      unmapped->push_back(where + ": the second camera is not to the right of the first along "
+      unmapped->push_back(where +
+                          ": the second camera is not to the right of the first along "
                           "its y axis: taken as a rectified pair of baseline " +
                           Number(*c.baseline_m) + " m");
     }
     const CameraSensorMapping right = CameraOf(cameras[1].first, where, unmapped);
     if (right.width_px != c.width_px || right.height_px != c.height_px ||
         right.hfov_deg != c.hfov_deg) {
-      unmapped->push_back(where + ": the second camera's image or field of view differs from the "
+      unmapped->push_back(where +
+                          ": the second camera's image or field of view differs from the "
                           "first's: both are taken as the first's");
     }
   }
@@ -181,13 +183,14 @@ void MapRange(const sdf::Sensor& sensor, const std::string& where, const Eigen::
     r.beams = samples;
   } else if (samples >= 2 && span > 0.0) {
     r.beams = static_cast<int>(std::lround(kTwoPi * (samples - 1) / span));
-    unmapped->push_back(where + ": the scan from " + Number(lidar->HorizontalScanMinAngle().Degree()) +
-                        " to " + Number(lidar->HorizontalScanMaxAngle().Degree()) +
-                        " deg is cast over 360 deg at its spacing (robot.range_sensor scans a full turn)");
+    unmapped->push_back(
+        where + ": the scan from " + Number(lidar->HorizontalScanMinAngle().Degree()) + " to " +
+        Number(lidar->HorizontalScanMaxAngle().Degree()) +
+        " deg is cast over 360 deg at its spacing (robot.range_sensor scans a full turn)");
   } else {
     r.beams = std::max(samples, 1);
-    unmapped->push_back(where + ": a scan of " + std::to_string(samples) +
-                        " samples over " + Number(span) + " rad has no spacing to keep");
+    unmapped->push_back(where + ": a scan of " + std::to_string(samples) + " samples over " +
+                        Number(span) + " rad has no spacing to keep");
   }
   if (lidar->HorizontalScanResolution() != 1.0) {
     unmapped->push_back(where + " <resolution>: the samples are not interpolated");
@@ -202,7 +205,8 @@ void MapRange(const sdf::Sensor& sensor, const std::string& where, const Eigen::
   if (sensor.UpdateRate() > 0.0) {
     r.rate_hz = sensor.UpdateRate();
   } else {
-    unmapped->push_back(where + " <update_rate>: 0 has no key; robot.range_sensor.rate_hz keeps "
+    unmapped->push_back(where +
+                        " <update_rate>: 0 has no key; robot.range_sensor.rate_hz keeps "
                         "its value");
   }
   r.mount_m = T.translation() - com;
@@ -262,7 +266,8 @@ void MapSensorText(const std::string& xml, const std::string& where,
       MapRange(sensor, where, T, com_root, out, unmapped);
       return;
     case sdf::SensorType::IMU:
-      unmapped->push_back(where + ": an IMU block: robot.imu is the part its keys name, at the "
+      unmapped->push_back(where +
+                          ": an IMU block: robot.imu is the part its keys name, at the "
                           "centre of mass");
       return;
     default:
