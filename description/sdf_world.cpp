@@ -47,7 +47,9 @@ constexpr Unmappable kUnmappable[] = {
     {"plugin", "Gazebo plugins do not run in trackbed"},
     {"actor", "actors are not simulated (scene.occluders walk scripted paths)"},
     {"joint", "joints are not simulated: static models only"},
-    {"sensor", "a world's sensors are not simulated (the robot's are robot.*)"},
+    {"sensor",
+     "a world's sensors are not simulated (the robot's come from robot.description's "
+     "<gazebo> sensor blocks, or robot.stereo and robot.range_sensor)"},
     {"population", "populations are not expanded"},
     {"road", "roads are not drawn"},
     {"spherical_coordinates", "trackbed's world is local metres; no geodetic origin"},

@@ -27,6 +27,7 @@ namespace {
 
 constexpr double kTwoPi = 6.283185307179586;
 constexpr double kSensorTurnRad = 1e-9;  // a sensor's roll or yaw taken as none [rad]
+constexpr unsigned kMaxBeams = 1000000;  // a scan's beams at most (the range sensor's memory)
 constexpr double kDegreesPerRadian = 180.0 / 3.14159265358979323846;
 
 Eigen::Isometry3d SensorPose(const ignition::math::Pose3d& p) {
@@ -174,6 +175,10 @@ void MapRange(const sdf::Sensor& sensor, const std::string& where, const Eigen::
   if (lidar == nullptr) throw DescriptionError(where + ": a ray sensor without a <ray> or <lidar>");
   RangeSensorMapping r;
   r.name = sensor.Name();
+  if (lidar->HorizontalScanSamples() > kMaxBeams) {
+    throw DescriptionError(where + ": " + std::to_string(lidar->HorizontalScanSamples()) +
+                           " samples, more than a million");
+  }
   const int samples = static_cast<int>(lidar->HorizontalScanSamples());
   const double span =
       lidar->HorizontalScanMaxAngle().Radian() - lidar->HorizontalScanMinAngle().Radian();
@@ -182,7 +187,12 @@ void MapRange(const sdf::Sensor& sensor, const std::string& where, const Eigen::
   if (full_turn) {
     r.beams = samples;
   } else if (samples >= 2 && span > 0.0) {
-    r.beams = static_cast<int>(std::lround(kTwoPi * (samples - 1) / span));
+    const double beams = kTwoPi * (samples - 1) / span;
+    if (!(beams <= kMaxBeams)) {
+      throw DescriptionError(where + ": the scan's spacing of " + Number(span / (samples - 1)) +
+                             " rad would take more than a million beams over 360 deg");
+    }
+    r.beams = static_cast<int>(std::lround(beams));
     unmapped->push_back(
         where + ": the scan from " + Number(lidar->HorizontalScanMinAngle().Degree()) + " to " +
         Number(lidar->HorizontalScanMaxAngle().Degree()) +
