@@ -298,6 +298,44 @@ TEST_F(SdfWorldTest, TheHeightmapIsTheTerrainWithEachPixelWhereGazeboPutsIt) {
                scenario::ScenarioError);
 }
 
+// The new keys' errors name the file, the key and the problem.
+TEST_F(SdfWorldTest, HeightmapAndAlbedoKeysErrorsNameTheKey) {
+  const auto error_of = [this](const std::string& scene) {
+    Write(dir_ / "keys.yaml", "scene:\n" + scene + "drive: {waypoints: [[0, 0], [1, 0]]}\n");
+    try {
+      scenario::LoadScenario((dir_ / "keys.yaml").string());
+    } catch (const scenario::ScenarioError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  const std::string terrain = "  terrain: {extent_m: [-10, -10, 10, 10], heightmap: ";
+  std::string e = error_of(terrain + "{file: hill.png, size_m: [24, 0, 2]}}\n");
+  EXPECT_NE(e.find("keys.yaml"), std::string::npos) << e;
+  EXPECT_NE(e.find("scene.terrain.heightmap.size_m"), std::string::npos) << e;
+  e = error_of(terrain + "{file: nowhere.png, size_m: [24, 24, 2]}}\n");
+  EXPECT_NE(e.find("scene.terrain.heightmap.file"), std::string::npos) << e;
+  EXPECT_NE(e.find("nowhere.png"), std::string::npos) << e;
+  e = error_of(terrain + "{file: ball_albedo.png, size_m: [24, 24, 2]}}\n");  // colour, 2 × 2
+  EXPECT_NE(e.find("scene.terrain.heightmap.file"), std::string::npos) << e;
+  EXPECT_NE(e.find("channels"), std::string::npos) << e;
+  e = error_of(terrain + "{file: hill.png, size_m: [24, 24, 2]}, dem: {file: hill.png}}\n");
+  EXPECT_NE(e.find("scene.terrain.heightmap"), std::string::npos) << e;
+  EXPECT_NE(e.find("exclude each other"), std::string::npos) << e;
+  e = error_of("  objects: [{type: box, albedo: 1.5}]\n");
+  EXPECT_NE(e.find("scene.objects[0].albedo"), std::string::npos) << e;
+  EXPECT_NE(e.find("[0, 1]"), std::string::npos) << e;
+  // Given, an albedo is written back; absent, it stays absent.
+  const scenario::Scenario back = scenario::ParseScenario(
+      scenario::ScenarioToYaml(scenario::ParseScenario(
+          "scene: {objects: [{albedo: 0.25}, {}]}\ndrive: {waypoints: [[0, 0], [1, 0]]}\n",
+          "inline")),
+      "written");
+  ASSERT_EQ(back.scene.objects.size(), 2u);
+  EXPECT_EQ(back.scene.objects[0].albedo, std::optional<double>(0.25));
+  EXPECT_FALSE(back.scene.objects[1].albedo);
+}
+
 TEST_F(SdfWorldTest, ColoursAreGreyAlbedos) {
   const scenario::Scenario s = Load(kWorld);
   // The box's <diffuse> (0.8, 0.1, 0.1): Rec. 709 luma of the linear colour.
