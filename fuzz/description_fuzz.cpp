@@ -7,7 +7,8 @@
 // documented description::DescriptionError / assets::AssetError (and OptionError from
 // a mapped object's Validate); a mapped value that is not finite where Validate
 // accepts the object; an albedo outside [0, 1]; a heightmap's height outside
-// [pos.z, pos.z + size.z].
+// [pos.z, pos.z + size.z]; a range block's beams outside [1, a million]; a
+// multicamera's baseline negative or not a number.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -59,8 +60,12 @@ void Urdf(const std::string& text) {
       description::ReadUrdfRobotString(text, "fuzz.urdf", description::UrdfRobotOptions{});
   if (!(r.mass_kg > 0.0)) Finding(kTarget, "a robot mapped without a positive mass");
   if (r.station_x_m.size() < 2) Finding(kTarget, "a robot mapped with fewer than two stations");
-  if (r.sensors.camera && !r.sensors.camera->mount_m.allFinite() && r.camera_mount_m->allFinite()) {
-    Finding(kTarget, "a camera block's mount is not finite on a finite link");
+  if (r.sensors.range && !(r.sensors.range->beams >= 1 && r.sensors.range->beams <= 1000000)) {
+    Finding(kTarget, "a range block mapped to " + std::to_string(r.sensors.range->beams) +
+                         " beams (1 to a million expected)");
+  }
+  if (r.sensors.camera && r.sensors.camera->baseline_m && !(*r.sensors.camera->baseline_m >= 0.0)) {
+    Finding(kTarget, "a multicamera's baseline is negative or not a number");
   }
 }
 
