@@ -189,10 +189,8 @@ bool MeshCollisionFor(const GeometryInWorld& visual, const GeometryInWorld& coll
          Near(ToEigen3(v.MeshShape()->Scale()), ToEigen3(c.MeshShape()->Scale()));
 }
 
-std::string MeshFile(const GeometryMapping& mapping, const GeometryInWorld& g) {
-  const sdf::Mesh& mesh = *g.geometry->MeshShape();
-  std::string uri = mesh.Uri();
-  const std::string where = ElementWhere(g.element) + " <mesh><uri>";
+std::string ResolveUri(const GeometryMapping& mapping, std::string uri,
+                       const std::string& defined_in, const std::string& where) {
   if (uri.rfind("http://", 0) == 0 || uri.rfind("https://", 0) == 0) {
     throw DescriptionError(where + ": a Fuel or web URI is not fetched (" + uri +
                            "): download the model and give its folder in scene.sdf.model_paths");
@@ -213,12 +211,16 @@ std::string MeshFile(const GeometryMapping& mapping, const GeometryInWorld& g) {
   if (uri.rfind("file://", 0) == 0) uri = uri.substr(7);
   fs::path f(uri);
   if (f.is_relative()) {
-    const std::string& defined_in = mesh.FilePath().empty() ? mapping.source : mesh.FilePath();
-    f = fs::path(defined_in).parent_path() / f;
+    f = fs::path(defined_in.empty() ? mapping.source : defined_in).parent_path() / f;
   }
   f = fs::absolute(f).lexically_normal();
   if (!fs::is_regular_file(f)) throw DescriptionError(where + ": no such file: " + f.string());
   return f.string();
+}
+
+std::string MeshFile(const GeometryMapping& mapping, const GeometryInWorld& g) {
+  const sdf::Mesh& mesh = *g.geometry->MeshShape();
+  return ResolveUri(mapping, mesh.Uri(), mesh.FilePath(), ElementWhere(g.element) + " <mesh><uri>");
 }
 
 bool MapShape(const GeometryMapping& mapping, const GeometryInWorld& g, sim::StaticObject* o,
@@ -274,9 +276,7 @@ bool MapShape(const GeometryMapping& mapping, const GeometryInWorld& g, sim::Sta
       *why = "a capsule has no shape in trackbed";
       return false;
     case sdf::GeometryType::HEIGHTMAP:
-      *why =
-          "a heightmap is not mapped: give the terrain as scene.terrain.dem (a GeoTIFF) or "
-          "a ground mesh (docs/user_files.md)";
+      *why = "a heightmap is the terrain (scene.terrain.heightmap), not an object";
       return false;
     default:
       *why = "an empty or unknown geometry";

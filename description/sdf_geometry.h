@@ -49,6 +49,13 @@ bool MapShape(const GeometryMapping& mapping, const GeometryInWorld& g, sim::Sta
 /// a web URI or a `model://` URI in none of the paths.
 std::string MeshFile(const GeometryMapping& mapping, const GeometryInWorld& g);
 
+/// The file a URI names (`model://`, `file://`, absolute, or relative to `defined_in`,
+/// the file the element was read from, else the world's). Throws DescriptionError
+/// starting with `where` for a web URI, a `model://` URI in none of the paths or a file
+/// that is not there.
+std::string ResolveUri(const GeometryMapping& mapping, std::string uri,
+                       const std::string& defined_in, const std::string& where);
+
 /// A collision's `<surface><friction><ode><mu>`, if given.
 std::optional<double> FrictionMu(const sdf::ElementPtr& collision);
 

@@ -16,6 +16,7 @@
 #include <sdf/Console.hh>
 #include <sdf/Element.hh>
 #include <sdf/Error.hh>
+#include <sdf/Heightmap.hh>
 #include <sdf/Light.hh>
 #include <sdf/Link.hh>
 #include <sdf/Model.hh>
@@ -26,6 +27,7 @@
 #include <sdf/World.hh>
 
 #include "sdf_geometry.h"
+#include "sdf_material.h"
 #include "trackbed/common/units.h"
 #include "trackbed/sim/terrain_material.h"
 
@@ -45,12 +47,13 @@ constexpr Unmappable kUnmappable[] = {
     {"plugin", "Gazebo plugins do not run in trackbed"},
     {"actor", "actors are not simulated (scene.occluders walk scripted paths)"},
     {"joint", "joints are not simulated: static models only"},
-    {"sensor", "a world's sensors are not simulated (the robot's are robot.*)"},
+    {"sensor",
+     "a world's sensors are not simulated (the robot's come from robot.description's "
+     "<gazebo> sensor blocks, or robot.stereo and robot.range_sensor)"},
     {"population", "populations are not expanded"},
     {"road", "roads are not drawn"},
     {"spherical_coordinates", "trackbed's world is local metres; no geodetic origin"},
     {"script", "OGRE material scripts are not read: drawn as plain_paint"},
-    {"pbr", "PBR materials are not read: drawn as plain_paint"},
     {"audio_source", "sound is not simulated"},
     {"projector", "projectors are not drawn"},
     {"particle_emitter", "particle emitters are not drawn"},
@@ -222,6 +225,8 @@ class WorldMapper {
       if (used[k]) continue;
       if (collisions[k].geometry->Type() == sdf::GeometryType::PLANE) {
         MapGround(collisions[k]);
+      } else if (collisions[k].geometry->Type() == sdf::GeometryType::HEIGHTMAP) {
+        MapHeightmap(collisions[k]);
       } else {
         out_->unmapped.push_back(ElementWhere(collisions[k].element) +
                                  ": a collision no visual of its link draws is not simulated");
@@ -231,15 +236,6 @@ class WorldMapper {
 
   void MapVisual(const GeometryInWorld& visual, const sdf::Visual& v,
                  const std::vector<GeometryInWorld>& collisions, std::vector<bool>* used) {
-    if (v.Material() != nullptr) {
-      const ignition::math::Color c = v.Material()->Diffuse();
-      if (v.Material()->ScriptUri().empty() && v.Material()->PbrMaterial() == nullptr) {
-        out_->unmapped.push_back(ElementWhere(v.Element()) + " <material>: diffuse colour (" +
-                                 std::to_string(c.R()) + ", " + std::to_string(c.G()) + ", " +
-                                 std::to_string(c.B()) +
-                                 ") not drawn: objects take their appearance's texture");
-      }
-    }
     int match = -1;
     for (std::size_t k = 0; k < collisions.size() && match < 0; ++k) {
       if (!(*used)[k] && SameGeometry(visual, collisions[k])) match = static_cast<int>(k);
@@ -255,6 +251,11 @@ class WorldMapper {
       if (match >= 0) (*used)[match] = true;
       return;
     }
+    if (visual.geometry->Type() == sdf::GeometryType::HEIGHTMAP) {
+      MapHeightmap(match >= 0 ? collisions[match] : visual);
+      if (match >= 0) (*used)[match] = true;
+      return;
+    }
     sim::StaticObject object;
     std::string why;
     const GeometryMapping mapping{source_, paths_, shapes_dir_};
@@ -263,6 +264,10 @@ class WorldMapper {
       return;
     }
     object.appearance = sim::FindObjectType(object.kind)->appearance;
+    if (v.Material() != nullptr) {
+      object.albedo = MaterialAlbedo(mapping, *v.Material(),
+                                     ElementWhere(v.Element()) + " <material>", &out_->unmapped);
+    }
     object.collides = match >= 0 || collision_file >= 0;
     if (match >= 0) {
       (*used)[match] = true;
@@ -281,6 +286,59 @@ class WorldMapper {
     out_->objects.push_back(std::move(object));
   }
 
+  // A heightmap image: the terrain's heights (the first one; Gazebo's conventions in
+  // sim::HeightmapOptions), its friction the default material's as a ground plane's.
+  void MapHeightmap(const GeometryInWorld& g) {
+    const sdf::Heightmap& h = *g.geometry->HeightmapShape();
+    const std::string where = ElementWhere(g.element) + " <heightmap>";
+    std::string lower = fs::path(h.Uri()).extension().string();
+    std::transform(lower.begin(), lower.end(), lower.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    const Eigen::Vector3d size = ToEigen3(h.Size());
+    std::string why;
+    if (out_->heightmap) {
+      why = "a second heightmap (the first is the terrain)";
+    } else if (!g.pose.linear().isIdentity(1e-9)) {
+      why = "a turned heightmap (trackbed's terrain grid runs along x and y)";
+    } else if (lower == ".tif" || lower == ".tiff" || lower == ".dem" || lower == ".asc" ||
+               lower == ".img" || lower == ".hgt") {
+      why =
+          "an elevation model as a heightmap: give it as scene.terrain.dem (a GeoTIFF with a "
+          "projected coordinate system; docs/user_files.md)";
+    } else if (!(size.minCoeff() > 0.0)) {
+      why = "a heightmap whose <size> is not > 0 (Gazebo inverts the heights for a negative z)";
+    }
+    if (!why.empty()) {
+      out_->unmapped.push_back(where + ": " + why);
+      return;
+    }
+    sim::HeightmapOptions o;
+    const GeometryMapping mapping{source_, paths_, shapes_dir_};
+    o.file = ResolveUri(mapping, h.Uri(), h.FilePath(), where + "<uri>");
+    o.size_m = size;
+    o.pos_m = g.pose * ToEigen3(h.Position());
+    out_->heightmap = o;
+    if (h.TextureCount() > 0 || h.BlendCount() > 0) {
+      out_->unmapped.push_back(where +
+                               " <texture>, <blend>: the terrain is drawn with its "
+                               "materials' textures (scene.terrain.default_material, regions)");
+    }
+    const std::optional<double> mu = FrictionMu(g.element);
+    if (mu) out_->ground_material = NearestMaterial(*mu);
+  }
+
+  static std::string NearestMaterial(double mu) {
+    const sim::TerrainMaterial* nearest = nullptr;
+    for (const sim::TerrainMaterial& m : sim::BuiltinMaterials()) {
+      const double d = std::abs(std::tan(units::Radians(m.friction_angle_deg)) - mu);
+      if (nearest == nullptr ||
+          d < std::abs(std::tan(units::Radians(nearest->friction_angle_deg)) - mu)) {
+        nearest = &m;
+      }
+    }
+    return nearest->name;
+  }
+
   // A horizontal plane: the terrain's ground, its friction the default material's.
   void MapGround(const GeometryInWorld& plane) {
     const Eigen::Vector3d n =
@@ -292,16 +350,7 @@ class WorldMapper {
       return;
     }
     const std::optional<double> mu = FrictionMu(plane.element);
-    if (!mu) return;
-    const sim::TerrainMaterial* nearest = nullptr;
-    for (const sim::TerrainMaterial& m : sim::BuiltinMaterials()) {
-      const double d = std::abs(std::tan(units::Radians(m.friction_angle_deg)) - *mu);
-      if (nearest == nullptr ||
-          d < std::abs(std::tan(units::Radians(nearest->friction_angle_deg)) - *mu)) {
-        nearest = &m;
-      }
-    }
-    out_->ground_material = nearest->name;
+    if (mu) out_->ground_material = NearestMaterial(*mu);
   }
 
   std::string source_;

@@ -17,13 +17,15 @@
 #include <urdf_parser/urdf_parser.h>
 #include <Eigen/Geometry>
 
+#include "sensor_reading.h"
+
 namespace trackbed::description {
 
 namespace {
 
 constexpr double kPairM = 1e-3;    // a left and a right wheel at the same x [m]
 constexpr double kTurnRad = 1e-9;  // a camera's roll or yaw taken as none [rad]
-constexpr double kDegPerRad = 180.0 / 3.14159265358979323846;
+constexpr double kDegPerRad = 180.0 / 3.14159265358979323846;  // [deg/rad]
 
 // A derived value rounded to 1e-9 of its unit (a nanometre, a microgram, a nanodegree):
 // sums and quotients of a file's decimals then give the decimals a scenario would
@@ -120,14 +122,16 @@ class RobotTree {
 
 class RobotMapper {
  public:
-  RobotMapper(std::string source, const UrdfRobotOptions& options, const urdf::ModelInterface& m)
-      : source_(std::move(source)), options_(options), model_(m), tree_(m) {}
+  RobotMapper(std::string source, const UrdfRobotOptions& options, const urdf::ModelInterface& m,
+              const std::string& text)
+      : source_(std::move(source)), options_(options), model_(m), text_(text), tree_(m) {}
 
   UrdfRobot Map() {
     MassAndCentre();
     Wheels();
     Chassis();
     Camera();
+    Sensors();
     Unmapped();
     UrdfRobot& o = out_;
     for (double* v : {&o.mass_kg, &o.com_height_m, &o.ground_clearance_m, &o.track_gauge_m,
@@ -139,6 +143,13 @@ class RobotMapper {
     if (o.track_contact_length_m) o.track_contact_length_m = Rounded(*o.track_contact_length_m);
     if (o.camera_mount_m) o.camera_mount_m = Rounded(*o.camera_mount_m);
     if (o.camera_pitch_down_deg) o.camera_pitch_down_deg = Rounded(*o.camera_pitch_down_deg);
+    if (CameraSensorMapping* c = o.sensors.camera ? &*o.sensors.camera : nullptr) {
+      c->mount_m = Rounded(c->mount_m);
+      c->pitch_down_deg = Rounded(c->pitch_down_deg);
+      c->hfov_deg = Rounded(c->hfov_deg);
+      if (c->baseline_m) c->baseline_m = Rounded(*c->baseline_m);
+    }
+    if (o.sensors.range) o.sensors.range->mount_m = Rounded(o.sensors.range->mount_m);
     return out_;
   }
 
@@ -254,6 +265,27 @@ class RobotMapper {
     }
   }
 
+  // The <gazebo reference="LINK"> blocks' sensors, each at its link's frame.
+  void Sensors() {
+    for (const GazeboSensorText& g : GazeboSensors(text_)) {
+      const std::string where = source_ + ": <gazebo reference=\"" + g.link + "\"> <sensor>";
+      const RobotTree::Placed* link = nullptr;
+      for (const RobotTree::Placed& p : tree_.links()) {
+        if (p.link->name == g.link) link = &p;
+      }
+      if (link == nullptr) {
+        out_.unmapped.push_back(where + ": no link '" + g.link +
+                                "' to mount it on (a sensor block names its link)");
+        continue;
+      }
+      MapSensorText(g.xml, where, link->pose, com_, &out_.sensors, &out_.unmapped);
+    }
+    if (out_.sensors.camera) {
+      out_.camera_mount_m = out_.sensors.camera->mount_m;
+      out_.camera_pitch_down_deg = out_.sensors.camera->pitch_down_deg;
+    }
+  }
+
   void Unmapped() {
     out_.unmapped.push_back(
         "the links' inertia tensors: robot.vehicle takes the mass, the box "
@@ -277,6 +309,7 @@ class RobotMapper {
   std::string source_;
   const UrdfRobotOptions& options_;
   const urdf::ModelInterface& model_;
+  const std::string& text_;
   RobotTree tree_;
   UrdfRobot out_;
   Eigen::Vector3d com_ = Eigen::Vector3d::Zero();
@@ -298,7 +331,7 @@ UrdfRobot ReadUrdfRobotString(const std::string& urdf_text, const std::string& s
     throw DescriptionError(source_name + ": not a URDF robot urdfdom can read" +
                            (messages.empty() ? std::string() : ": " + messages));
   }
-  return RobotMapper(source_name, options, *model).Map();
+  return RobotMapper(source_name, options, *model, urdf_text).Map();
 }
 
 UrdfRobot ReadUrdfRobot(const UrdfRobotOptions& options) {

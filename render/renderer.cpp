@@ -25,14 +25,15 @@
 #include <optional>
 #include <stdexcept>
 
-#include "footprint_mips.h"
 #include "gl_primitives.h"
 #include "ground_tiling.h"
 #include "leaf_crown_drawing.h"
 #include "luminaire.h"
 #include "mesh_surfaces.h"
+#include "object_albedo.h"
 #include "sky_program.h"
 #include "surface_program.h"
+#include "texture_upload.h"
 #include "trackbed/common/option_error.h"
 #include "trackbed/common/units.h"
 #include "trackbed/render/car_model.h"
@@ -241,6 +242,12 @@ struct Renderer::Gl {
     return it->second;
   }
 
+  // An object's texture: a plain one of its own albedo where it has one (object_albedo.h).
+  const GlTexture& ObjectTexture(const sim::StaticObject& o, bool ground = false) {
+    return o.albedo ? Texture(AlbedoTextureName(*o.albedo), *o.albedo, ground)
+                    : Texture(o.appearance, 0.5, ground);
+  }
+
   // A terrain material's texture: its variants, tiled, under the detailed look; else Texture's.
   const GlTexture& GroundTexture(const sim::TerrainMaterial& m) {
     const bool detailed = appearance.ground_look == GroundLook::kDetailed;
@@ -258,25 +265,10 @@ struct Renderer::Gl {
     return tiled_textures.emplace(m.name, g).first->second;
   }
 
-  // Puts the textures `ts` (one size) into texture `g` as an array of their footprint
-  // layers (footprint_mips.h), one texture's after another's, each layer with its mip
-  // chain, filtered trilinearly.
+  // Puts the textures `ts` into texture `g` (texture_upload.h): a ground's with the
+  // footprint layers' directions.
   static void UploadTexture(const GlTexture& g, const std::vector<render::Texture>& ts) {
-    const render::Texture& t = ts.front();
-    const FootprintMips mips = MakeFootprintMips(ts, g.ground ? kFootprintDirections : 0);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, g.name);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_REPEAT);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_REPEAT);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAX_LEVEL,
-                    static_cast<GLint>(mips.levels.size()) - 1);
-    for (std::size_t lod = 0; lod < mips.levels.size(); ++lod) {
-      const int size = t.size_px >> lod;
-      glTexImage3D(GL_TEXTURE_2D_ARRAY, static_cast<GLint>(lod), GL_R8, size, size, mips.layers, 0,
-                   GL_RED, GL_UNSIGNED_BYTE, mips.levels[lod].data());
-    }
+    UploadFootprintTexture(g.name, g.ground ? kFootprintDirections : 0, ts);
   }
 
   // Terrain drawables, first in `drawables`: one per (chunk, material) of the near
@@ -465,7 +457,7 @@ struct Renderer::Gl {
   GLuint CompileObject(const sim::StaticObject& o, const TreeTessellation& level) {
     // A box's faces (walls, seen at grazing angles) read by footprint, as the ground.
     const bool flat = o.shape == sim::StaticObject::Shape::kBox;
-    const GlTexture& tex = Texture(o.appearance, 0.5, flat);
+    const GlTexture& tex = ObjectTexture(o, flat);
     const std::vector<CarPart> parts =
         flat && o.kind == "car" ? CarParts(o.size_m) : std::vector<CarPart>{};
     for (const CarPart& p : parts) PartTexture(o, p);
@@ -527,7 +519,7 @@ struct Renderer::Gl {
   // band's shape on texture unit 1, its texture's repeat and a cylinder's height on
   // unit 2, where each vertex lies on the band on unit 0.
   GLuint CompileBands(const sim::StaticObject& o) {
-    const GlTexture& tex = Texture(o.appearance);
+    const GlTexture& tex = ObjectTexture(o);
     const bool crown = SphereCrown(o);
     const GlTexture& leaves = crown ? Texture("leaves") : tex;
     const GLuint list = glGenLists(1);
@@ -586,14 +578,17 @@ struct Renderer::Gl {
   // One drawable per part of a mesh object, read by footprint as the ground and boxes.
   void BuildMeshes(const sim::World& world) {
     for (const sim::MeshObject& m : world.meshes()) {
+      const std::optional<double>& albedo = m.entry.albedo;
       for (MeshSurface& s : MeshSurfaces(m)) {
-        auto it = textures.find(s.texture_key);
+        const std::string key = albedo ? "mesh " + AlbedoTextureName(*albedo) : s.texture_key;
+        auto it = textures.find(key);
         if (it == textures.end()) {
           GlTexture g;
           g.ground = true;
           glGenTextures(1, &g.name);
-          UploadTexture(g, {MeshPartTexture(*s.part)});
-          it = textures.emplace(s.texture_key, g).first;
+          UploadTexture(g, {albedo ? MakePlainTexture(*albedo, seed ^ TextureNameHash(key), 64)
+                                   : MeshPartTexture(*s.part)});
+          it = textures.emplace(key, g).first;
         }
         TerrainDrawable t;
         t.fixed = true;

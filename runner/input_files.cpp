@@ -47,6 +47,9 @@ std::vector<InputFile> InputFiles(const scenario::Scenario& s) {
       named.emplace_back("scene.terrain.dem.file", f);
     }
   }
+  if (s.scene.terrain.heightmap) {
+    named.emplace_back("scene.terrain.heightmap.file", s.scene.terrain.heightmap->file);
+  }
   for (std::size_t k = 0; k < s.scene.objects.size(); ++k) {
     const sim::StaticObject& o = s.scene.objects[k];
     if (o.shape != sim::StaticObject::Shape::kMesh) continue;

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "trackbed/assets/dem_reader.h"
+#include "trackbed/assets/heightmap_reader.h"
 #include "trackbed/assets/scene_meshes.h"
 #include "trackbed/common/split_mix.h"
 #include "trackbed/common/units.h"
@@ -55,11 +56,12 @@ Plant BuildPlant(const scenario::Scenario& scenario, const RobotBuild& robot, bo
   Plant p;
   const sim::TerrainOptions& terrain = scenario.scene.terrain;
   assets::SceneMeshes meshes = assets::LoadSceneMeshes(scenario::SceneObjects(scenario));
-  // The heights under the roughness: an elevation model's or the ground meshes'
-  // (the scenario allows one of them).
+  // The heights under the roughness: an elevation model's, a heightmap's or the ground
+  // meshes' (the scenario allows one of them).
   std::shared_ptr<const sim::ElevationGrid> base =
       assets::SampleMeshGround(meshes.grounds, terrain);
   if (terrain.dem.enabled()) base = assets::ReadDem(terrain.dem, terrain.grid_extent_m());
+  if (terrain.heightmap) base = assets::ReadHeightmap(*terrain.heightmap);
   p.world = std::make_unique<sim::World>(
       scenario.scene.world, sim::Terrain(terrain, split_mix::Stream(scenario.seed, 0), base),
       std::move(meshes.primitives), std::move(meshes.obstacles));

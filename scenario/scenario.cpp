@@ -117,6 +117,11 @@ void SceneSpec::Validate() const {
   }
   for (std::size_t k = 0; k < objects.size(); ++k) {
     option_check::Nested(Indexed("objects", k), objects[k]);
+    if (objects[k].mesh.ground && terrain.heightmap) {
+      throw OptionError(Indexed("objects", k) + ".ground",
+                        "a ground mesh and terrain.heightmap exclude each other (both give the "
+                        "heights)");
+    }
     if (objects[k].mesh.ground && terrain.dem.enabled()) {
       throw OptionError(Indexed("objects", k) + ".ground",
                         "a ground mesh and terrain.dem exclude each other (both give the heights)");

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "trackbed/assets/dem_reader.h"
+#include "trackbed/assets/heightmap_reader.h"
 #include "trackbed/assets/scene_meshes.h"
 #include "trackbed/common/archive.h"
 #include "trackbed/common/option_error.h"
@@ -166,6 +167,7 @@ void ReadObject(const Node& node, const std::string& path, archive::Wording word
     map.Visit("height_m", &out->height_m);
   }
   map.Visit("appearance", &out->appearance);
+  map.Visit("albedo", &out->albedo);
   map.Visit("base_z_m", &out->base_z_m);
   out->collides = DefaultCollides(out->kind);
   map.Visit("collides", &out->collides);
@@ -207,6 +209,7 @@ Node WriteObject(StaticObject o) {
     map.Visit("height_m", &o.height_m);
   }
   map.Visit("appearance", &o.appearance);
+  if (o.albedo) map.Visit("albedo", &*o.albedo);
   if (std::isfinite(o.base_z_m)) map.Visit("base_z_m", &o.base_z_m);
   if (o.collides != DefaultCollides(o.kind)) map.Visit("collides", &o.collides);
   return map.Take();
@@ -317,6 +320,30 @@ void CheckDemCoversTerrain(const std::string& path, const sim::TerrainOptions& t
   }
 }
 
+// The heightmap's image read once as the run will read it: an error names the key; its
+// pixels' span must reach over the terrain's grid.
+void CheckHeightmapCoversTerrain(const std::string& path, const sim::TerrainOptions& terrain) {
+  if (!terrain.heightmap) return;
+  const std::string key = "scene.terrain.heightmap.file";
+  std::shared_ptr<const sim::ElevationGrid> grid;
+  try {
+    grid = assets::ReadHeightmap(*terrain.heightmap);
+  } catch (const assets::AssetError& e) {
+    throw ScenarioError(path, key, e.what());
+  }
+  const Eigen::Vector4d g = terrain.grid_extent_m();
+  const double tolerance = 1e-9;  // [m]: the last pixel's centre is first + (n − 1) · spacing
+  if (!grid->Covers(g[0] + tolerance, g[1] + tolerance, g[2] - tolerance, g[3] - tolerance)) {
+    const auto m = [](double v) { return option_check::Describe(v); };
+    throw ScenarioError(path, key,
+                        terrain.heightmap->file + ": its pixels span x " + m(grid->first_m().x()) +
+                            " to " + m(grid->last_m().x()) + " m and y " + m(grid->first_m().y()) +
+                            " to " + m(grid->last_m().y()) + " m, short of the terrain's grid [" +
+                            m(g[0]) + ", " + m(g[1]) + ", " + m(g[2]) + ", " + m(g[3]) +
+                            "] (scene.terrain.extent_m)");
+  }
+}
+
 // Every mesh object's files read once as they will be for the run: an error names the
 // object's key; a ground mesh's plan must reach over the terrain's grid (the grid
 // points it leaves without a triangle are found when the run samples it).
@@ -374,6 +401,7 @@ void MapSdfWorld(const std::string& path, Scenario* scenario, DriveSource drive_
   if (mapped.sun_azimuth_deg) scene.appearance.sun_azimuth_deg = *mapped.sun_azimuth_deg;
   if (mapped.sun_elevation_deg) scene.appearance.sun_elevation_deg = *mapped.sun_elevation_deg;
   if (mapped.ground_material) scene.terrain.default_material = *mapped.ground_material;
+  if (mapped.heightmap) scene.terrain.heightmap = *mapped.heightmap;
   sdf->mapped = true;
   sdf->unmapped = std::move(mapped.unmapped);
   try {
@@ -381,6 +409,37 @@ void MapSdfWorld(const std::string& path, Scenario* scenario, DriveSource drive_
   } catch (const OptionError& e) {
     throw ScenarioError(path, "scene.sdf.file",
                         sdf->file + " maps onto " + KeyOfField(e.field()) + ": " + e.reason());
+  }
+}
+
+// A description's camera and ray sensor blocks onto robot.stereo's and
+// robot.range_sensor's keys (whether each is enabled stays the scenario's choice).
+void MapSensorBlocks(const description::SensorBlocks& sensors, RobotSpec* robot) {
+  if (sensors.camera) {
+    const description::CameraSensorMapping& c = *sensors.camera;
+    robot::StereoRigOptions& st = robot->stereo;
+    st.width_px = c.width_px;
+    st.height_px = c.height_px;
+    st.hfov_deg = c.hfov_deg;
+    st.focal_length_px.reset();  // the field of view gives it
+    st.principal_point_px.reset();
+    if (c.rate_hz) st.rate_hz = *c.rate_hz;
+    st.near_m = c.near_m;
+    st.far_m = c.far_m;
+    if (c.noise_std) st.noise_std = *c.noise_std;
+    if (c.baseline_m) st.baseline_m = *c.baseline_m;
+    st.mount_m = c.mount_m;
+    st.pitch_down_deg = c.pitch_down_deg;
+  }
+  if (sensors.range) {
+    const description::RangeSensorMapping& r = *sensors.range;
+    robot::RangeSensorOptions& rs = robot->range_sensor;
+    rs.beams = r.beams;
+    if (r.rate_hz) rs.rate_hz = *r.rate_hz;
+    rs.min_range_m = r.min_range_m;
+    rs.max_range_m = r.max_range_m;
+    if (r.noise_std_m) rs.noise_std_m = *r.noise_std_m;
+    rs.mount_m = r.mount_m;
   }
 }
 
@@ -409,6 +468,7 @@ void MapUrdfRobot(const std::string& path, Scenario* scenario, DriveSource drive
   if (r.track_contact_length_m) v.track_contact_length_m = *r.track_contact_length_m;
   if (r.camera_mount_m) scenario->robot.stereo.mount_m = *r.camera_mount_m;
   if (r.camera_pitch_down_deg) scenario->robot.stereo.pitch_down_deg = *r.camera_pitch_down_deg;
+  MapSensorBlocks(r.sensors, &scenario->robot);
   urdf->mapped = true;
   urdf->unmapped = std::move(r.unmapped);
   try {
@@ -499,6 +559,9 @@ Scenario LoadScenario(const std::string& path, const std::vector<Override>& over
   resolve("teach_repeat.map", &scenario.teach_repeat.map, true);
   resolve("robot.calibration_dir", &scenario.robot.calibration_dir, true);
   resolve("scene.terrain.dem.file", &scenario.scene.terrain.dem.file, false);
+  if (scenario.scene.terrain.heightmap) {
+    resolve("scene.terrain.heightmap.file", &scenario.scene.terrain.heightmap->file, false);
+  }
   if (scenario.scene.sdf) {
     description::SdfWorldOptions& sdf = *scenario.scene.sdf;
     resolve("scene.sdf.file", &sdf.file, false);
@@ -513,6 +576,7 @@ Scenario LoadScenario(const std::string& path, const std::vector<Override>& over
     MapUrdfRobot(path, &scenario, drive_source);
   }
   CheckDemCoversTerrain(path, scenario.scene.terrain);
+  CheckHeightmapCoversTerrain(path, scenario.scene.terrain);
   for (std::size_t k = 0; k < scenario.scene.objects.size(); ++k) {
     sim::MeshSource& m = scenario.scene.objects[k].mesh;
     const std::string key = "scene.objects[" + std::to_string(k) + "].";

@@ -32,6 +32,9 @@ void StaticObject::Validate() const {
   option_check::Finite("center_m[1]", center_m.y());
   if (std::isinf(base_z_m)) throw OptionError("base_z_m", "must be finite (or absent)");
   option_check::Finite("yaw_rad", yaw_rad);
+  if (albedo && !(*albedo >= 0.0 && *albedo <= 1.0)) {
+    throw OptionError("albedo", "must be in [0, 1] (got " + option_check::Describe(*albedo) + ")");
+  }
 }
 
 const std::vector<ObjectType>& ObjectTypes() {

@@ -42,6 +42,16 @@ void DemOptions::Validate() const {
   if (!origin_m.allFinite()) throw OptionError("origin", "must be two finite numbers [m]");
 }
 
+void HeightmapOptions::Validate() const {
+  if (file.empty()) throw OptionError("file", "must name the heightmap's image");
+  for (int k = 0; k < 3; ++k) {
+    if (!(std::isfinite(size_m[k]) && size_m[k] > 0.0)) {
+      throw OptionError("size_m", "must be three numbers > 0 [m]");
+    }
+  }
+  if (!pos_m.allFinite()) throw OptionError("pos_m", "must be three finite numbers [m]");
+}
+
 double TerrainOptions::cells() const {
   return (extent_m[2] - extent_m[0]) * (extent_m[3] - extent_m[1]) / (cell_size_m * cell_size_m);
 }
@@ -74,6 +84,13 @@ void TerrainOptions::Validate() const {
   }
   option_check::Nested("soil_variation", soil_variation);
   option_check::Nested("dem", dem);
+  if (heightmap) {
+    option_check::Nested("heightmap", *heightmap);
+    if (dem.enabled()) {
+      throw OptionError("heightmap",
+                        "a heightmap and dem exclude each other (both give the heights)");
+    }
+  }
   for (std::size_t k = 0; k < regions.size(); ++k) {
     option_check::Nested("regions[" + std::to_string(k) + "]", regions[k]);
   }

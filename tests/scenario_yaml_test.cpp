@@ -211,7 +211,7 @@ TEST(ScenarioYamlTest, UnknownKeyNamesFileAndDottedKey) {
   EXPECT_NE(nested.find("motor)"), std::string::npos) << nested;
   EXPECT_EQ(ErrorOf(std::string(kMinimal) + "scene: {objects: [{type: post, size_m: [1, 1, 1]}]}"),
             "test.yaml: scene.objects[0].size_m: unknown key (allowed: type, center, radius_m, "
-            "height_m, appearance, base_z_m, collides)");
+            "height_m, appearance, albedo, base_z_m, collides)");
 }
 
 TEST(ScenarioYamlTest, ScatterAddsObjectsClearOfTheRouteAndNamesBadKeys) {

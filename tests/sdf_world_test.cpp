@@ -2,6 +2,8 @@
 // (docs/gazebo_users.md): each shape where the world puts it, what is not mapped
 // listed, errors naming the file and the element.
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -12,7 +14,10 @@
 #include <unistd.h>
 
 #include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 
+#include "trackbed/assets/heightmap_reader.h"
 #include "trackbed/assets/scene_meshes.h"
 #include "trackbed/description/sdf_world.h"
 #include "trackbed/scenario/scenario_yaml.h"
@@ -55,7 +60,21 @@ class SdfWorldTest : public ::testing::Test {
           "v -0.5 -0.5 1\nv 0.5 -0.5 1\nv 0.5 0.5 1\nv -0.5 0.5 1\n"
           "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\n"
           "f 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n");
+    // The heightmap: 33 × 33 pixels of 16 bits, rising along x and towards the image's
+    // foot; the ball's albedo map: 2 × 2 texels of sRGB colours.
+    cv::Mat hill(33, 33, CV_16UC1);
+    for (int r = 0; r < 33; ++r) {
+      for (int c = 0; c < 33; ++c) hill.at<std::uint16_t>(r, c) = HillValue(c, r);
+    }
+    cv::imwrite((dir_ / "hill.png").string(), hill);
+    cv::Mat map(2, 2, CV_8UC3);
+    map.at<cv::Vec3b>(0, 0) = {0, 0, 255};  // blue, green, red: red
+    map.at<cv::Vec3b>(0, 1) = {0, 255, 0};
+    map.at<cv::Vec3b>(1, 0) = {255, 0, 0};
+    map.at<cv::Vec3b>(1, 1) = {128, 128, 128};
+    cv::imwrite((dir_ / "ball_albedo.png").string(), map);
   }
+  static int HillValue(int c, int r) { return 1000 + 1500 * c + 400 * r; }
   void TearDown() override {
     if (!dir_.empty()) fs::remove_all(dir_);
   }
@@ -108,12 +127,17 @@ const char* kWorld = R"(<?xml version='1.0'?>
     </link></model>
   <model name='ball'><static>true</static><pose>-2 -3 0.4 0 0 0</pose>
     <link name='l'>
-      <visual name='v'><geometry><sphere><radius>0.4</radius></sphere></geometry></visual>
+      <visual name='v'><geometry><sphere><radius>0.4</radius></sphere></geometry>
+        <material><pbr><metal><albedo_map>ball_albedo.png</albedo_map>
+          <normal_map>ball_normal.png</normal_map></metal></pbr></material></visual>
       <collision name='c'><geometry><sphere><radius>0.4</radius></sphere></geometry></collision>
     </link></model>
   <include><uri>model://crate</uri><pose>5 3 0 0 0 0.5</pose></include>
-  <model name='hill'><static>true</static><link name='l'>
-    <visual name='v'><geometry><heightmap><uri>hill.png</uri><size>10 10 2</size></heightmap></geometry></visual>
+  <model name='hill'><static>true</static><pose>1 -1 0.5 0 0 0</pose><link name='l'>
+    <visual name='v'><geometry><heightmap><uri>hill.png</uri><size>24 24 2</size>
+      <pos>0 0 -0.5</pos></heightmap></geometry></visual>
+    <collision name='c'><geometry><heightmap><uri>hill.png</uri><size>24 24 2</size>
+      <pos>0 0 -0.5</pos></heightmap></geometry></collision>
   </link></model>
   <model name='cart'><pose>0 5 0.2 0 0 0</pose><link name='l'>
     <visual name='v'><geometry><box><size>1 1 0.4</size></box></geometry></visual></link></model>
@@ -227,12 +251,105 @@ TEST_F(SdfWorldTest, WhatIsNotMappedIsListed) {
   EXPECT_TRUE(listed("<plugin>") || listed("/plugin")) << ::testing::PrintToString(u);
   EXPECT_TRUE(listed("spherical_coordinates"));
   EXPECT_TRUE(listed("only the sun"));
-  EXPECT_TRUE(listed("heightmap"));
   EXPECT_TRUE(listed("not static"));
-  EXPECT_TRUE(listed("diffuse colour"));
+  EXPECT_TRUE(listed("<normal_map>"));
+  EXPECT_TRUE(listed("its mean grey albedo"));
   EXPECT_TRUE(listed("mu 0.9"));
   // Each entry names the world's file.
   for (const std::string& entry : u) EXPECT_NE(entry.find("world.sdf"), std::string::npos) << entry;
+}
+
+// The heightmap is the terrain: each pixel's height where Gazebo puts it (the image
+// centred on the model's pose plus <pos>, its top row at +y, the brightest pixel
+// <size>'s z above black), bilinear between pixels.
+TEST_F(SdfWorldTest, TheHeightmapIsTheTerrainWithEachPixelWhereGazeboPutsIt) {
+  const scenario::Scenario s = Load(kWorld);
+  ASSERT_TRUE(s.scene.terrain.heightmap);
+  const sim::HeightmapOptions& h = *s.scene.terrain.heightmap;
+  EXPECT_EQ(h.file, (dir_ / "hill.png").string());
+  EXPECT_EQ(h.size_m, Eigen::Vector3d(24, 24, 2));
+  EXPECT_EQ(h.pos_m, Eigen::Vector3d(1, -1, 0));
+  const auto grid = assets::ReadHeightmap(h);
+  const sim::Terrain terrain(s.scene.terrain, 1, grid);
+  const double brightest = HillValue(32, 32);
+  double worst = 0.0;
+  for (int r = 4; r <= 28; r += 4) {
+    for (int c = 4; c <= 28; c += 4) {
+      // Pixel (c, r) on one of the terrain's grid points (0.75 m pixels, 0.1 m cells).
+      const double x = 1 - 12 + 0.75 * c, y = -1 + 12 - 0.75 * r;
+      const double z = 2.0 * HillValue(c, r) / brightest;
+      EXPECT_NEAR(grid->Height(x, y), z, 1e-12) << c << ", " << r;
+      worst = std::max(worst, std::abs(terrain.Height(x, y) - z));
+      // Halfway between four pixels: their mean.
+      const double mean =
+          2.0 *
+          (HillValue(c, r) + HillValue(c + 1, r) + HillValue(c, r + 1) + HillValue(c + 1, r + 1)) /
+          (4 * brightest);
+      EXPECT_NEAR(grid->Height(x + 0.375, y - 0.375), mean, 1e-12);
+    }
+  }
+  std::printf("the terrain's heights at 49 pixel centres: worst error %.3g m\n", worst);
+  EXPECT_LT(worst, 1e-5);  // the terrain's grid holds single-precision heights
+  // A heightmap short of the terrain is an error naming the key.
+  std::string yaml = scenario::ScenarioToYaml(s);
+  Write(dir_ / "short.yaml", yaml);
+  EXPECT_THROW(scenario::LoadScenario((dir_ / "short.yaml").string(),
+                                      {{"scene.terrain.extent_m", "[-20, -10, 10, 10]"}}),
+               scenario::ScenarioError);
+}
+
+// The new keys' errors name the file, the key and the problem.
+TEST_F(SdfWorldTest, HeightmapAndAlbedoKeysErrorsNameTheKey) {
+  const auto error_of = [this](const std::string& scene) {
+    Write(dir_ / "keys.yaml", "scene:\n" + scene + "drive: {waypoints: [[0, 0], [1, 0]]}\n");
+    try {
+      scenario::LoadScenario((dir_ / "keys.yaml").string());
+    } catch (const scenario::ScenarioError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  const std::string terrain = "  terrain: {extent_m: [-10, -10, 10, 10], heightmap: ";
+  std::string e = error_of(terrain + "{file: hill.png, size_m: [24, 0, 2]}}\n");
+  EXPECT_NE(e.find("keys.yaml"), std::string::npos) << e;
+  EXPECT_NE(e.find("scene.terrain.heightmap.size_m"), std::string::npos) << e;
+  e = error_of(terrain + "{file: nowhere.png, size_m: [24, 24, 2]}}\n");
+  EXPECT_NE(e.find("scene.terrain.heightmap.file"), std::string::npos) << e;
+  EXPECT_NE(e.find("nowhere.png"), std::string::npos) << e;
+  e = error_of(terrain + "{file: ball_albedo.png, size_m: [24, 24, 2]}}\n");  // colour, 2 × 2
+  EXPECT_NE(e.find("scene.terrain.heightmap.file"), std::string::npos) << e;
+  EXPECT_NE(e.find("channels"), std::string::npos) << e;
+  e = error_of(terrain + "{file: hill.png, size_m: [24, 24, 2]}, dem: {file: hill.png}}\n");
+  EXPECT_NE(e.find("scene.terrain.heightmap"), std::string::npos) << e;
+  EXPECT_NE(e.find("exclude each other"), std::string::npos) << e;
+  e = error_of("  objects: [{type: box, albedo: 1.5}]\n");
+  EXPECT_NE(e.find("scene.objects[0].albedo"), std::string::npos) << e;
+  EXPECT_NE(e.find("[0, 1]"), std::string::npos) << e;
+  // Given, an albedo is written back; absent, it stays absent.
+  const scenario::Scenario back = scenario::ParseScenario(
+      scenario::ScenarioToYaml(scenario::ParseScenario(
+          "scene: {objects: [{albedo: 0.25}, {}]}\ndrive: {waypoints: [[0, 0], [1, 0]]}\n",
+          "inline")),
+      "written");
+  ASSERT_EQ(back.scene.objects.size(), 2u);
+  EXPECT_EQ(back.scene.objects[0].albedo, std::optional<double>(0.25));
+  EXPECT_FALSE(back.scene.objects[1].albedo);
+}
+
+TEST_F(SdfWorldTest, ColoursAreGreyAlbedos) {
+  const scenario::Scenario s = Load(kWorld);
+  // The box's <diffuse> (0.8, 0.1, 0.1): Rec. 709 luma of the linear colour.
+  ASSERT_TRUE(s.scene.objects[0].albedo);
+  EXPECT_NEAR(*s.scene.objects[0].albedo, 0.2126 * 0.8 + 0.7152 * 0.1 + 0.0722 * 0.1, 1e-7);
+  // The ball's albedo map: the mean of its texels' luma, sRGB decoded.
+  const auto linear = [](double e) {
+    return e <= 0.04045 ? e / 12.92 : std::pow((e + 0.055) / 1.055, 2.4);
+  };
+  const double grey = linear(128.0 / 255.0);
+  const double expected = (0.2126 + 0.7152 + 0.0722 + grey) / 4;
+  ASSERT_TRUE(s.scene.objects[3].albedo);
+  EXPECT_NEAR(*s.scene.objects[3].albedo, expected, 1e-12);
+  EXPECT_FALSE(s.scene.objects[1].albedo);  // the log has no material: today's look
 }
 
 TEST_F(SdfWorldTest, MappedScenarioReadsBackWithoutMappingAgain) {

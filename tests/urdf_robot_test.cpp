@@ -129,6 +129,88 @@ TEST_F(UrdfRobotTest, FourWheelSkidSteerWithCamera) {
   EXPECT_EQ(scenario::ScenarioToYaml(scenario::ParseScenario(yaml, "resolved")), yaml);
 }
 
+// The skid-steer robot with Gazebo's sensor blocks on its links: a multicamera pair
+// (a stereo head) on the camera link, 0.1 m apart along the link's y, and a lidar on
+// a mast; an IMU block and a camera's distortion, which have no key, listed.
+std::string SkidSteerWithSensorBlocks() {
+  std::string u = SkidSteer();
+  u.insert(u.rfind("</robot>"), R"(
+<link name='mast_link'/><joint name='mast_joint' type='fixed'><parent link='chassis_link'/>
+  <child link='mast_link'/><origin xyz='-0.1 0 0.3'/></joint>
+<gazebo reference='camera_link'>
+  <sensor type='multicamera' name='stereo_head'>
+    <update_rate>15</update_rate>
+    <camera name='left'><pose>0 0.05 0 0 0 0</pose><horizontal_fov>1.2</horizontal_fov>
+      <image><width>752</width><height>480</height><format>L8</format></image>
+      <clip><near>0.1</near><far>60</far></clip>
+      <noise><type>gaussian</type><mean>0</mean><stddev>0.007</stddev></noise>
+      <distortion><k1>-0.28</k1><k2>0.07</k2></distortion></camera>
+    <camera name='right'><pose>0 -0.05 0 0 0 0</pose><horizontal_fov>1.2</horizontal_fov>
+      <image><width>752</width><height>480</height><format>L8</format></image>
+      <clip><near>0.1</near><far>60</far></clip></camera>
+  </sensor>
+</gazebo>
+<gazebo reference='mast_link'>
+  <sensor type='ray' name='scanner'><pose>0 0 0.05 0 0 0</pose><update_rate>20</update_rate>
+    <ray><scan><horizontal><samples>270</samples><resolution>1</resolution>
+      <min_angle>-2.35619449</min_angle><max_angle>2.35619449</max_angle></horizontal></scan>
+      <range><min>0.12</min><max>12</max><resolution>0.01</resolution></range>
+      <noise><type>gaussian</type><mean>0</mean><stddev>0.015</stddev></noise></ray>
+  </sensor>
+</gazebo>
+<gazebo reference='imu_link'><sensor type='imu' name='imu'/></gazebo>
+)");
+  return u;
+}
+
+TEST_F(UrdfRobotTest, SensorBlocksMapOntoTheStereoPairAndTheRangeSensor) {
+  const scenario::Scenario s = Load(SkidSteerWithSensorBlocks());
+  const double com_z = 20.0 * 0.05 / 24.0;
+  const robot::StereoRigOptions& st = s.robot.stereo;
+  EXPECT_EQ(st.width_px, 752);
+  EXPECT_EQ(st.height_px, 480);
+  EXPECT_NEAR(st.hfov_deg, 1.2 * 180 / 3.14159265358979323846, 1e-9);
+  EXPECT_EQ(st.rate_hz, 15.0);
+  EXPECT_EQ(st.near_m, 0.1);
+  EXPECT_EQ(st.far_m, 60.0);
+  EXPECT_NEAR(st.noise_std, 0.007 * 255, 1e-12);
+  EXPECT_NEAR(st.baseline_m, 0.1, 5e-10);
+  // The pair's midpoint is the camera link's origin; its pitch the link's.
+  EXPECT_NEAR(st.mount_m.x(), 0.25, 5e-10);
+  EXPECT_NEAR(st.mount_m.y(), 0.0, 5e-10);
+  EXPECT_NEAR(st.mount_m.z(), 0.05 + 0.15 - com_z, 5e-10);
+  EXPECT_NEAR(st.pitch_down_deg, 0.2 * 180 / 3.14159265358979323846, 1e-9);
+  // The focal length from the field of view: (752 / 2) / tan(0.6).
+  EXPECT_NEAR(st.DesignIntrinsics().fx, 376.0 / std::tan(0.6), 1e-6);
+  const robot::RangeSensorOptions& r = s.robot.range_sensor;
+  // 270 samples over 270 deg, both ends included: 360 deg at the same spacing.
+  EXPECT_EQ(r.beams,
+            static_cast<int>(std::lround(2 * 3.14159265358979323846 * 269 / (2 * 2.35619449))));
+  EXPECT_EQ(r.rate_hz, 20.0);
+  EXPECT_EQ(r.min_range_m, 0.12);
+  EXPECT_EQ(r.max_range_m, 12.0);
+  EXPECT_EQ(r.noise_std_m, 0.015);
+  EXPECT_NEAR(r.mount_m.x(), -0.1, 5e-10);
+  EXPECT_NEAR(r.mount_m.z(), 0.05 + 0.3 + 0.05 - com_z, 5e-10);
+  // What has no key is listed, naming the file and the block.
+  const std::vector<std::string>& u = s.robot.description->unmapped;
+  const auto listed = [&u](const std::string& a, const std::string& b) {
+    for (const std::string& entry : u) {
+      if (entry.find(a) != std::string::npos && entry.find(b) != std::string::npos &&
+          entry.find("robot.urdf") != std::string::npos) {
+        return true;
+      }
+    }
+    return false;
+  };
+  EXPECT_TRUE(listed("camera_link", "<distortion>")) << ::testing::PrintToString(u);
+  EXPECT_TRUE(listed("mast_link", "360 deg")) << ::testing::PrintToString(u);
+  EXPECT_TRUE(listed("imu_link", "IMU block")) << ::testing::PrintToString(u);
+  // Written and read back: mapped once, the sensors' keys kept.
+  const std::string yaml = scenario::ScenarioToYaml(s);
+  EXPECT_EQ(scenario::ScenarioToYaml(scenario::ParseScenario(yaml, "resolved")), yaml);
+}
+
 TEST_F(UrdfRobotTest, TrackedRobotFromSprocketsAndRoadWheels) {
   std::string u =
       "<?xml version='1.0'?>\n<robot name='tracked'>\n<link name='base_link'>"

@@ -11,6 +11,7 @@
 
 #include "trackbed/description/description_error.h"
 #include "trackbed/sim/static_object.h"
+#include "trackbed/sim/terrain.h"
 
 namespace trackbed::description {
 
@@ -54,6 +55,8 @@ struct SdfScene {
   /// Where the first directional light comes from (the sun): azimuth counter-clockwise
   /// from +x and elevation [deg].
   std::optional<double> sun_azimuth_deg, sun_elevation_deg;
+  /// The first `<heightmap>` (a greyscale image), its file resolved, its pos in the world.
+  std::optional<sim::HeightmapOptions> heightmap;
   /// The built-in terrain material whose friction is nearest the ground plane's `<mu>`.
   std::optional<std::string> ground_material;
   /// Everything not mapped, one entry each: what it is, where, and why.

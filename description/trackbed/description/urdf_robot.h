@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 
 #include "trackbed/description/description_error.h"
+#include "trackbed/description/sensor_blocks.h"
 
 namespace trackbed::description {
 
@@ -63,6 +64,9 @@ struct UrdfRobot {
   /// The camera's mount from the centre of mass [m] and its downward pitch [deg].
   std::optional<Eigen::Vector3d> camera_mount_m;
   std::optional<double> camera_pitch_down_deg;
+  /// The `<gazebo reference="LINK">` blocks' first camera (or multicamera) and first
+  /// ray or lidar sensor; the camera's mount and pitch replace the camera link's.
+  SensorBlocks sensors;
   /// What has no key, one entry each: what it is, where, and why.
   std::vector<std::string> unmapped;
 };

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,10 @@ struct StaticObject {
   std::string kind = "box";
   /// Appearance name for the renderer (e.g. plain_paint, brick, bark, wood).
   std::string appearance = "plain_paint";
+  /// Grey albedo in [0, 1] of a plain surface drawn instead of the appearance's texture
+  /// (and a mesh's materials): a colour given in the user's own description (an SDF
+  /// visual's <diffuse>). Absent: the appearance's.
+  std::optional<double> albedo;
   /// Centre of the footprint in the world xy plane [m].
   Eigen::Vector2d center_m = Eigen::Vector2d::Zero();
   /// Height of the object's base [m]; NaN means "on the ground": the scene

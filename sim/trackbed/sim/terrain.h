@@ -13,11 +13,13 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "trackbed/common/archive.h"
 #include "trackbed/sim/elevation_grid.h"
 #include "trackbed/sim/lattice_noise.h"
 #include "trackbed/sim/soil_variation.h"
@@ -79,6 +81,32 @@ struct DemOptions {
   }
 };
 
+/// A Gazebo heightmap image under the terrain (docs/gazebo_users.md, read by
+/// assets/trackbed/assets/heightmap_reader.h): a square greyscale image (8 or 16 bits
+/// a pixel) whose pixels are the heights at size_m.x × size_m.y centred on pos_m, the
+/// image seen from above (its top row at the highest y, its left column at the lowest
+/// x, the corner pixels' centres at the corners); black at pos_m.z, the brightest
+/// pixel size_m.z above it (Gazebo's scaling). The roughness is added on top.
+struct HeightmapOptions {
+  /// The image (PNG, ...), relative to the scenario's folder; absolute once loaded.
+  std::string file;
+  /// Span along x and y and the brightest pixel's height [m], each > 0.
+  Eigen::Vector3d size_m = Eigen::Vector3d::Ones();
+  /// The image's centre and its black level in the world [m].
+  Eigen::Vector3d pos_m = Eigen::Vector3d::Zero();
+
+  void Validate() const;
+
+  /// The scenario file's keys for these fields (docs/scenario_format.md), read and
+  /// written by the config archive (trackbed/common/archive.h).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit("file", &file);
+    a->Visit("size_m", &size_m);
+    a->Visit("pos_m", &pos_m);
+  }
+};
+
 /// Where a material lies: an axis-aligned rectangle or a disc in the world's xy plane.
 struct MaterialRegion {
   enum class Shape { kRectangle, kCircle };
@@ -128,6 +156,8 @@ struct TerrainOptions {
   SoilVariationOptions soil_variation;
   /// A digital elevation model for the heights (off by default).
   DemOptions dem;
+  /// A Gazebo heightmap image for the heights (absent by default; excludes `dem`).
+  std::optional<HeightmapOptions> heightmap;
 
   /// Longest side a terrain may have [m]; it must also lie within this of the origin.
   static constexpr double kMaxSideM = 10000.0;
@@ -156,6 +186,7 @@ struct TerrainOptions {
     a->Visit("regions", &regions);
     a->Visit("soil_variation", &soil_variation);
     a->Visit("dem", &dem);
+    a->Visit("heightmap", &heightmap, archive::kOmitEmpty);
   }
 };
 
