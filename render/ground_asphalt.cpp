@@ -256,10 +256,15 @@ void AsphaltFeatures(Field& f, std::uint64_t seed, int variant) {
   // 4–8 cm wide, a patch, a worn marking (each on a quarter of the tiles).
   const Eigen::Vector2d centre = QuarterCorner(order[3]) + Eigen::Vector2d(0.25, 0.25);
   if (variant % 4 == 1) {
-    PaintCrack(f, rng, order[1], rng.Uniform(0.15, 0.35), rng.Uniform(0.04, 0.08) / texel,
-               kGreyPerReflectance * 0.04);
+    // One draw a statement (a call's arguments are evaluated in the compiler's order),
+    // the width first, as the pinned bytes have it; the same for the patch's sides.
+    const double width_m = rng.Uniform(0.04, 0.08);
+    const double length = rng.Uniform(0.15, 0.35);
+    PaintCrack(f, rng, order[1], length, width_m / texel, kGreyPerReflectance * 0.04);
   } else if (variant % 4 == 2) {
-    PaintPatch(f, centre, rng.Uniform(0.07, 0.17), rng.Uniform(0.07, 0.17));
+    const double half_v = rng.Uniform(0.07, 0.17);
+    const double half_u = rng.Uniform(0.07, 0.17);
+    PaintPatch(f, centre, half_u, half_v);
   } else if (variant % 4 == 3) {
     const double length = rng.Uniform(0.15, 0.35);
     PaintMarking(f, centre, rng.Direction(), 0.12, length, wear);

@@ -144,11 +144,20 @@ LeafSpray DrawSpray(std::uint64_t seed, int n) {
   return out;
 }
 
+// A point uniform in the cube [-1, 1]^3, its coordinates drawn z, y, x: one draw a
+// statement, so that no compiler's order of evaluating arguments changes the bytes.
+Eigen::Vector3d UniformInCube(Rng& rng) {
+  const double z = rng.Uniform(-1.0, 1.0);
+  const double y = rng.Uniform(-1.0, 1.0);
+  const double x = rng.Uniform(-1.0, 1.0);
+  return Eigen::Vector3d(x, y, z);
+}
+
 // A uniformly distributed unit vector in 3D, by rejection from the cube (no trigonometry,
 // whose last bits depend on the C library).
 Eigen::Vector3d Direction3(Rng& rng) {
   for (;;) {
-    const Eigen::Vector3d v(rng.Uniform(-1.0, 1.0), rng.Uniform(-1.0, 1.0), rng.Uniform(-1.0, 1.0));
+    const Eigen::Vector3d v = UniformInCube(rng);
     const double n2 = v.squaredNorm();
     if (n2 > 1e-4 && n2 <= 1.0) return v / std::sqrt(n2);
   }
@@ -198,7 +207,7 @@ std::vector<LeafCard> LeafCrownCards(const Eigen::Vector3d& center, double radiu
     LeafCard c;
     Eigen::Vector3d p;
     do {
-      p = Eigen::Vector3d(rng.Uniform(-1.0, 1.0), rng.Uniform(-1.0, 1.0), rng.Uniform(-1.0, 1.0));
+      p = UniformInCube(rng);
     } while (p.squaredNorm() > 1.0);
     c.center = center + reach * p;
     const Eigen::Vector3d n = Direction3(rng);

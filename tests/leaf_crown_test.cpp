@@ -8,7 +8,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -44,6 +46,37 @@ TEST(LeafCrownTest, SpraysAreTheSameForTheSameSeedAndHoldLeavesOfTheCitedSize) {
     EXPECT_LT(share, 0.9);
   }
   EXPECT_THROW(MakeLeafSprays(1, 100), std::invalid_argument);
+}
+
+// FNV-1a of the cards' coordinates' bits and variants.
+std::uint64_t CardsChecksum(const std::vector<LeafCard>& cards) {
+  std::uint64_t h = 14695981039346656037ULL;
+  const auto mix = [&h](std::uint64_t b) {
+    for (int k = 0; k < 8; ++k) {
+      h ^= (b >> (8 * k)) & 0xffU;
+      h *= 1099511628211ULL;
+    }
+  };
+  for (const LeafCard& c : cards) {
+    for (const Eigen::Vector3d* v : {&c.center, &c.half_u, &c.half_v}) {
+      for (int i = 0; i < 3; ++i) {
+        std::uint64_t b = 0;
+        std::memcpy(&b, &(*v)(i), sizeof b);
+        mix(b);
+      }
+    }
+    mix(static_cast<std::uint64_t>(c.variant));
+  }
+  return h;
+}
+
+// A crown's cards for one seed, pinned: the same on every compiler (each coordinate
+// drawn in an order the code fixes, not in a constructor's arguments, whose order of
+// evaluation C++ leaves to the compiler).
+TEST(LeafCrownTest, CardsMatchPinnedChecksum) {
+  const std::vector<LeafCard> cards =
+      LeafCrownCards(Eigen::Vector3d(2.0, -1.0, 7.0), 2.5, 99, SprayAreas(3));
+  EXPECT_EQ(CardsChecksum(cards), 0x8a353c0b50122880ULL) << std::hex << "0x" << CardsChecksum(cards);
 }
 
 TEST(LeafCrownTest, CardsFromTheSeedLieInsideTheCrownAtTheCitedLeafAreaIndex) {
