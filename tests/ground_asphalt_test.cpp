@@ -12,6 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include "texel_checksum.h"
+
 #include "ground_asphalt.h"
 #include "ground_tiling.h"
 #include "trackbed/render/procedural_texture.h"
@@ -79,26 +81,16 @@ TEST(GroundAsphaltTest, TextureShowsTheChipsStone) {
   EXPECT_LT(share, 0.81 * faces);
 }
 
-// FNV-1a of the texels.
-std::uint64_t Checksum(const Texture& t) {
-  std::uint64_t h = 14695981039346656037ULL;
-  for (const std::uint8_t v : t.texels) {
-    h ^= v;
-    h *= 1099511628211ULL;
-  }
-  return h;
-}
-
 // Every variant's bytes for one seed, pinned: the same on every compiler (the rarer
 // features draw their sizes one by one, in an order the code fixes, not in a call's
 // arguments, whose order of evaluation C++ leaves to the compiler).
 TEST(GroundAsphaltTest, VariantBytesMatchPinnedChecksums) {
   const std::vector<std::uint64_t> pinned = {0xa63a469084de09baULL, 0x15720c4ba9c93288ULL,
-                                            0xaf1d9a107192afcdULL, 0x96c1774a0990a7ddULL};
+                                             0xaf1d9a107192afcdULL, 0x96c1774a0990a7ddULL};
   const std::vector<Texture> v = MakeTextureVariants("asphalt", 42, 64);
   ASSERT_EQ(v.size(), pinned.size());
   for (std::size_t k = 0; k < v.size(); ++k) {
-    EXPECT_EQ(Checksum(v[k]), pinned[k]) << "variant " << k;
+    EXPECT_EQ(test::TexelChecksum(v[k]), pinned[k]) << "variant " << k;
   }
 }
 

@@ -15,6 +15,7 @@
 #include "ground_grass.h"
 #include "ground_sand.h"
 #include "ground_soil.h"
+#include "texel_checksum.h"
 #include "texture_blocks.h"
 #include "trackbed/render/procedural_texture.h"
 
@@ -23,15 +24,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 const char* const kDetailed[] = {"dry_sand", "grass", "sandy_loam"};
-
-std::uint64_t Checksum(const Texture& t) {
-  std::uint64_t h = 0xcbf29ce484222325ULL;  // FNV-1a
-  for (const std::uint8_t b : t.texels) {
-    h ^= b;
-    h *= 0x100000001b3ULL;
-  }
-  return h;
-}
 
 // The seed a recipe receives from MakeTextureVariants' `seed`.
 std::uint64_t RecipeSeed(const std::string& name, std::uint64_t seed) {
@@ -65,8 +57,8 @@ TEST(GroundRecipesTest, BytesMatchPinnedChecksums) {
   };
   for (int m = 0; m < 3; ++m) {
     const std::vector<Texture> v = MakeTextureVariants(kDetailed[m], 42, 64);
-    EXPECT_EQ(Checksum(v[0]), pinned[m][0]) << kDetailed[m];
-    EXPECT_EQ(Checksum(v[3]), pinned[m][1]) << kDetailed[m];
+    EXPECT_EQ(test::TexelChecksum(v[0]), pinned[m][0]) << kDetailed[m];
+    EXPECT_EQ(test::TexelChecksum(v[3]), pinned[m][1]) << kDetailed[m];
   }
 }
 

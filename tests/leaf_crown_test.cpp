@@ -76,7 +76,7 @@ std::uint64_t CardsChecksum(const std::vector<LeafCard>& cards) {
 TEST(LeafCrownTest, CardsMatchPinnedChecksum) {
   const std::vector<LeafCard> cards =
       LeafCrownCards(Eigen::Vector3d(2.0, -1.0, 7.0), 2.5, 99, SprayAreas(3));
-  EXPECT_EQ(CardsChecksum(cards), 0x8a353c0b50122880ULL) << std::hex << "0x" << CardsChecksum(cards);
+  EXPECT_EQ(CardsChecksum(cards), 0x8a353c0b50122880ULL);
 }
 
 TEST(LeafCrownTest, CardsFromTheSeedLieInsideTheCrownAtTheCitedLeafAreaIndex) {

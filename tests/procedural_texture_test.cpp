@@ -15,6 +15,8 @@
 
 #include <gtest/gtest.h>
 
+#include "texel_checksum.h"
+
 namespace trackbed::render {
 namespace {
 
@@ -116,16 +118,6 @@ int CountHarrisCorners(const Texture& t, double threshold) {
   return corners;
 }
 
-// FNV-1a of the texels.
-std::uint64_t Checksum(const Texture& t) {
-  std::uint64_t h = 14695981039346656037ULL;
-  for (const std::uint8_t v : t.texels) {
-    h ^= v;
-    h *= 1099511628211ULL;
-  }
-  return h;
-}
-
 TEST(ProceduralTextureTest, NamesAreSortedUniqueAndClassified) {
   const std::vector<std::string>& names = TextureNames();
   EXPECT_TRUE(std::is_sorted(names.begin(), names.end()));
@@ -191,7 +183,7 @@ TEST(ProceduralTextureTest, BytesMatchPinnedChecksums) {
   };
   EXPECT_EQ(pinned.size(), TextureNames().size());
   for (const auto& [name, checksum] : pinned) {
-    EXPECT_EQ(Checksum(MakeTexture(name, 42, 64)), checksum) << name;
+    EXPECT_EQ(test::TexelChecksum(MakeTexture(name, 42, 64)), checksum) << name;
   }
 }
 
