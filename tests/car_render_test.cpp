@@ -27,15 +27,7 @@ sim::StaticObject Car() {
   return o;
 }
 
-geometry::PinholeCamera Camera() {
-  geometry::PinholeCamera K;
-  K.width_px = 640;
-  K.height_px = 480;
-  K.fx = K.fy = 500.0;
-  K.cx = 319.0;
-  K.cy = 240.0;
-  return K;
-}
+geometry::PinholeCamera Camera() { return test::Pinhole(640, 480, 500.0, 319.0, 240.0); }
 
 // A level camera at x = 0 looking along +y at the car's right side, at `height` [m]:
 // image row cy sees that height.

@@ -17,15 +17,7 @@ namespace {
 
 namespace fs = sim::fitting_size;
 
-geometry::PinholeCamera Camera() {
-  geometry::PinholeCamera K;
-  K.width_px = 640;
-  K.height_px = 480;
-  K.fx = K.fy = 500.0;
-  K.cx = 319.0;
-  K.cy = 240.0;
-  return K;
-}
+geometry::PinholeCamera Camera() { return test::Pinhole(640, 480, 500.0, 319.0, 240.0); }
 
 // The radiator the fittings place on a wall along x at y = 3 (its face at y = 2.95)
 // facing a route along y = 0: radiators only.

@@ -30,15 +30,7 @@ using render::test::Looking;
 using Vec2 = Eigen::Vector2d;
 
 // A camera of 320 × 240 px, f = 300 px, looking along +y_dir from `eye` (level).
-geometry::PinholeCamera Camera() {
-  geometry::PinholeCamera K;
-  K.width_px = 320;
-  K.height_px = 240;
-  K.fx = K.fy = 300.0;
-  K.cx = 159.5;
-  K.cy = 119.5;
-  return K;
-}
+geometry::PinholeCamera Camera() { return render::test::Pinhole(320, 240, 300.0, 159.5, 119.5); }
 
 // A mesh object read from `file`, its origin at (x, y, z).
 sim::MeshObject MeshAt(const std::string& file, double x, double y, double z, double roll = 0,

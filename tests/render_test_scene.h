@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "trackbed/common/pinhole_camera.h"
 #include "trackbed/render/renderer.h"
 #include "trackbed/sim/world.h"
 
@@ -45,6 +46,18 @@ inline sim::StaticObject Plate(const Eigen::Vector3d& c, double width, double he
   o.size_m = {0.001, width, height};
   o.collides = false;
   return o;
+}
+
+/// A pinhole camera of `width` × `height` px, focal length `f` [px] on both axes, principal
+/// point (`cx`, `cy`), without distortion.
+inline geometry::PinholeCamera Pinhole(int width, int height, double f, double cx, double cy) {
+  geometry::PinholeCamera K;
+  K.width_px = width;
+  K.height_px = height;
+  K.fx = K.fy = f;
+  K.cx = cx;
+  K.cy = cy;
+  return K;
 }
 
 /// A camera at `eye` looking along `forward` (not vertical) without roll: its x axis

@@ -99,15 +99,7 @@ class SdfRenderTest : public ::testing::Test {
   fs::path shapes_dir_;
 };
 
-geometry::PinholeCamera Camera() {
-  geometry::PinholeCamera K;
-  K.width_px = 400;
-  K.height_px = 300;
-  K.fx = K.fy = 320.0;
-  K.cx = 199.5;
-  K.cy = 149.5;
-  return K;
-}
+geometry::PinholeCamera Camera() { return render::test::Pinhole(400, 300, 320.0, 199.5, 149.5); }
 
 // Which shape (0 box, 1 cylinder, 2 sphere) the ray through (u, v) meets; -1: none.
 int TrueShapeAt(const geometry::PinholeCamera& K, const Eigen::Isometry3d& T_world_camera, double u,
