@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+#include <vector>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -29,6 +30,25 @@ double NiceStep(double span, int target) {
   return 10.0 * mag;
 }
 
+// The multiples of `step` in [lo, hi + 1e-9], at most 64 of them: a span too narrow
+// for the values' floating-point resolution would otherwise never reach its end.
+std::vector<double> Ticks(double lo, double hi, double step) {
+  std::vector<double> ticks;
+  for (double v = std::ceil(lo / step) * step; v <= hi + 1e-9 && ticks.size() < 64; v += step) {
+    ticks.push_back(v);
+    if (v + step == v) break;
+  }
+  return ticks;
+}
+
+// Widens [lo, hi] about its centre to `span` where it is narrower than `at_least`.
+void Widen(double& lo, double& hi, double at_least, double span) {
+  if (hi - lo >= at_least) return;
+  const double c = (lo + hi) / 2;
+  lo = c - span / 2;
+  hi = c + span / 2;
+}
+
 std::string Format(double v) {
   char buf[32];
   std::snprintf(buf, sizeof(buf), "%g", std::abs(v) < 1e-12 ? 0.0 : v);
@@ -47,14 +67,13 @@ struct Axes {
   }
 
   void Draw(cv::Mat& img, const std::string& x_label, const std::string& y_label) const {
-    const double sx = NiceStep(x1 - x0, 8), sy = NiceStep(y1 - y0, 6);
-    for (double x = std::ceil(x0 / sx) * sx; x <= x1 + 1e-9; x += sx) {
+    for (double x : Ticks(x0, x1, NiceStep(x1 - x0, 8))) {
       cv::line(img, Map(x, y0), Map(x, y1), kGrid, 1);
       const cv::Point p = Map(x, y0);
       cv::putText(img, Format(x), {p.x - 12, p.y + 18}, cv::FONT_HERSHEY_SIMPLEX, 0.4, kAxis, 1,
                   cv::LINE_AA);
     }
-    for (double y = std::ceil(y0 / sy) * sy; y <= y1 + 1e-9; y += sy) {
+    for (double y : Ticks(y0, y1, NiceStep(y1 - y0, 6))) {
       cv::line(img, Map(x0, y), Map(x1, y), kGrid, 1);
       const cv::Point p = Map(x0, y);
       cv::putText(img, Format(y), {p.x - 48, p.y + 4}, cv::FONT_HERSHEY_SIMPLEX, 0.4, kAxis, 1,
@@ -123,6 +142,11 @@ void WriteMapPlot(const std::filesystem::path& png, const std::string& title,
   for (const PlotMarker& m : markers) grow(m.position, 0.0);
   if (!(x1 > x0)) x1 = x0 + 1;
   if (!(y1 > y0)) y1 = y0 + 1;
+  // A path within a millimetre (a robot turning in place) is drawn on a metre.
+  if (std::max(x1 - x0, y1 - y0) < 1e-3) {
+    Widen(x0, x1, 1e-3, 1.0);
+    Widen(y0, y1, 1e-3, 1.0);
+  }
   // Equal scales: grow the shorter span about its centre.
   const cv::Rect area(80, 50, 720, 620);
   const double scale = std::max((x1 - x0) / area.width, (y1 - y0) / area.height) * 1.05;
@@ -213,6 +237,8 @@ void WriteTimePlot(const std::filesystem::path& png, const std::string& title,
       y0 -= 0.5;
       y1 += 0.5;
     }
+    // A span of a few units in the last place is a constant to the eye.
+    Widen(y0, y1, 1e-12 * std::max(std::abs(y0), std::abs(y1)), 1.0);
     const double pad = 0.05 * (y1 - y0);
     const cv::Rect area(80, top + static_cast<int>(i) * (panel_h + gap), 720, panel_h);
     const Axes axes{area, t0, t1, y0 - pad, y1 + pad};
