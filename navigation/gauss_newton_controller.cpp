@@ -1,6 +1,7 @@
 // Gauss–Newton wheel-speed control (see gauss_newton_controller.h).
 #include "trackbed/navigation/gauss_newton_controller.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/Cholesky>
@@ -15,6 +16,7 @@ void GaussNewtonOptions::Validate() const {
   option_check::Positive("damping", damping);
   option_check::InRange("turn_position_weight", turn_position_weight, 0.0, 1.0);
   option_check::NonNegative("final_approach_radius_m", final_approach_radius_m);
+  option_check::NonNegative("final_time_constant_s", final_time_constant_s);
   if (final_approach_radius_m > 0.0 && !(final_approach_radius_m > epsilon_m)) {
     throw OptionError("final_approach_radius_m", "must be 0 (off) or larger than epsilon_m");
   }
@@ -89,8 +91,12 @@ GaussNewtonStep ComputeGaussNewtonStep(const NavigationSetup& setup,
   const Eigen::Vector2d g = J.transpose() * (w.asDiagonal() * e);
   const Eigen::Vector2d delta_phi = H.ldlt().solve(g);
 
-  const WheelSpeeds raw{delta_phi(0) / setup.control_period_s,
-                        delta_phi(1) / setup.control_period_s};
+  // Deadbeat over one control period, or, in the final phase with a time constant,
+  // spread over it (the file comment).
+  const double spread_s = step.phase == GaussNewtonPhase::kFinal
+                              ? std::max(setup.control_period_s, options.final_time_constant_s)
+                              : setup.control_period_s;
+  const WheelSpeeds raw{delta_phi(0) / spread_s, delta_phi(1) / spread_s};
   step.wheels = SaturateProportionally(raw, setup.drive.max_wheel_speed_radps);
   step.saturated =
       step.wheels.left_radps != raw.left_radps || step.wheels.right_radps != raw.right_radps;

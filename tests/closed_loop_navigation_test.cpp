@@ -1,10 +1,14 @@
 // Closed-loop navigation on the simulated tracked robot (docs/navigation.md): the range sensor
 // against Bullet, the chassis–obstacle clearance against hand-computed cases, and a
 // short course driven on the fused estimate with success judged by ground truth.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <limits>
+#include <sstream>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -110,6 +114,73 @@ TEST(ClosedLoopNavigationTest, ReachesTheGoalAroundATreeOnTheFusedEstimate) {
     EXPECT_TRUE(std::filesystem::exists(dir / "navigation.png"));
   }
   EXPECT_GE(successes, 2);
+}
+
+// The final turn on the tracked robot, on ground truth (so what shows is the controller
+// against the vehicle, not the estimate): 1 m straight ahead on grass, then 90° in place
+// to the goal's heading. Read from navigation.csv: the peak of the true heading past the
+// goal's and the sign reversals of the commanded yaw rate once the heading is past 45°.
+struct FinalTurn {
+  double overshoot_deg = 0.0;
+  int reversals = 0;
+  runner::RunMetrics metrics;
+};
+
+FinalTurn RunFinalTurn(const std::string& time_constant_s) {
+  const std::string yaml =
+      "duration_s: 15\n"
+      "scene:\n  name: final_turn\n  terrain: {extent_m: [-3, -3, 3, 3], default_material: grass}\n"
+      "robot:\n  stereo: {enabled: false}\n  range_sensor: {enabled: true}\n"
+      "outputs: {mcap: false}\n"
+      "navigation:\n  enabled: true\n  mode: closed_loop\n  pose_source: ground_truth\n"
+      "  goal: {x_m: 1, y_m: 0, yaw_deg: 90}\n"
+      "  stop_position_tolerance_m: 0.04\n  stop_heading_tolerance_deg: 1\n"
+      "  gauss_newton: {final_approach_radius_m: 0.2, final_time_constant_s: " +
+      time_constant_s + "}\n";
+  const scenario::Scenario s = scenario::ParseScenario(yaml, "final_turn.yaml");
+  const std::filesystem::path dir =
+      std::filesystem::path(testing::TempDir()) / ("trackbed_final_turn_" + time_constant_s);
+  std::filesystem::remove_all(dir);
+  FinalTurn turn;
+  turn.metrics = runner::RunToFolder(s, dir);
+  std::ifstream csv(dir / "navigation.csv");
+  std::string line;
+  std::getline(csv, line);  // header: t, x_m, y_m, yaw_rad, v_mps, yaw_rate_radps, ...
+  double last_rate = 0.0;
+  while (std::getline(csv, line)) {
+    std::replace(line.begin(), line.end(), ',', ' ');
+    double t = 0.0, x = 0.0, y = 0.0, yaw = 0.0, v = 0.0, rate = 0.0;
+    std::istringstream(line) >> t >> x >> y >> yaw >> v >> rate;
+    turn.overshoot_deg = std::max(turn.overshoot_deg, yaw * 180.0 / M_PI - 90.0);
+    if (yaw < M_PI / 4) continue;  // the reversals of the final turn's second half
+    if (rate * last_rate < 0.0) ++turn.reversals;
+    if (rate != 0.0) last_rate = rate;
+  }
+  return turn;
+}
+
+// The deadbeat final step, saturated at 0.5 rad/s, passes the goal's heading by over 2°
+// and reverses (the chassis goes on turning for a tenth of a second after the command
+// changes); with the final time constant (0.4 s, docs/navigation.md "Near the goal")
+// the turn slows as it nears the goal's heading and settles within the success tolerance
+// without a reversal.
+TEST(ClosedLoopNavigationTest, TheFinalTimeConstantEndsTheTurnWithoutAReversal) {
+  const FinalTurn deadbeat = RunFinalTurn("0");
+  const FinalTurn spread = RunFinalTurn("0.4");
+  std::printf("deadbeat: overshoot %.2f deg, %d reversal(s), final %.2f deg\n",
+              deadbeat.overshoot_deg, deadbeat.reversals,
+              deadbeat.metrics.navigation->final_heading_error_deg);
+  std::printf("time constant 0.4 s: overshoot %.2f deg, %d reversal(s), final %.2f deg\n",
+              spread.overshoot_deg, spread.reversals,
+              spread.metrics.navigation->final_heading_error_deg);
+  EXPECT_GT(deadbeat.overshoot_deg, 2.0);
+  EXPECT_GE(deadbeat.reversals, 1);
+  ASSERT_TRUE(spread.metrics.navigation.has_value());
+  EXPECT_EQ(spread.metrics.navigation->status, "reached");
+  EXPECT_TRUE(spread.metrics.navigation->success);
+  EXPECT_LT(spread.metrics.navigation->final_heading_error_deg, 2.0);
+  EXPECT_LT(spread.overshoot_deg, 1.0);
+  EXPECT_EQ(spread.reversals, 0);
 }
 
 }  // namespace

@@ -254,6 +254,33 @@ TEST(GaussNewtonTest, TheFinalApproachRadiusMustExceedEpsilon) {
   EXPECT_NO_THROW(options.Validate());
 }
 
+TEST(GaussNewtonTest, TheFinalTimeConstantSpreadsOnlyTheFinalStep) {
+  GaussNewtonOptions spread;
+  spread.final_time_constant_s = 0.4;
+  // Within ε, 2° short of the goal's heading: deadbeat turns the 2° in one period
+  // (0.1 s), the time constant over 0.4 s.
+  const Pose2 near{5.0, 5.0, 88 * kDeg};
+  const Pose2 target{5, 5, 90 * kDeg};
+  const GaussNewtonStep deadbeat = ComputeGaussNewtonStep({}, {}, near, target);
+  const GaussNewtonStep slow = ComputeGaussNewtonStep({}, spread, near, target);
+  ASSERT_EQ(slow.phase, GaussNewtonPhase::kFinal);
+  EXPECT_NEAR(deadbeat.twist.yaw_rate_radps, 2 * kDeg / 0.1, 1e-6);
+  EXPECT_NEAR(slow.twist.yaw_rate_radps, 2 * kDeg / 0.4, 1e-6);
+  // Far from the target (turn and drive phases) the step stays deadbeat.
+  const Pose2 far{0.0, 0.0, 0.0};
+  const Pose2 ahead{0.03, 0.0, 0.0};
+  EXPECT_EQ(ComputeGaussNewtonStep({}, spread, far, {0, 1, 0}).twist.yaw_rate_radps,
+            ComputeGaussNewtonStep({}, {}, far, {0, 1, 0}).twist.yaw_rate_radps);
+  EXPECT_EQ(ComputeGaussNewtonStep({}, spread, far, {3, 0.01, 0}).twist.v_mps,
+            ComputeGaussNewtonStep({}, {}, far, {3, 0.01, 0}).twist.v_mps);
+  // A time constant shorter than the control period is the deadbeat step.
+  spread.final_time_constant_s = 0.05;
+  EXPECT_EQ(ComputeGaussNewtonStep({}, spread, ahead, target).twist.yaw_rate_radps,
+            ComputeGaussNewtonStep({}, {}, ahead, target).twist.yaw_rate_radps);
+  spread.final_time_constant_s = -0.1;
+  EXPECT_THROW(spread.Validate(), OptionError);
+}
+
 TEST(GaussNewtonTest, TheLiteralUnitWeightDrivesWhileTurning) {
   // Our reading (gauss_newton_controller.h): diag(1, 1, 1) in the turn phase reverses
   // toward the target instead of turning in place.

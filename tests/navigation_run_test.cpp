@@ -151,6 +151,10 @@ TEST(NavigationRunTest, BadNavigationKeysNameTheKey) {
   EXPECT_NE(
       ScenarioErrorOf("navigation:\n  enabled: true\n  mode: teleport\n").find("navigation.mode"),
       std::string::npos);
+  const std::string negative_tau = ScenarioErrorOf(
+      "navigation:\n  enabled: true\n  gauss_newton: {final_time_constant_s: -0.1}\n");
+  EXPECT_NE(negative_tau.find("nav.yaml"), std::string::npos) << negative_tau;
+  EXPECT_NE(negative_tau.find("final_time_constant_s"), std::string::npos) << negative_tau;
 }
 
 TEST(NavigationRunTest, RandomFieldsComeFromTheSeed) {

@@ -52,6 +52,15 @@
 //   radius (a hysteresis on ε), ending early only when its turn is done (heading
 //   within the stop tolerance) and the position is not: a cross-track error the final
 //   phase cannot remove, which a new approach along the bearing's line does.
+//
+// * A final-phase time constant (`final_time_constant_s` > 0; off at 0, the deadbeat
+//   step). On a tracked robot the deadbeat final turn, saturated at the yaw-rate limit,
+//   reverses at full rate each time it passes the goal's heading, and the chassis goes
+//   on turning the old way for a tenth of a second or more (the tracks' lag and their
+//   shear against the ground): a limit cycle about the goal's heading. With the time
+//   constant the final phase's step is spread over max(Δt, τ) instead of Δt: a
+//   proportional law of gain 1/τ, so the rate falls as the heading nears the goal's and
+//   the turn ends without a reversal when τ is long enough against the lag.
 #pragma once
 
 #include "trackbed/common/units.h"
@@ -77,6 +86,10 @@ struct GaussNewtonOptions {
   /// it a target behind the robot is backed up to, and the final phase holds once
   /// begun (see the file comment). Larger than `epsilon_m` when set.
   double final_approach_radius_m = 0.0;
+  /// Final-phase time constant τ [s], >= 0; 0 = off (the deadbeat step over one control
+  /// period). When larger than the control period, the final phase's wheel speeds are
+  /// its step over τ (see the file comment).
+  double final_time_constant_s = 0.0;
 
   /// Throws OptionError naming the first invalid field.
   void Validate() const;
@@ -91,6 +104,7 @@ struct GaussNewtonOptions {
     a->Visit("damping", &damping);
     a->Visit("turn_position_weight", &turn_position_weight);
     a->Visit("final_approach_radius_m", &final_approach_radius_m);
+    a->Visit("final_time_constant_s", &final_time_constant_s);
   }
 };
 
