@@ -224,7 +224,9 @@ TEST_F(SdfWorldTest, RaysMeetEachSolidWhereTheWorldPutsIt) {
 TEST_F(SdfWorldTest, PhysicsSunAndGroundFrictionMapped) {
   const scenario::Scenario s = Load(kWorld);
   EXPECT_EQ(s.scene.world.physics_step_s, 0.002);
-  EXPECT_EQ(s.scene.world.gravity_mps2, 9.8);
+  EXPECT_EQ(s.scene.world.gravity_mps2, 9.8);  // the world's <gravity> wins over the origin's
+  ASSERT_TRUE(s.scene.geodetic_origin);
+  EXPECT_EQ(s.scene.geodetic_origin->latitude_deg, 45.0);
   EXPECT_NEAR(s.scene.appearance.sun_azimuth_deg, std::atan2(-0.1, 0.5) * 180 / kPi, 1e-12);
   EXPECT_NEAR(s.scene.appearance.sun_elevation_deg,
               std::asin(0.9 / std::sqrt(0.25 + 0.01 + 0.81)) * 180 / kPi, 1e-12);
@@ -249,7 +251,7 @@ TEST_F(SdfWorldTest, WhatIsNotMappedIsListed) {
     return false;
   };
   EXPECT_TRUE(listed("<plugin>") || listed("/plugin")) << ::testing::PrintToString(u);
-  EXPECT_TRUE(listed("spherical_coordinates"));
+  EXPECT_FALSE(listed("spherical_coordinates"));  // mapped: scene.geodetic_origin
   EXPECT_TRUE(listed("only the sun"));
   EXPECT_TRUE(listed("not static"));
   EXPECT_TRUE(listed("<normal_map>"));
