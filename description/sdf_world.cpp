@@ -279,11 +279,19 @@ class WorldMapper {
       out_->unmapped.push_back(ElementWhere(visual.element) + ": " + why);
       return;
     }
-    object.appearance = sim::FindObjectType(object.kind)->appearance;
     if (v.Material() != nullptr) {
-      object.albedo = MaterialAlbedo(mapping, *v.Material(),
-                                     ElementWhere(v.Element()) + " <material>", &out_->unmapped);
+      const sdf::GeometryType type = visual.geometry->Type();
+      const bool can_pattern = type == sdf::GeometryType::BOX ||
+                               type == sdf::GeometryType::CYLINDER ||
+                               type == sdf::GeometryType::SPHERE;
+      std::optional<AlbedoPattern> pattern;
+      object.albedo =
+          MaterialAlbedo(mapping, *v.Material(), ElementWhere(v.Element()) + " <material>",
+                         can_pattern ? &pattern : nullptr, &out_->unmapped);
+      if (pattern)
+        MapTexturedShape(mapping, visual, pattern->image_file, pattern->diffuse, &object);
     }
+    object.appearance = sim::FindObjectType(object.kind)->appearance;
     object.collides = match >= 0 || collision_file >= 0;
     if (match >= 0) {
       (*used)[match] = true;
