@@ -19,6 +19,7 @@
 #include <sdf/Plane.hh>
 #include <sdf/Sphere.hh>
 
+#include "textured_unit_shapes.h"
 #include "trackbed/description/description_error.h"
 
 namespace trackbed::description {
@@ -282,6 +283,32 @@ bool MapShape(const GeometryMapping& mapping, const GeometryInWorld& g, sim::Sta
       *why = "an empty or unknown geometry";
       return false;
   }
+}
+
+void MapTexturedShape(const GeometryMapping& mapping, const GeometryInWorld& g,
+                      const std::string& image_file, const std::array<double, 3>& diffuse,
+                      sim::StaticObject* o) {
+  const char* name = "sphere";
+  Eigen::Vector3d scale;
+  if (g.geometry->Type() == sdf::GeometryType::BOX) {
+    name = "box";
+    scale = ToEigen3(g.geometry->BoxShape()->Size());
+  } else if (g.geometry->Type() == sdf::GeometryType::CYLINDER) {
+    name = "cylinder";
+    const double r = g.geometry->CylinderShape()->Radius();
+    scale = {r, r, g.geometry->CylinderShape()->Length()};
+  } else {
+    scale = Eigen::Vector3d::Constant(g.geometry->SphereShape()->Radius());
+  }
+  const sim::StaticObject::Shape before = o->shape;
+  AsUnitMesh(mapping, g, name, scale, o);
+  if (before != sim::StaticObject::Shape::kMesh) {
+    // An upright box or cylinder was one of trackbed's own shapes: now a mesh object.
+    o->size_m = sim::StaticObject{}.size_m;
+    o->radius_m = sim::StaticObject{}.radius_m;
+    o->height_m = sim::StaticObject{}.height_m;
+  }
+  o->mesh.file = TexturedUnitShapeFile(mapping.shapes_dir, name, image_file, diffuse);
 }
 
 std::optional<double> FrictionMu(const sdf::ElementPtr& collision) {

@@ -3,6 +3,7 @@
 // the others, `model://` and relative mesh URIs resolved.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -44,6 +45,13 @@ bool MeshCollisionFor(const GeometryInWorld& visual, const GeometryInWorld& coll
 /// Throws DescriptionError (naming the element) for a mesh URI it cannot resolve.
 bool MapShape(const GeometryMapping& mapping, const GeometryInWorld& g, sim::StaticObject* object,
               std::string* why);
+
+/// Maps a box, cylinder or sphere `g` onto `object` as its unit shape with Gazebo's
+/// texture coordinates and the image `image_file` times `diffuse`
+/// (textured_unit_shapes.h), a mesh object whatever its pose.
+void MapTexturedShape(const GeometryMapping& mapping, const GeometryInWorld& g,
+                      const std::string& image_file, const std::array<double, 3>& diffuse,
+                      sim::StaticObject* object);
 
 /// The file a mesh geometry's URI names. Throws DescriptionError naming the element for
 /// a web URI or a `model://` URI in none of the paths.

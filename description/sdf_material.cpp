@@ -58,7 +58,9 @@ double MeanMapAlbedo(const std::string& file, const std::array<double, 3>& colou
 }  // namespace
 
 std::optional<double> MaterialAlbedo(const GeometryMapping& mapping, const sdf::Material& material,
-                                     const std::string& where, std::vector<std::string>* unmapped) {
+                                     const std::string& where,
+                                     std::optional<AlbedoPattern>* pattern,
+                                     std::vector<std::string>* unmapped) {
   const bool has_diffuse = ExplicitlySet(material.Element(), "diffuse");
   const ignition::math::Color d = material.Diffuse();
   std::array<double, 3> colour = {1.0, 1.0, 1.0};
@@ -76,9 +78,15 @@ std::optional<double> MaterialAlbedo(const GeometryMapping& mapping, const sdf::
   if (workflow != nullptr && !workflow->AlbedoMap().empty()) {
     const std::string file = ResolveUri(mapping, workflow->AlbedoMap(), material.FilePath(),
                                         where + " <pbr><albedo_map>");
-    albedo = MeanMapAlbedo(file, colour, where + " <pbr><albedo_map>");
-    unmapped->push_back(where + " <pbr><albedo_map>: drawn as its mean grey albedo " +
-                        std::to_string(*albedo) + ", not as a pattern");
+    const double mean = MeanMapAlbedo(file, colour, where + " <pbr><albedo_map>");
+    if (pattern != nullptr) {
+      *pattern = AlbedoPattern{file, colour};
+    } else {
+      albedo = mean;
+      unmapped->push_back(where + " <pbr><albedo_map>: drawn as its mean grey albedo " +
+                          std::to_string(*albedo) +
+                          ", not as a pattern (only a box's, a cylinder's and a sphere's is)");
+    }
   } else if (has_diffuse) {
     albedo =
         kLumaWeights[0] * colour[0] + kLumaWeights[1] * colour[1] + kLumaWeights[2] * colour[2];

@@ -52,7 +52,6 @@ constexpr Unmappable kUnmappable[] = {
      "<gazebo> sensor blocks, or robot.stereo and robot.range_sensor)"},
     {"population", "populations are not expanded"},
     {"road", "roads are not drawn"},
-    {"spherical_coordinates", "trackbed's world is local metres; no geodetic origin"},
     {"script", "OGRE material scripts are not read: drawn as plain_paint"},
     {"audio_source", "sound is not simulated"},
     {"projector", "projectors are not drawn"},
@@ -140,6 +139,7 @@ class WorldMapper {
   void Map(const sdf::World& world) {
     CollectUnmappable(world.Element(), &out_->unmapped);
     MapPhysics(world);
+    MapGeodeticOrigin(world);
     MapSun(world);
     for (std::uint64_t i = 0; i < world.ModelCount(); ++i) {
       const sdf::Model& m = *world.ModelByIndex(i);
@@ -157,6 +157,9 @@ class WorldMapper {
 
   void MapPhysics(const sdf::World& world) {
     if (world.PhysicsCount() > 0) out_->physics_step_s = world.PhysicsDefault()->MaxStepSize();
+    const sdf::ElementPtr gravity =
+        world.Element()->HasElement("gravity") ? world.Element()->GetElement("gravity") : nullptr;
+    out_->gravity_explicit = gravity != nullptr && gravity->GetExplicitlySetInFile();
     const ignition::math::Vector3d g = world.Gravity();
     if (g.X() == 0.0 && g.Y() == 0.0 && g.Z() < 0.0) {
       out_->gravity_mps2 = -g.Z();
@@ -166,6 +169,19 @@ class WorldMapper {
                                std::to_string(g.Z()) +
                                ") does not point along -z; trackbed's gravity does");
     }
+  }
+
+  // sdformat refuses a surface other than EARTH_WGS84 and a frame other than ENU
+  // (sdformat 12's <world_frame_orientation> knows ENU only); what it reads is mapped.
+  void MapGeodeticOrigin(const sdf::World& world) {
+    const ignition::math::SphericalCoordinates* sc = world.SphericalCoordinates();
+    if (sc == nullptr) return;
+    sim::GeodeticOrigin o;
+    o.latitude_deg = sc->LatitudeReference().Degree();
+    o.longitude_deg = sc->LongitudeReference().Degree();
+    o.elevation_m = sc->ElevationReference();
+    o.heading_deg = sc->HeadingOffset().Degree();
+    out_->geodetic_origin = o;
   }
 
   void MapSun(const sdf::World& world) {
@@ -263,11 +279,19 @@ class WorldMapper {
       out_->unmapped.push_back(ElementWhere(visual.element) + ": " + why);
       return;
     }
-    object.appearance = sim::FindObjectType(object.kind)->appearance;
     if (v.Material() != nullptr) {
-      object.albedo = MaterialAlbedo(mapping, *v.Material(),
-                                     ElementWhere(v.Element()) + " <material>", &out_->unmapped);
+      const sdf::GeometryType type = visual.geometry->Type();
+      const bool can_pattern = type == sdf::GeometryType::BOX ||
+                               type == sdf::GeometryType::CYLINDER ||
+                               type == sdf::GeometryType::SPHERE;
+      std::optional<AlbedoPattern> pattern;
+      object.albedo =
+          MaterialAlbedo(mapping, *v.Material(), ElementWhere(v.Element()) + " <material>",
+                         can_pattern ? &pattern : nullptr, &out_->unmapped);
+      if (pattern)
+        MapTexturedShape(mapping, visual, pattern->image_file, pattern->diffuse, &object);
     }
+    object.appearance = sim::FindObjectType(object.kind)->appearance;
     object.collides = match >= 0 || collision_file >= 0;
     if (match >= 0) {
       (*used)[match] = true;

@@ -8,7 +8,9 @@
 // a mapped object's Validate); a mapped value that is not finite where Validate
 // accepts the object; an albedo outside [0, 1]; a heightmap's height outside
 // [pos.z, pos.z + size.z]; a range block's beams outside [1, a million]; a
-// multicamera's baseline negative or not a number.
+// multicamera's baseline negative or not a number; a geodetic origin that passes its
+// Validate with a normal gravity outside [9.7, 9.9] m/s² or an Earth rate of another
+// magnitude than WGS 84's.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -49,6 +51,22 @@ void Sdf(const std::string& text, const std::string& shapes_dir) {
   }
   if (scene.heightmap && !(scene.heightmap->size_m.minCoeff() > 0.0)) {
     Finding(kTarget, "a heightmap mapped with a size not > 0");
+  }
+  if (scene.geodetic_origin) {
+    const trackbed::sim::GeodeticOrigin& g = *scene.geodetic_origin;
+    bool valid = true;
+    try {
+      g.Validate();
+    } catch (const trackbed::OptionError&) {
+      valid = false;  // the scenario's reader reports it, naming the key
+    }
+    if (valid && !(g.NormalGravity() >= 9.7 && g.NormalGravity() <= 9.9)) {
+      Finding(kTarget, "a geodetic origin's normal gravity " + std::to_string(g.NormalGravity()));
+    }
+    if (valid &&
+        !(std::abs(g.EarthRateInWorld().norm() - trackbed::sim::wgs84::kEarthRateRadps) < 1e-15)) {
+      Finding(kTarget, "a geodetic origin's Earth rate is not WGS 84's");
+    }
   }
   if (scene.sun_elevation_deg && !(*scene.sun_elevation_deg > 0.0)) {
     Finding(kTarget, "a sun below the horizon: " + std::to_string(*scene.sun_elevation_deg));

@@ -108,7 +108,9 @@ ImuSample Imu::Sample(double t_s, const Eigen::Matrix3d& R_world_body,
   ImuSample s;
   s.t_s = t_s;
   const Eigen::Matrix3d R_body_world = R_world_body.transpose();
-  Eigen::Vector3d rate = R_body_world * omega_world;
+  Eigen::Vector3d rate =
+      R_body_world *
+      (earth_rate_world_ ? Eigen::Vector3d(omega_world + *earth_rate_world_) : omega_world);
   Eigen::Vector3d specific_force =
       R_body_world * (accel_world + Eigen::Vector3d(0, 0, gravity_mps2_));
   if (as_built_) {

@@ -78,6 +78,9 @@ Plant BuildPlant(const scenario::Scenario& scenario, const RobotBuild& robot, bo
   p.encoders = std::make_unique<robot::SprocketEncoders>(rs.encoders);
   p.imu = std::make_unique<robot::Imu>(robot::WithImuPartResolved(rs.imu, rs.realism), gravity,
                                        split_mix::Stream(scenario.seed, 1), &robot.truth.imu);
+  if (scenario.scene.geodetic_origin) {
+    p.imu->SetEarthRate(scenario.scene.geodetic_origin->EarthRateInWorld());
+  }
   if (rs.stereo.enabled) p.camera = BuildCamera(scenario, robot, *p.world);
   if (rs.range_sensor.enabled) {
     p.range_sensor =

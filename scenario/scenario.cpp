@@ -108,6 +108,7 @@ void KnownMaterial(const std::string& field, const std::string& name,
 
 void SceneSpec::Validate() const {
   if (name.empty()) throw OptionError("name", "must not be empty");
+  if (geodetic_origin) option_check::Nested("geodetic_origin", *geodetic_origin);
   option_check::Nested("world", world);
   option_check::Nested("terrain", terrain);
   KnownMaterial("terrain.default_material", terrain.default_material, terrain);

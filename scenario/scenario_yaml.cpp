@@ -383,9 +383,10 @@ void CheckMeshes(const std::string& path, const Scenario& scenario) {
 }
 
 // The SDF world (scene.sdf) mapped into the scene once: its objects appended, its
-// physics, gravity, sun and ground friction set; `mapped` and `unmapped` recorded, so
-// that a run folder's scenario.yaml, which holds the objects, is not mapped again.
-void MapSdfWorld(const std::string& path, Scenario* scenario, DriveSource drive_source) {
+// physics, gravity, geodetic origin, sun and ground friction set; `mapped` and `unmapped` recorded,
+// so that a run folder's scenario.yaml, which holds the objects, is not mapped again.
+void MapSdfWorld(const std::string& path, Scenario* scenario, DriveSource drive_source,
+                 bool gravity_given) {
   std::optional<description::SdfWorldOptions>& sdf = scenario->scene.sdf;
   if (!sdf || sdf->mapped) return;
   description::SdfScene mapped;
@@ -397,7 +398,20 @@ void MapSdfWorld(const std::string& path, Scenario* scenario, DriveSource drive_
   SceneSpec& scene = scenario->scene;
   scene.objects.insert(scene.objects.end(), mapped.objects.begin(), mapped.objects.end());
   if (mapped.physics_step_s) scene.world.physics_step_s = *mapped.physics_step_s;
-  if (mapped.gravity_mps2) scene.world.gravity_mps2 = *mapped.gravity_mps2;
+  // The world's <gravity> as written wins; without one, a geodetic origin's normal
+  // gravity unless the scenario gives the gravity; else sdformat's default, as before.
+  if (mapped.geodetic_origin && !scene.geodetic_origin) {
+    scene.geodetic_origin = mapped.geodetic_origin;
+  } else if (mapped.geodetic_origin) {
+    mapped.unmapped.push_back(sdf->file +
+                              " <spherical_coordinates>: the scenario's scene.geodetic_origin "
+                              "is kept");
+  }
+  if (mapped.gravity_mps2 && (mapped.gravity_explicit || !scene.geodetic_origin)) {
+    scene.world.gravity_mps2 = *mapped.gravity_mps2;
+  } else if (scene.geodetic_origin && !gravity_given) {
+    scene.world.gravity_mps2 = scene.geodetic_origin->NormalGravity();
+  }
   if (mapped.sun_azimuth_deg) scene.appearance.sun_azimuth_deg = *mapped.sun_azimuth_deg;
   if (mapped.sun_elevation_deg) scene.appearance.sun_elevation_deg = *mapped.sun_elevation_deg;
   if (mapped.ground_material) scene.terrain.default_material = *mapped.ground_material;
@@ -491,8 +505,19 @@ Override ParseOverride(const std::string& key_equals_value) {
 
 std::string OverrideText(const Override& o) { return o.key + "=" + o.value; }
 
-Scenario ParseScenario(const std::string& yaml_text, const std::string& source_name,
-                       const std::vector<Override>& overrides, DriveSource drive_source) {
+namespace {
+
+// Whether the scenario's text (with its overrides) gives scene.world.gravity_mps2.
+bool GivesGravity(const Node& root) {
+  const Node* scene = root.Find("scene");
+  const Node* world = scene != nullptr && scene->IsMap() ? scene->Find("world") : nullptr;
+  return world != nullptr && world->IsMap() && world->Find("gravity_mps2") != nullptr;
+}
+
+// ParseScenario's work; `gravity_given` says whether the text gives the gravity.
+Scenario ParseScenarioKeys(const std::string& yaml_text, const std::string& source_name,
+                           const std::vector<Override>& overrides, DriveSource drive_source,
+                           bool* gravity_given) {
   Sources sources(source_name);
   Node root;
   try {
@@ -519,12 +544,25 @@ Scenario ParseScenario(const std::string& yaml_text, const std::string& source_n
   } catch (const archive::Error& e) {
     sources.Fail(e.path(), e.reason());
   }
+  *gravity_given = GivesGravity(root);
+  // A geodetic origin's normal gravity where the scenario gives none (a range error in
+  // the origin is named by Validate, which checks it before the world).
+  const std::optional<sim::GeodeticOrigin>& origin = scenario.scene.geodetic_origin;
+  if (origin && !*gravity_given) scenario.scene.world.gravity_mps2 = origin->NormalGravity();
   try {
     scenario.Validate(drive_source);
   } catch (const OptionError& e) {
     sources.Fail(KeyOfField(e.field()), e.reason());
   }
   return scenario;
+}
+
+}  // namespace
+
+Scenario ParseScenario(const std::string& yaml_text, const std::string& source_name,
+                       const std::vector<Override>& overrides, DriveSource drive_source) {
+  bool gravity_given = false;
+  return ParseScenarioKeys(yaml_text, source_name, overrides, drive_source, &gravity_given);
 }
 
 Scenario LoadScenario(const std::string& path, const std::vector<Override>& overrides,
@@ -540,7 +578,8 @@ Scenario LoadScenario(const std::string& path, const std::vector<Override>& over
   std::size_t n = 0;
   while ((n = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) text.append(buffer, n);
   if (std::ferror(file.get())) throw cannot_read(errno);
-  Scenario scenario = ParseScenario(text, path, overrides, drive_source);
+  bool gravity_given = false;
+  Scenario scenario = ParseScenarioKeys(text, path, overrides, drive_source, &gravity_given);
   // Files a scenario names are relative to the scenario file, and stored
   // absolute, so that the resolved scenario.yaml in a run folder still finds them.
   const auto resolve = [&path](const char* key, std::string* value, bool folder) {
@@ -569,7 +608,7 @@ Scenario LoadScenario(const std::string& path, const std::vector<Override>& over
       resolve(("scene.sdf.model_paths[" + std::to_string(k) + "]").c_str(), &sdf.model_paths[k],
               true);
     }
-    MapSdfWorld(path, &scenario, drive_source);
+    MapSdfWorld(path, &scenario, drive_source, gravity_given);
   }
   if (scenario.robot.description) {
     resolve("robot.description.file", &scenario.robot.description->file, false);

@@ -127,10 +127,10 @@ const char* kWorld = R"(<?xml version='1.0'?>
     </link></model>
   <model name='ball'><static>true</static><pose>-2 -3 0.4 0 0 0</pose>
     <link name='l'>
-      <visual name='v'><geometry><sphere><radius>0.4</radius></sphere></geometry>
+      <visual name='v'><geometry><ellipsoid><radii>0.4 0.4 0.4</radii></ellipsoid></geometry>
         <material><pbr><metal><albedo_map>ball_albedo.png</albedo_map>
           <normal_map>ball_normal.png</normal_map></metal></pbr></material></visual>
-      <collision name='c'><geometry><sphere><radius>0.4</radius></sphere></geometry></collision>
+      <collision name='c'><geometry><ellipsoid><radii>0.4 0.4 0.4</radii></ellipsoid></geometry></collision>
     </link></model>
   <include><uri>model://crate</uri><pose>5 3 0 0 0 0.5</pose></include>
   <model name='hill'><static>true</static><pose>1 -1 0.5 0 0 0</pose><link name='l'>
@@ -182,7 +182,8 @@ TEST_F(SdfWorldTest, EachShapeWhereTheWorldPutsIt) {
   EXPECT_NEAR(post.base_z_m, 0.0, 1e-12);
   EXPECT_EQ(post.radius_m, 0.1);
   EXPECT_EQ(post.height_m, 3.0);
-  // The ball: the unit sphere scaled by its radius, centred where the model is.
+  // The ball (an ellipsoid of equal radii): the unit sphere scaled by its radii,
+  // centred where the model is.
   const sim::StaticObject& ball = objects[3];
   EXPECT_EQ(fs::path(ball.mesh.file).filename(), "unit_sphere.ply");
   EXPECT_EQ(ball.mesh.scale, Eigen::Vector3d::Constant(0.4));
@@ -224,7 +225,9 @@ TEST_F(SdfWorldTest, RaysMeetEachSolidWhereTheWorldPutsIt) {
 TEST_F(SdfWorldTest, PhysicsSunAndGroundFrictionMapped) {
   const scenario::Scenario s = Load(kWorld);
   EXPECT_EQ(s.scene.world.physics_step_s, 0.002);
-  EXPECT_EQ(s.scene.world.gravity_mps2, 9.8);
+  EXPECT_EQ(s.scene.world.gravity_mps2, 9.8);  // the world's <gravity> wins over the origin's
+  ASSERT_TRUE(s.scene.geodetic_origin);
+  EXPECT_EQ(s.scene.geodetic_origin->latitude_deg, 45.0);
   EXPECT_NEAR(s.scene.appearance.sun_azimuth_deg, std::atan2(-0.1, 0.5) * 180 / kPi, 1e-12);
   EXPECT_NEAR(s.scene.appearance.sun_elevation_deg,
               std::asin(0.9 / std::sqrt(0.25 + 0.01 + 0.81)) * 180 / kPi, 1e-12);
@@ -249,7 +252,7 @@ TEST_F(SdfWorldTest, WhatIsNotMappedIsListed) {
     return false;
   };
   EXPECT_TRUE(listed("<plugin>") || listed("/plugin")) << ::testing::PrintToString(u);
-  EXPECT_TRUE(listed("spherical_coordinates"));
+  EXPECT_FALSE(listed("spherical_coordinates"));  // mapped: scene.geodetic_origin
   EXPECT_TRUE(listed("only the sun"));
   EXPECT_TRUE(listed("not static"));
   EXPECT_TRUE(listed("<normal_map>"));
@@ -341,7 +344,8 @@ TEST_F(SdfWorldTest, ColoursAreGreyAlbedos) {
   // The box's <diffuse> (0.8, 0.1, 0.1): Rec. 709 luma of the linear colour.
   ASSERT_TRUE(s.scene.objects[0].albedo);
   EXPECT_NEAR(*s.scene.objects[0].albedo, 0.2126 * 0.8 + 0.7152 * 0.1 + 0.0722 * 0.1, 1e-7);
-  // The ball's albedo map: the mean of its texels' luma, sRGB decoded.
+  // The ball's albedo map (an ellipsoid's, which Gazebo's mesh gives no texture
+  // coordinates): the mean of its texels' luma, sRGB decoded.
   const auto linear = [](double e) {
     return e <= 0.04045 ? e / 12.92 : std::pow((e + 0.055) / 1.055, 2.4);
   };

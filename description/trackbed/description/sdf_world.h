@@ -1,7 +1,8 @@
 // SDF worlds read through sdformat (Gazebo's own parser) and mapped onto trackbed's
 // scene: static models' boxes, cylinders, spheres, ellipsoids and meshes become scene
 // objects, a horizontal ground plane's friction picks the terrain's material, the
-// physics step, gravity and the sun set the world's and the light's keys. What cannot
+// physics step, gravity, the geodetic origin and the sun set the world's and the light's
+// keys. What cannot
 // be mapped is listed, never dropped in silence (docs/gazebo_users.md).
 #pragma once
 
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "trackbed/description/description_error.h"
+#include "trackbed/sim/geodetic_origin.h"
 #include "trackbed/sim/static_object.h"
 #include "trackbed/sim/terrain.h"
 
@@ -50,8 +52,14 @@ struct SdfScene {
   std::vector<sim::StaticObject> objects;
   /// `<physics><max_step_size>` [s], if the world has a physics block.
   std::optional<double> physics_step_s;
-  /// The magnitude of `<gravity>` [m/s²] when it points along −z.
+  /// The magnitude of `<gravity>` [m/s²] when it points along −z (sdformat's default
+  /// 9.8 where the world gives none).
   std::optional<double> gravity_mps2;
+  /// Whether the world's file gives `<gravity>` (else gravity_mps2 is sdformat's default).
+  bool gravity_explicit = false;
+  /// `<spherical_coordinates>`: the world's geodetic origin (WGS 84, East–North–Up
+  /// turned by `<heading_deg>`; sdformat refuses other surfaces and frames).
+  std::optional<sim::GeodeticOrigin> geodetic_origin;
   /// Where the first directional light comes from (the sun): azimuth counter-clockwise
   /// from +x and elevation [deg].
   std::optional<double> sun_azimuth_deg, sun_elevation_deg;

@@ -99,6 +99,11 @@ class Imu {
 
   const ImuOptions& options() const { return options_; }
 
+  /// The Earth's rotation in the world's axes [rad/s] (sim::GeodeticOrigin::
+  /// EarthRateInWorld): the gyro senses the body's rate against an inertial frame,
+  /// the world's rate plus this. Not set: a world that does not turn.
+  void SetEarthRate(const Eigen::Vector3d& omega_ie_world) { earth_rate_world_ = omega_ie_world; }
+
  private:
   // One first-order Gauss–Markov term per axis, discretised exactly at the sampling
   // period: b ← φ·b + σ·√(1 − φ²)·w, φ = exp(−dt/τ), started from its stationary law.
@@ -119,6 +124,7 @@ class Imu {
   Eigen::Vector3d gyro_bias_, accel_bias_;  // turn-on bias plus the random walk
   std::vector<MarkovTerm> gyro_markov_, accel_markov_;
   std::optional<calibration::ImuCalibration> as_built_;  // none: perfect and aligned
+  std::optional<Eigen::Vector3d> earth_rate_world_;      // none: the world does not turn
 };
 
 }  // namespace trackbed::robot

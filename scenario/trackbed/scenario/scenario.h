@@ -32,6 +32,7 @@
 #include "trackbed/robot/stereo_rig.h"
 #include "trackbed/robot/tracked_vehicle.h"
 #include "trackbed/sim/corridor_fittings.h"
+#include "trackbed/sim/geodetic_origin.h"
 #include "trackbed/sim/object_scatter.h"
 #include "trackbed/sim/occluder.h"
 #include "trackbed/sim/static_object.h"
@@ -80,6 +81,10 @@ struct SceneSpec {
   /// (docs/gazebo_users.md): its objects join `objects`, its physics, gravity, sun
   /// and ground friction set `world`, `appearance` and `terrain.default_material`.
   std::optional<description::SdfWorldOptions> sdf;
+  /// Where on the Earth the world's origin lies (sim/geodetic_origin.h): the IMU's gyro
+  /// senses the Earth's rotation, and its normal gravity is `world.gravity_mps2` where
+  /// that key is not given. Absent: a world that does not turn, gravity as given.
+  std::optional<sim::GeodeticOrigin> geodetic_origin;
 
   void Validate() const;
 
@@ -96,6 +101,7 @@ struct SceneSpec {
     a->Visit("appearance", &appearance);
     a->Visit("occluders", &occluders);
     a->Visit("sdf", &sdf, archive::kOmitEmpty);
+    a->Visit("geodetic_origin", &geodetic_origin, archive::kOmitEmpty);
   }
 };
 
