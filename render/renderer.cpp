@@ -25,6 +25,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "edge_antialiasing.h"
 #include "gl_primitives.h"
 #include "ground_tiling.h"
 #include "leaf_crown_drawing.h"
@@ -140,8 +141,8 @@ struct Renderer::Gl {
   // object (one 8-bit channel and depth) is what is drawn and read, so the
   // shaders write one byte per pixel and OSMesa copies nothing at glFinish.
   std::vector<std::uint8_t> osmesa_pixel = std::vector<std::uint8_t>(4, 0);
-  GLuint framebuffer = 0, color_buffer = 0, depth_buffer = 0;
-  std::vector<std::uint8_t> grey;  // read back, bottom row first
+  std::unique_ptr<EdgeAntialiasing> target;  // the frame buffers drawn and read
+  std::vector<std::uint8_t> grey;            // read back, bottom row first
   std::vector<float> depth;
   std::map<std::string, GlTexture> textures;
   std::map<std::string, GlTexture> tiled_textures;  // grounds of the detailed look
@@ -171,13 +172,14 @@ struct Renderer::Gl {
     if (!OSMesaMakeCurrent(context, osmesa_pixel.data(), GL_UNSIGNED_BYTE, 1, 1)) {
       throw std::runtime_error("Renderer: OSMesaMakeCurrent failed");
     }
-    if (framebuffer != 0) glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    if (target) target->BindForDrawing();
   }
 
   // The frame's grey levels and depths, top row first. Reading the frame buffer object
   // waits for llvmpipe to finish the frame.
   void ReadBack(GrayImage* gray_out, DepthImage* depth_out) {
     const int W = width, H = height;
+    target->Resolve();
     if (gray_out) {
       glPixelStorei(GL_PACK_ALIGNMENT, 1);
       glReadPixels(0, 0, W, H, GL_RED, GL_UNSIGNED_BYTE, grey.data());
@@ -202,22 +204,6 @@ struct Renderer::Gl {
           dst[u] = static_cast<float>(DepthFromBuffer(src[u], near_m, far_m));
         }
       }
-    }
-  }
-
-  void CreateFramebuffer() {
-    glGenFramebuffers(1, &framebuffer);
-    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
-    glGenRenderbuffers(1, &color_buffer);
-    glBindRenderbuffer(GL_RENDERBUFFER, color_buffer);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_R8, width, height);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color_buffer);
-    glGenRenderbuffers(1, &depth_buffer);
-    glBindRenderbuffer(GL_RENDERBUFFER, depth_buffer);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_buffer);
-    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-      throw std::runtime_error("Renderer: the frame buffer object is incomplete");
     }
   }
 
@@ -400,7 +386,8 @@ struct Renderer::Gl {
   // blended over what is behind by the fraction of each pixel inside; then their depth
   // where more than half inside (surface_program.h).
   void DrawOutlineFringes(const std::vector<std::pair<double, int>>& order) {
-    glDisable(GL_CULL_FACE);  // the bands' winding follows the view
+    glDisable(GL_CULL_FACE);    // the bands' winding follows the view
+    glDisable(GL_MULTISAMPLE);  // their coverage is computed: every sample as the centre
     program->Use(SurfaceProgram::Kind::kOutlineFringe);
     glEnable(GL_BLEND);
     glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
@@ -422,6 +409,7 @@ struct Renderer::Gl {
     }
     if (leaf_crowns) leaf_crowns->Draw(LeafCrowns::Pass::kDepth, order, drawables);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glEnable(GL_MULTISAMPLE);
     glEnable(GL_CULL_FACE);
   }
 
@@ -667,7 +655,7 @@ struct Renderer::Gl {
 
 Renderer::Renderer(const sim::World& world, const SceneAppearance& appearance,
                    std::vector<sim::OccluderSpec> occluders, std::uint64_t seed, int width_px,
-                   int height_px, double near_m, double far_m)
+                   int height_px, double near_m, double far_m, int edge_samples)
     : gl_(std::make_unique<Gl>()) {
   appearance.Validate();
   KeepFreedMemory();
@@ -694,7 +682,7 @@ Renderer::Renderer(const sim::World& world, const SceneAppearance& appearance,
   g.context = OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr);
   if (!g.context) throw std::runtime_error("Renderer: OSMesaCreateContextExt failed");
   g.MakeCurrent();
-  g.CreateFramebuffer();
+  g.target = std::make_unique<EdgeAntialiasing>(width_px, height_px, edge_samples);
 
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);

@@ -38,8 +38,9 @@ StereoCamera::StereoCamera(const StereoRigOptions& options,
       render::RenderCameraFor(rig_.right_intrinsics(), margin), o.supersampling);
   const int w = std::max(left.width_px, right.width_px);
   const int h = std::max(left.height_px, right.height_px);
-  renderer_ = std::make_unique<render::Renderer>(world, appearance, std::move(occluders),
-                                                 seeds.scene, w, h, o.near_m, o.far_m);
+  renderer_ =
+      std::make_unique<render::Renderer>(world, appearance, std::move(occluders), seeds.scene, w, h,
+                                         o.near_m, o.far_m, o.edge_antialiasing_samples);
   const double line_delay = *o.rolling_shutter.line_delay_s;
   exposures_[0] = std::make_unique<render::CameraExposure>(
       rig_.intrinsics(), render::GrownTo(left, w, h), o.exposure_samples, line_delay);

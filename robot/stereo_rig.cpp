@@ -82,6 +82,11 @@ void StereoRigOptions::Validate() const {
     throw OptionError("supersampling",
                       "must be in [1, 4] (got " + std::to_string(supersampling) + ")");
   }
+  if (edge_antialiasing_samples != 1 && edge_antialiasing_samples != 4) {
+    throw OptionError("edge_antialiasing_samples",
+                      "must be 1 (off) or 4, the sample counts the renderer draws (got " +
+                          std::to_string(edge_antialiasing_samples) + ")");
+  }
   photometric.Validate();
   if (auto_exposure.enabled) {
     auto_exposure.Validate();

@@ -351,6 +351,9 @@ TEST(ScenarioYamlTest, OutOfRangeValueReportsFullDottedKey) {
             "test.yaml: robot.stereo.exposure_time_s: must be in [0, 0.1] (got 0.2)");
   EXPECT_EQ(ErrorOf(m + "robot: {stereo: {exposure_samples: 0}}\n"),
             "test.yaml: robot.stereo.exposure_samples: must be in [1, 64] (got 0)");
+  EXPECT_EQ(ErrorOf(m + "robot: {stereo: {edge_antialiasing_samples: 2}}\n"),
+            "test.yaml: robot.stereo.edge_antialiasing_samples: must be 1 (off) or 4, the sample "
+            "counts the renderer draws (got 2)");
   EXPECT_EQ(ErrorOf(m + "outputs: {save_images: png}\n"),
             "test.yaml: outputs.save_images: must be none or kitti (got 'png')");
   EXPECT_EQ(ErrorOf("drive: {waypoints: [[0, 0]]}\n"),

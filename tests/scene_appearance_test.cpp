@@ -9,22 +9,47 @@
 
 #include "trackbed/perception/harris_corners.h"
 #include "trackbed/render/renderer.h"
+#include "trackbed/render/sensor_warp.h"
 #include "trackbed/robot/stereo_rig.h"
 #include "trackbed/scenario/scenario_yaml.h"
 
 namespace trackbed {
 namespace {
 
-// Mean Harris corners per left image over `views` poses spread along the scene's route.
-double MeanCornersAlongRoute(const std::string& file, int views, double min_response) {
+// Each f x f block of `im` averaged into one pixel, rounded.
+GrayImage BlockMeans(const GrayImage& im, int f) {
+  if (f == 1) return im;
+  GrayImage out;
+  out.width = im.width / f;
+  out.height = im.height / f;
+  out.pixels.resize(static_cast<std::size_t>(out.width) * out.height);
+  for (int v = 0; v < out.height; ++v) {
+    for (int u = 0; u < out.width; ++u) {
+      int sum = 0;
+      for (int j = 0; j < f; ++j) {
+        for (int i = 0; i < f; ++i)
+          sum += im.pixels[static_cast<std::size_t>(f * v + j) * im.width + f * u + i];
+      }
+      out.pixels[static_cast<std::size_t>(v) * out.width + u] =
+          static_cast<std::uint8_t>((sum + f * f / 2) / (f * f));
+    }
+  }
+  return out;
+}
+
+// Mean Harris corners per left image over `views` poses spread along the scene's route,
+// its edges drawn at `edge_samples` a pixel, `supersampling` x `supersampling` render
+// pixels averaged into each image pixel.
+double MeanCornersAlongRoute(const std::string& file, int views, double min_response,
+                             int edge_samples = 1, int supersampling = 1) {
   const scenario::Scenario s =
       scenario::LoadScenario(std::string(TRACKBED_SOURCE_DIR) + "/scenes/" + file);
   const sim::World world(s.scene.world, sim::Terrain(s.scene.terrain, s.seed),
                          scenario::SceneObjects(s));
   const robot::StereoRig rig(s.robot.stereo);
-  render::Renderer renderer(world, s.scene.appearance, s.scene.occluders, s.seed,
-                            s.robot.stereo.width_px, s.robot.stereo.height_px,
-                            s.robot.stereo.near_m, s.robot.stereo.far_m);
+  const geometry::PinholeCamera K = render::Supersampled(rig.intrinsics(), supersampling);
+  render::Renderer renderer(world, s.scene.appearance, s.scene.occluders, s.seed, K.width_px,
+                            K.height_px, s.robot.stereo.near_m, s.robot.stereo.far_m, edge_samples);
   const std::vector<Eigen::Vector2d>& w = s.drive.waypoints;
   std::vector<double> cumulative{0.0};
   for (std::size_t k = 1; k < w.size(); ++k) {
@@ -45,8 +70,9 @@ double MeanCornersAlongRoute(const std::string& file, int views, double min_resp
             .toRotationMatrix();
     T_world_body.translation() =
         Eigen::Vector3d(p.x(), p.y(), world.terrain().Height(p.x(), p.y()) + 0.2);
-    GrayImage image;
-    renderer.Render(rig.intrinsics(), T_world_body * rig.T_body_left(), 0.0, &image, nullptr);
+    GrayImage drawn, image;
+    renderer.Render(K, T_world_body * rig.T_body_left(), 0.0, &drawn, nullptr);
+    image = BlockMeans(drawn, supersampling);
     robot::ApplySensorModel(s.robot.stereo.exposure, s.robot.stereo.noise_std, s.seed,
                             static_cast<std::uint64_t>(i), 0, &image);
     const cv::Mat mat(image.height, image.width, CV_8UC1, image.pixels.data());
@@ -86,6 +112,23 @@ TEST(SceneAppearanceTest, FittedCorridorHasMoreCornersAndStaysALowFeatureScene) 
   RecordProperty("fitted_corridor_corners", std::to_string(fitted));
   EXPECT_GT(fitted, corridor);
   EXPECT_GE(outdoor, 5.0 * fitted);
+}
+
+TEST(SceneAppearanceTest, AntialiasedEdgesBringTheFittedCorridorsCornersToTheAreaMeans) {
+  // The fittings' edges at one sample a pixel are staircases whose steps are corners;
+  // a camera pixel integrates over its area. With four samples a pixel at the edges the
+  // count is nearer that of the 2 x 2 supersampled views (each pixel the mean of four
+  // render pixels) than the one-sample count is.
+  const double min_response = 1e-6;
+  const double one = MeanCornersAlongRoute("corridor_fitted.yaml", 12, min_response, 1, 1);
+  const double four = MeanCornersAlongRoute("corridor_fitted.yaml", 12, min_response, 4, 1);
+  const double area = MeanCornersAlongRoute("corridor_fitted.yaml", 12, min_response, 1, 2);
+  std::printf(
+      "Harris corners per 640x480 left image of the fitted corridor (min_response %g): "
+      "one sample a pixel %.1f, four at edges %.1f, 2 x 2 supersampled %.1f\n",
+      min_response, one, four, area);
+  RecordProperty("fitted_corridor_corners_edge_antialiased", std::to_string(four));
+  EXPECT_LT(std::abs(four - area), std::abs(one - area));
 }
 
 }  // namespace

@@ -110,11 +110,13 @@ struct SceneAppearance {
 class Renderer {
  public:
   /// Builds the context, the textures and the geometry for images of
-  /// `width_px` × `height_px`, depth clipped to [near_m, far_m]. Throws
+  /// `width_px` × `height_px`, depth clipped to [near_m, far_m], geometry's edges
+  /// drawn at `edge_samples` samples a pixel (1 or 4; docs/rendering.md, "Antialiased
+  /// edges"). Throws std::invalid_argument for bad sizes or sample counts,
   /// std::runtime_error when OSMesa cannot make a context.
   Renderer(const sim::World& world, const SceneAppearance& appearance,
            std::vector<sim::OccluderSpec> occluders, std::uint64_t seed, int width_px,
-           int height_px, double near_m, double far_m);
+           int height_px, double near_m, double far_m, int edge_samples = 1);
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;

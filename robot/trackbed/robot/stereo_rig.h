@@ -82,6 +82,11 @@ struct StereoRigOptions {
   /// the mean over its area instead of one point of the scene (antialiasing), at
   /// `supersampling`² times the pixels to draw (docs/camera_model.md).
   int supersampling = 1;
+  /// Samples per render pixel at the edges of drawn geometry, 1 or 4: with 4 each pixel
+  /// an edge crosses shows the mean of its four samples, the light of both sides by
+  /// about the fraction each covers, as a pixel integrates light over its area
+  /// (docs/rendering.md, "Antialiased edges"); 1 draws one sample at the centre.
+  int edge_antialiasing_samples = 1;
   /// Camera faults: [start, duration] pairs [s] during which both cameras deliver black
   /// frames (a covered lens, a dropped link), for fault tests.
   std::vector<Eigen::Vector2d> blackouts_s;
@@ -117,6 +122,7 @@ struct StereoRigOptions {
     a->Visit("exposure_samples", &exposure_samples);
     a->Visit("blackouts_s", &blackouts_s);
     a->Visit("supersampling", &supersampling);
+    a->Visit("edge_antialiasing_samples", &edge_antialiasing_samples);
     a->Visit("distortion", &distortion, archive::kOmitEmpty);
     a->Visit("rolling_shutter", &rolling_shutter);
     a->Visit("photometric", &photometric);
