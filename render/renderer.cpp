@@ -28,6 +28,7 @@
 #include "gl_primitives.h"
 #include "ground_tiling.h"
 #include "leaf_crown_drawing.h"
+#include "track_mark_drawing.h"
 #include "luminaire.h"
 #include "mesh_surfaces.h"
 #include "object_albedo.h"
@@ -872,6 +873,7 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
   glDisableClientState(GL_VERTEX_ARRAY);
   glDisableClientState(GL_NORMAL_ARRAY);
   glDisableClientState(GL_TEXTURE_COORD_ARRAY);
+  if (track_marks_) track_marks_->Draw(T_world_camera.translation(), sun_world, g.appearance.ambient, g.appearance.diffuse);
   if (g.leaf_crowns) g.leaf_crowns->Begin(view, sun_world, g.lit ? g.exposure : 1.0);
   if (g.leaf_crowns) g.leaf_crowns->Draw(LeafCrowns::Pass::kCore, order, g.drawables);
   g.program->Use(SurfaceProgram::Kind::kIsotropic);

@@ -191,7 +191,8 @@ void ClosedLoop::Impl::Start() {
   }
   observers_ = TimedObservers(observers, &times_.io_s);
   Timed(&times_.setup_s, [&] {
-    plant_.emplace(BuildPlant(scenario_, robot_, scenario_.CarriedOnPosePath(drive_source())));
+    plant_.emplace(BuildPlant(scenario_, robot_, scenario_.CarriedOnPosePath(drive_source()),
+                              options_.track_marks));
     const scenario::RobotSpec& rs = scenario_.robot;
     metrics_ = std::make_unique<MetricsAccumulator>(
         rs.vehicle.sprocket_radius_m, rs.vehicle.track_gauge_m, rs.encoders.ticks_per_rev);
