@@ -519,6 +519,14 @@ RunMetrics ClosedLoop::Impl::Finish() {
   finished_ = true;
   done_ = true;
   RunMetrics m = Metrics();
+  if (const sim::TrackMarks* marks = plant_->track_marks.get()) {
+    m.track_marks.emplace();
+    for (int side = 0; side < 2; ++side) {
+      m.track_marks->points_held += marks->size(side);
+      m.track_marks->points_recorded += marks->recorded(side);
+    }
+    m.track_marks->bound_mb = static_cast<double>(marks->capacity_bytes()) / (1 << 20);
+  }
   ReleaseSimulation();  // before the plots, so their memory does not add to the world's
   if (folder_) folder_->Close(scenario_, m);
   return m;

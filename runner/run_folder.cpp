@@ -413,6 +413,11 @@ std::string MetricsJson(const RunMetrics& m) {
                  {"io_s", m.io_wall_s},
                  {"setup_s", m.setup_wall_s}};
   j["memory"] = {{"peak_rss_mb", m.peak_rss_mb}};
+  if (m.track_marks) {
+    j["memory"]["track_marks_bound_mb"] = m.track_marks->bound_mb;
+    j["track_marks"] = {{"points_held", m.track_marks->points_held},
+                        {"points_recorded", m.track_marks->points_recorded}};
+  }
   if (m.teach_repeat) {
     const TeachRepeatMetrics& t = *m.teach_repeat;
     j["teach_repeat"] = {{"method", t.method},
