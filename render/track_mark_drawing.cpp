@@ -2,11 +2,9 @@
 #include "track_mark_drawing.h"
 
 #include <cmath>
-#include <memory>
 #include <stdexcept>
 
 #include "gl_shader.h"
-#include "trackbed/render/renderer.h"
 
 namespace trackbed::render {
 namespace {
@@ -113,9 +111,9 @@ void AddCorner(const sim::TrackMarkPoint& p, double base_travel_m, double pitch_
   const double reach = half + p.depth_m / std::tan(kReposeAngleRad) + kMarginM;
   const Eigen::Vector3d across(-std::sin(p.heading_rad), std::cos(p.heading_rad), 0.0);
   const Eigen::Vector3d q = p.p_world + side * reach * across;
-  strip->position.insert(strip->position.end(),
-                         {static_cast<float>(q.x()), static_cast<float>(q.y()),
-                          static_cast<float>(q.z())});
+  strip->position.insert(
+      strip->position.end(),
+      {static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z())});
   strip->mark.insert(strip->mark.end(),
                      {static_cast<float>((p.travel_m - base_travel_m) / pitch_m),
                       static_cast<float>(side * reach), p.depth_m, static_cast<float>(half)});
@@ -216,11 +214,6 @@ void TrackMarkDrawing::Draw(const Eigen::Vector3d& camera_world, const Eigen::Ve
   glDisableClientState(GL_VERTEX_ARRAY);
   glUseProgram(static_cast<GLuint>(previous));
   glPopAttrib();
-}
-
-// The renderer's entry, beside the drawing it makes (renderer.h).
-void Renderer::SetTrackMarks(const sim::TrackMarks* marks) {
-  track_marks_ = marks ? std::make_unique<TrackMarkDrawing>(marks) : nullptr;
 }
 
 }  // namespace trackbed::render

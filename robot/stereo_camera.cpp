@@ -59,9 +59,7 @@ void StereoCamera::SetBodyShape(std::vector<render::ShadowBox> boxes_body) {
   renderer_->SetRobotShape(std::move(boxes_body));
 }
 
-void StereoCamera::SetTrackMarks(const sim::TrackMarks* marks) {
-  renderer_->SetTrackMarks(marks);
-}
+void StereoCamera::SetTrackMarks(const sim::TrackMarks* marks) { renderer_->SetTrackMarks(marks); }
 
 StereoCapture StereoCamera::Capture(double t_s, const render::BodyMotion& body, GrayImage* left,
                                     GrayImage* right) {

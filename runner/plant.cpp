@@ -82,7 +82,8 @@ Plant BuildPlant(const scenario::Scenario& scenario, const RobotBuild& robot, bo
   if (rs.stereo.enabled) p.camera = BuildCamera(scenario, robot, *p.world);
   const std::optional<sim::TrackMarkOptions>& marks = scenario.scene.appearance.track_marks;
   if (marks && !pose_path) {
-    p.track_marks = track_marks ? std::move(track_marks) : std::make_shared<sim::TrackMarks>(*marks);
+    p.track_marks =
+        track_marks ? std::move(track_marks) : std::make_shared<sim::TrackMarks>(*marks);
     static_cast<robot::TrackedVehicle*>(p.vehicle.get())->SetTrackMarks(p.track_marks.get());
     if (p.camera) p.camera->SetTrackMarks(p.track_marks.get());
   }

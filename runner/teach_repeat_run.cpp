@@ -315,8 +315,7 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
     track_marks = std::make_shared<sim::TrackMarks>(*scenario.scene.appearance.track_marks);
   }
   if (tr.map.empty()) {
-    map = Teach(scenario, robot, dir / "teach", dir / "teach_map", &taught, observers,
-                track_marks);
+    map = Teach(scenario, robot, dir / "teach", dir / "teach_map", &taught, observers, track_marks);
     teach_repeat::SaveTeachMap(map, (dir / "teach_map").string());
     // Repeated from the saved map as a map given by teach_repeat.map would be: its key
     // images and features read milestone by milestone.

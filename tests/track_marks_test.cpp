@@ -42,9 +42,9 @@ TEST(TrackMarksTest, TheRecordStaysWithinItsCapacityOnALongDrive) {
     // The points held are the newest, oldest first, 2 cm apart.
     const sim::TrackMarkPoint& last = marks.point(side, 999);
     const double a_end = (steps - 1) * step_m / radius;
-    EXPECT_LT(std::abs(std::atan2(last.p_world.y(), last.p_world.x()) -
-                       std::remainder(a_end, 2 * M_PI)),
-              0.03 / radius);
+    EXPECT_LT(
+        std::abs(std::atan2(last.p_world.y(), last.p_world.x()) - std::remainder(a_end, 2 * M_PI)),
+        0.03 / radius);
     for (std::size_t i = 1; i < 1000; ++i) {
       const double gap = (marks.point(side, i).p_world - marks.point(side, i - 1).p_world).norm();
       EXPECT_NEAR(gap, o.spacing_m, 0.0011) << i;
@@ -153,8 +153,8 @@ TEST(TrackMarksTest, MarksAreDrawnInsideTheProjectedRutOnlyAndDarkenIt) {
           T_wc.linear() * Eigen::Vector3d((u - K.cx) / K.fx, (v - K.cy) / K.fy, 1.0);
       if (ray.z() >= -1e-9) continue;
       const Eigen::Vector3d p = T_wc.translation() - ray * (T_wc.translation().z() / ray.z());
-      const bool in_strip = p.x() > -pixel_m && p.x() < 2.0 + pixel_m &&
-                            std::abs(p.y()) < reach + pixel_m;
+      const bool in_strip =
+          p.x() > -pixel_m && p.x() < 2.0 + pixel_m && std::abs(p.y()) < reach + pixel_m;
       const bool changed = on.at(u, v) != off.at(u, v);
       if (!in_strip && changed) ++outside_changed;
       inside += in_strip && changed;

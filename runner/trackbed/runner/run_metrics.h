@@ -1,8 +1,8 @@
 // Per-run figures scored against ground truth, accumulated sample by sample.
 #pragma once
 
-#include <map>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
