@@ -70,6 +70,7 @@ TEST(TrackMarksTest, RigidGroundEndsARut) {
 // The vehicle driving 4 s at 0.4 m/s on `material`; its marks when `record`.
 struct Drive {
   Eigen::Isometry3d T_world_body;
+  sim::TrackMarks marks{sim::TrackMarkOptions{}};
   std::size_t points[2] = {0, 0};
   double max_depth_m = 0.0;
 };
@@ -89,6 +90,7 @@ Drive DriveOn(const std::string& material, bool record) {
   }
   Drive d;
   d.T_world_body = vehicle.chassis().T_world_body;
+  d.marks = marks;
   for (int side = 0; side < 2; ++side) {
     d.points[side] = marks.size(side);
     for (std::size_t i = 0; i < marks.size(side); ++i) {
@@ -181,6 +183,49 @@ TEST(TrackMarksTest, MarksAreDrawnInsideTheProjectedRutOnlyAndDarkenIt) {
   marked.SetTrackMarks(&empty);
   marked.Render(K, T_wc, 0.0, &again, nullptr);
   EXPECT_EQ(again.pixels, off.pixels);
+}
+
+TEST(TrackMarksTest, TheCameraSeesTheVehiclesRutsOnSandBehindIt) {
+  const Drive sand = DriveOn("dry_sand", true);
+  sim::TerrainOptions t;
+  t.extent_m = {-2, -3, 6, 3};
+  t.cell_size_m = 0.1;
+  t.default_material = "dry_sand";
+  const sim::World world(sim::WorldOptions{}, sim::Terrain(t, 1), {});
+  const geometry::PinholeCamera K =
+      geometry::PinholeCamera::FromFieldOfView(640, 480, 80.0 * M_PI / 180.0);
+  // The robot's camera's height, 0.8 m behind where the vehicle started, looking along
+  // its ruts.
+  const Eigen::Vector3d eye(-0.8, 0.0, 0.5), target(1.5, 0.0, 0.0);
+  const Eigen::Isometry3d T_wc = render::test::Looking(eye, target - eye);
+  render::SceneAppearance a = Sunlit();
+  a.ground_look = render::GroundLook::kDetailed;
+  render::Renderer r(world, a, {}, 5, 640, 480, 0.05, 60.0);
+  GrayImage on, off;
+  r.Render(K, T_wc, 0.0, &off, nullptr);
+  r.SetTrackMarks(&sand.marks);
+  r.Render(K, T_wc, 0.0, &on, nullptr);
+  // Every changed pixel sees the ground within the ruts' strips (|y| about the tracks'
+  // centrelines at ±0.25 m, within half the width, the walls and the margin).
+  int changed = 0, outside = 0;
+  double darkening = 0.0;
+  for (int v = 0; v < K.height_px; ++v) {
+    for (int u = 0; u < K.width_px; ++u) {
+      if (on.at(u, v) == off.at(u, v)) continue;
+      ++changed;
+      darkening += off.at(u, v) - on.at(u, v);
+      const Eigen::Vector3d ray =
+          T_wc.linear() * Eigen::Vector3d((u - K.cx) / K.fx, (v - K.cy) / K.fy, 1.0);
+      const Eigen::Vector3d p = T_wc.translation() - ray * (T_wc.translation().z() / ray.z());
+      outside +=
+          std::abs(std::abs(p.y()) - 0.25) > 0.05 + 0.03 / std::tan(34.0 * M_PI / 180.0) + 0.02;
+    }
+  }
+  std::printf("changed %d pixels (%d outside the strips), darker by %.2f grey on average\n",
+              changed, outside, darkening / std::max(changed, 1));
+  EXPECT_GT(changed, 5000);
+  EXPECT_EQ(outside, 0);
+  EXPECT_GT(darkening / changed, 1.0);
 }
 
 // The message ParseScenario throws for `text` (empty when it does not throw).
