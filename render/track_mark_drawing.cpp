@@ -13,7 +13,7 @@ namespace {
 // of its distance, so that the strip passes the depth test over the ground drawn at a
 // coarser level than the full grid (docs/rendering.md): the marks are drawn, not
 // placed in the depth buffer.
-const char* kVertex = R"(#version 130
+const char* kTrackMarkVertex = R"(#version 130
 uniform vec3 camera_world;
 in vec4 mark;
 in vec3 across;
@@ -36,7 +36,7 @@ void main() {
 // mean over the pixel's extent along and across (|d/dx| + |d/dy| of each coordinate) in
 // closed form from each piecewise-constant profile's integral, so the pattern does not
 // alias. The output is half the factor: the blend doubles it (dst × src × 2).
-const char* kFragment = R"(#version 130
+const char* kTrackMarkFragment = R"(#version 130
 uniform vec3 sun;
 uniform float ambient;
 uniform float diffuse;
@@ -45,8 +45,8 @@ uniform float grouser_m;
 in vec4 mark_v;  // grouser phase [pitches], across [m], rut depth [m], half width [m]
 in vec3 across_v;
 const float tan_repose = )"
-                        "0.6745085168424265"
-                        R"(;
+                                 "0.6745085168424265"
+                                 R"(;
 float Light(vec3 n, float sky) { return ambient * sky + diffuse * max(dot(n, sun), 0.0); }
 // The integral from 0 to x of one pitch's profile repeated: piece k covers [e[k], e[k+1]).
 float AlongIntegral(float x, vec4 e, vec4 v) {
@@ -100,15 +100,15 @@ void main() {
 )";
 
 // Beyond this the marks are not drawn [m]: a rut 10 cm wide is under 2 px there.
-constexpr double kReachM = 30.0;
+constexpr double kTrackMarkReachM = 30.0;
 // The strip reaches this far beyond the rut's walls [m], so that the pixels beside them
 // take their share of the wall.
-constexpr double kMarginM = 0.01;
+constexpr double kTrackMarkMarginM = 0.01;
 
-void AddCorner(const sim::TrackMarkPoint& p, double base_travel_m, double pitch_m, double side,
-               TrackMarkStrip* strip) {
+void AddTrackMarkCorner(const sim::TrackMarkPoint& p, double base_travel_m, double pitch_m,
+                        double side, TrackMarkStrip* strip) {
   const double half = 0.5 * p.width_m;
-  const double reach = half + p.depth_m / std::tan(kReposeAngleRad) + kMarginM;
+  const double reach = half + p.depth_m / std::tan(kReposeAngleRad) + kTrackMarkMarginM;
   const Eigen::Vector3d across(-std::sin(p.heading_rad), std::cos(p.heading_rad), 0.0);
   const Eigen::Vector3d q = p.p_world + side * reach * across;
   strip->position.insert(
@@ -142,21 +142,22 @@ TrackMarkStrip BuildTrackMarkStrip(const sim::TrackMarks& marks,
       const double base = std::floor(a.travel_m / pitch) * pitch;
       // Two triangles, counter-clockwise from above: a right, b right, b left; a right,
       // b left, a left.
-      AddCorner(a, base, pitch, -1.0, &strip);
-      AddCorner(b, base, pitch, -1.0, &strip);
-      AddCorner(b, base, pitch, 1.0, &strip);
-      AddCorner(a, base, pitch, -1.0, &strip);
-      AddCorner(b, base, pitch, 1.0, &strip);
-      AddCorner(a, base, pitch, 1.0, &strip);
+      AddTrackMarkCorner(a, base, pitch, -1.0, &strip);
+      AddTrackMarkCorner(b, base, pitch, -1.0, &strip);
+      AddTrackMarkCorner(b, base, pitch, 1.0, &strip);
+      AddTrackMarkCorner(a, base, pitch, -1.0, &strip);
+      AddTrackMarkCorner(b, base, pitch, 1.0, &strip);
+      AddTrackMarkCorner(a, base, pitch, 1.0, &strip);
     }
   }
   return strip;
 }
 
 void TrackMarkDrawing::Link() {
-  const GLuint vs = CompileShader(GL_VERTEX_SHADER, {kVertex}, "the track marks' vertex shader");
+  const GLuint vs =
+      CompileShader(GL_VERTEX_SHADER, {kTrackMarkVertex}, "the track marks' vertex shader");
   const GLuint fs =
-      CompileShader(GL_FRAGMENT_SHADER, {kFragment}, "the track marks' fragment shader");
+      CompileShader(GL_FRAGMENT_SHADER, {kTrackMarkFragment}, "the track marks' fragment shader");
   program_ = glCreateProgram();
   glAttachShader(program_, vs);
   glAttachShader(program_, fs);
@@ -178,7 +179,7 @@ void TrackMarkDrawing::Link() {
 
 void TrackMarkDrawing::Draw(const Eigen::Vector3d& camera_world, const Eigen::Vector3d& sun_world,
                             double ambient, double diffuse) {
-  const TrackMarkStrip strip = BuildTrackMarkStrip(*marks_, camera_world, kReachM);
+  const TrackMarkStrip strip = BuildTrackMarkStrip(*marks_, camera_world, kTrackMarkReachM);
   if (strip.vertices() == 0) return;
   if (program_ == 0) Link();
   GLint previous = 0;
