@@ -300,6 +300,17 @@ teach_repeat::Localizer3dOptions Localizer3dOptionsOf(const scenario::TeachRepea
   return o;
 }
 
+namespace {
+
+// A record of the robot's track marks when the scenario asks for one, else null: the
+// teach pass fills it and the repeat pass drives over its ruts.
+std::shared_ptr<sim::TrackMarks> NewTrackMarks(const scenario::Scenario& scenario) {
+  const std::optional<sim::TrackMarkOptions>& o = scenario.scene.appearance.track_marks;
+  return o ? std::make_shared<sim::TrackMarks>(*o) : nullptr;
+}
+
+}  // namespace
+
 RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& dir,
                           const RunObservers& observers) {
   scenario.Validate();
@@ -309,11 +320,7 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
   teach_repeat::TeachMap map;
   // One robot for both passes (the same as built, calibrated once).
   const RobotBuild robot = BuildRunRobot(scenario);
-  // The ruts the teach pass leaves are there when the repeat pass drives.
-  std::shared_ptr<sim::TrackMarks> track_marks;
-  if (scenario.scene.appearance.track_marks) {
-    track_marks = std::make_shared<sim::TrackMarks>(*scenario.scene.appearance.track_marks);
-  }
+  const std::shared_ptr<sim::TrackMarks> track_marks = NewTrackMarks(scenario);
   if (tr.map.empty()) {
     map = Teach(scenario, robot, dir / "teach", dir / "teach_map", &taught, observers, track_marks);
     teach_repeat::SaveTeachMap(map, (dir / "teach_map").string());
