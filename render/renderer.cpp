@@ -35,6 +35,7 @@
 #include "sky_program.h"
 #include "surface_program.h"
 #include "texture_upload.h"
+#include "track_mark_drawing.h"
 #include "trackbed/common/option_error.h"
 #include "trackbed/common/units.h"
 #include "trackbed/render/car_model.h"
@@ -860,6 +861,9 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
   glDisableClientState(GL_VERTEX_ARRAY);
   glDisableClientState(GL_NORMAL_ARRAY);
   glDisableClientState(GL_TEXTURE_COORD_ARRAY);
+  if (track_marks_)
+    track_marks_->Draw(T_world_camera.translation(), sun_world, g.appearance.ambient,
+                       g.appearance.diffuse);
   if (g.leaf_crowns) g.leaf_crowns->Begin(view, sun_world, g.lit ? g.exposure : 1.0);
   if (g.leaf_crowns) g.leaf_crowns->Draw(LeafCrowns::Pass::kCore, order, g.drawables);
   g.program->Use(SurfaceProgram::Kind::kIsotropic);

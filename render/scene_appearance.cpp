@@ -17,6 +17,7 @@ void SceneAppearance::Validate() const {
   option_check::NonNegative("object_far_error_px", object_far_error_px);
   option_check::NonNegative("ceiling_height_m", ceiling_height_m);
   if (lighting) option_check::Nested("lighting", *lighting);
+  if (track_marks) option_check::Nested("track_marks", *track_marks);
   for (const std::string& name : classic_look_materials) {
     if (!HasTexture(name)) {
       throw OptionError("classic_look_materials", "'" + name + "' has no texture of its own");

@@ -60,6 +60,8 @@ void StereoCamera::SetBodyShape(std::vector<render::ShadowBox> boxes_body) {
   renderer_->SetRobotShape(std::move(boxes_body));
 }
 
+void StereoCamera::SetTrackMarks(const sim::TrackMarks* marks) { renderer_->SetTrackMarks(marks); }
+
 StereoCapture StereoCamera::Capture(double t_s, const render::BodyMotion& body, GrayImage* left,
                                     GrayImage* right) {
   const StereoCapture capture = Expose(t_s, body, left, right);

@@ -404,6 +404,25 @@ void TrackedVehicle::ApplyTrackForces(const ChassisState& s, Track* track, doubl
   ts.ground_speed_mps = v_track;
   ts.slip_velocity_mps = ts.ground_speed_mps - ts.track_speed_mps;
   ts.running_gear_resistance_n = running_gear;
+  if (marks_) RecordTrackMark(s, *track);
+}
+
+// The rut the track leaves is the deepest any of its stations runs: the ground it has
+// passed was compacted, or dug by slip, that deep (the rut carried from station to station
+// only deepens). Its centreline: the track's under the middle of its stations.
+void TrackedVehicle::RecordTrackMark(const ChassisState& s, const Track& track) {
+  double depth_m = 0.0, x_sum = 0.0;
+  for (const Station& st : track.stations) {
+    depth_m = std::max(depth_m, st.sinkage_m);
+    x_sum += st.p_body.x();
+  }
+  const double x_mid = x_sum / static_cast<double>(track.stations.size());
+  Eigen::Vector3d p = s.T_world_body * Eigen::Vector3d(x_mid, track.stations[0].p_body.y(), 0.0);
+  p.z() = world_->terrain().Height(p.x(), p.y());
+  const Eigen::Vector3d body_x = s.T_world_body.linear().col(0);
+  const int side = &track == &tracks_[kLeft] ? kLeft : kRight;
+  marks_->Update(side, p, std::atan2(body_x.y(), body_x.x()), depth_m, options_.track_width_m,
+                 track.sprocket_radius_m * track.motor.angle_rad());
 }
 
 void TrackedVehicle::UpdateStall(Track* track, double dt_s) const {

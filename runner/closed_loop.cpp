@@ -191,7 +191,8 @@ void ClosedLoop::Impl::Start() {
   }
   observers_ = TimedObservers(observers, &times_.io_s);
   Timed(&times_.setup_s, [&] {
-    plant_.emplace(BuildPlant(scenario_, robot_, scenario_.CarriedOnPosePath(drive_source())));
+    plant_.emplace(BuildPlant(scenario_, robot_, scenario_.CarriedOnPosePath(drive_source()),
+                              options_.track_marks));
     const scenario::RobotSpec& rs = scenario_.robot;
     metrics_ = std::make_unique<MetricsAccumulator>(
         rs.vehicle.sprocket_radius_m, rs.vehicle.track_gauge_m, rs.encoders.ticks_per_rev);
@@ -518,6 +519,14 @@ RunMetrics ClosedLoop::Impl::Finish() {
   finished_ = true;
   done_ = true;
   RunMetrics m = Metrics();
+  if (const sim::TrackMarks* marks = plant_->track_marks.get()) {
+    m.track_marks.emplace();
+    for (int side = 0; side < 2; ++side) {
+      m.track_marks->points_held += marks->size(side);
+      m.track_marks->points_recorded += marks->recorded(side);
+    }
+    m.track_marks->bound_mb = static_cast<double>(marks->capacity_bytes()) / (1 << 20);
+  }
   ReleaseSimulation();  // before the plots, so their memory does not add to the world's
   if (folder_) folder_->Close(scenario_, m);
   return m;

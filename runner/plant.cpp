@@ -50,7 +50,8 @@ std::unique_ptr<robot::StereoCamera> BuildCamera(const scenario::Scenario& scena
 
 }  // namespace
 
-Plant BuildPlant(const scenario::Scenario& scenario, const RobotBuild& robot, bool pose_path) {
+Plant BuildPlant(const scenario::Scenario& scenario, const RobotBuild& robot, bool pose_path,
+                 std::shared_ptr<sim::TrackMarks> track_marks) {
   const scenario::RobotSpec& rs = scenario.robot;
   const double gravity = scenario.scene.world.gravity_mps2;
   Plant p;
@@ -82,6 +83,13 @@ Plant BuildPlant(const scenario::Scenario& scenario, const RobotBuild& robot, bo
     p.imu->SetEarthRate(scenario.scene.geodetic_origin->EarthRateInWorld());
   }
   if (rs.stereo.enabled) p.camera = BuildCamera(scenario, robot, *p.world);
+  const std::optional<sim::TrackMarkOptions>& marks = scenario.scene.appearance.track_marks;
+  if (marks && !pose_path) {
+    p.track_marks =
+        track_marks ? std::move(track_marks) : std::make_shared<sim::TrackMarks>(*marks);
+    static_cast<robot::TrackedVehicle*>(p.vehicle.get())->SetTrackMarks(p.track_marks.get());
+    if (p.camera) p.camera->SetTrackMarks(p.track_marks.get());
+  }
   if (rs.range_sensor.enabled) {
     p.range_sensor =
         std::make_unique<robot::RangeSensor>(rs.range_sensor, split_mix::Stream(scenario.seed, 4));

@@ -343,6 +343,13 @@ void RunLogs::Scan(const robot::RangeScanSample& s) {
   scan_csv_->Line(row.c_str());
 }
 
+// The track marks' figures (scene.appearance.track_marks): their record's bound under
+// memory, the points under track_marks.
+void AddTrackMarks(const RunMetrics::TrackMarkCounts& t, Json* j) {
+  (*j)["memory"]["track_marks_bound_mb"] = t.bound_mb;
+  (*j)["track_marks"] = {{"points_held", t.points_held}, {"points_recorded", t.points_recorded}};
+}
+
 }  // namespace
 
 std::string MetricsJson(const RunMetrics& m) {
@@ -413,6 +420,7 @@ std::string MetricsJson(const RunMetrics& m) {
                  {"io_s", m.io_wall_s},
                  {"setup_s", m.setup_wall_s}};
   j["memory"] = {{"peak_rss_mb", m.peak_rss_mb}};
+  if (m.track_marks) AddTrackMarks(*m.track_marks, &j);
   if (m.teach_repeat) {
     const TeachRepeatMetrics& t = *m.teach_repeat;
     j["teach_repeat"] = {{"method", t.method},

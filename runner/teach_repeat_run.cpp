@@ -55,7 +55,8 @@ std::uintmax_t FolderBytes(const std::filesystem::path& folder) {
 teach_repeat::TeachMap Teach(const scenario::Scenario& scenario, const RobotBuild& robot,
                              const fs::path& dir, const fs::path& map_dir,
                              std::vector<Eigen::Vector2d>* taught_path,
-                             const RunObservers& observers) {
+                             const RunObservers& observers,
+                             std::shared_ptr<sim::TrackMarks> track_marks) {
   scenario::Scenario teach = scenario;
   teach.teach_repeat.enabled = false;
   const scenario::RobotSpec& rs = scenario.robot;
@@ -89,6 +90,7 @@ teach_repeat::TeachMap Teach(const scenario::Scenario& scenario, const RobotBuil
   loop.dir = dir;
   loop.observers = Chained(extra, observers);
   loop.robot = robot;
+  loop.track_marks = std::move(track_marks);
   const RunMetrics m = ClosedLoop(teach, std::move(loop)).Run();
   if (!m.completed) throw std::runtime_error("teach pass stopped: " + m.stop_reason);
   return builder.Finish();
@@ -298,6 +300,17 @@ teach_repeat::Localizer3dOptions Localizer3dOptionsOf(const scenario::TeachRepea
   return o;
 }
 
+namespace {
+
+// A record of the robot's track marks when the scenario asks for one, else null: the
+// teach pass fills it and the repeat pass drives over its ruts.
+std::shared_ptr<sim::TrackMarks> NewTrackMarks(const scenario::Scenario& scenario) {
+  const std::optional<sim::TrackMarkOptions>& o = scenario.scene.appearance.track_marks;
+  return o ? std::make_shared<sim::TrackMarks>(*o) : nullptr;
+}
+
+}  // namespace
+
 RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& dir,
                           const RunObservers& observers) {
   scenario.Validate();
@@ -307,8 +320,9 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
   teach_repeat::TeachMap map;
   // One robot for both passes (the same as built, calibrated once).
   const RobotBuild robot = BuildRunRobot(scenario);
+  const std::shared_ptr<sim::TrackMarks> track_marks = NewTrackMarks(scenario);
   if (tr.map.empty()) {
-    map = Teach(scenario, robot, dir / "teach", dir / "teach_map", &taught, observers);
+    map = Teach(scenario, robot, dir / "teach", dir / "teach_map", &taught, observers, track_marks);
     teach_repeat::SaveTeachMap(map, (dir / "teach_map").string());
     // Repeated from the saved map as a map given by teach_repeat.map would be: its key
     // images and features read milestone by milestone.
@@ -372,6 +386,7 @@ RunMetrics RunTeachRepeat(const scenario::Scenario& scenario, const fs::path& di
   options.dir = dir;
   options.observers = Chained(extra, observers);
   options.robot = robot;
+  options.track_marks = track_marks;
   options.commander = std::make_unique<RepeatCommander>(
       repeater.get(), repeat.estimation.icr_expansion * repeat.robot.vehicle.track_gauge_m,
       log_step, std::make_shared<perception::LensUndistorter>(robot.given.stereo->LeftCamera()));

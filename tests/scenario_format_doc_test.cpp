@@ -119,6 +119,7 @@ std::set<std::string> KeysOfEveryShippedScenario() {
   every_optional.drive.script[1].track_speeds = true;
   every_optional.scene.appearance.classic_look_materials = {"grass"};
   every_optional.scene.geodetic_origin = sim::GeodeticOrigin{};
+  every_optional.scene.appearance.track_marks.emplace();
   WrittenKeys(archive::Write(every_optional), "", &keys);
   const fs::path scenes = fs::path(TRACKBED_SOURCE_DIR) / "scenes";
   for (const auto& entry : fs::recursive_directory_iterator(scenes)) {

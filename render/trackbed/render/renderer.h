@@ -22,9 +22,12 @@
 #include "trackbed/render/scene_lighting.h"
 #include "trackbed/render/sky.h"
 #include "trackbed/sim/occluder.h"
+#include "trackbed/sim/track_marks.h"
 #include "trackbed/sim/world.h"
 
 namespace trackbed::render {
+
+class TrackMarkDrawing;
 
 /// Light and dressing of a scene.
 /// How the ground's materials look (docs/rendering.md): `classic`, each material's
@@ -76,6 +79,9 @@ struct SceneAppearance {
   std::optional<SceneLighting> lighting;
   /// The robot's own shadow from the sun, drawn each frame at its pose (robot_shadow.h).
   bool robot_shadow = false;
+  /// The robot's own track marks on deformable ground, drawn only (sim/track_marks.h);
+  /// absent: none.
+  std::optional<sim::TrackMarkOptions> track_marks;
 
   void Validate() const;
 
@@ -100,6 +106,7 @@ struct SceneAppearance {
     a->Visit("classic_look_materials", &classic_look_materials, archive::kOmitEmpty);
     a->Visit("lighting", &lighting, archive::kOmitEmpty);
     a->Visit("robot_shadow", &robot_shadow);
+    a->Visit("track_marks", &track_marks, archive::kOmitEmpty);
     a->VisitEnum(
         "sky", &sky,
         {{"flat", SkyLook::kFlat}, {"clear", SkyLook::kClear}, {"cloudy", SkyLook::kCloudy}});
@@ -151,6 +158,9 @@ class Renderer {
   void SetRobotShape(std::vector<ShadowBox> boxes_body);
   /// Where the robot is for the following renders (its body frame in the world).
   void SetRobotPose(const Eigen::Isometry3d& T_world_body);
+  /// The record of the robot's track marks to draw over the ground from now on (it must
+  /// outlive the renderer or the next call); null (the default): none.
+  void SetTrackMarks(const sim::TrackMarks* marks);
 
   /// OpenGL renderer and version strings, e.g. "llvmpipe (LLVM 15.0.6, 256 bits) / 4.5
   /// (Compatibility Profile) Mesa 22.3.6".
@@ -159,6 +169,7 @@ class Renderer {
  private:
   struct Gl;
   std::unique_ptr<Gl> gl_;
+  std::unique_ptr<TrackMarkDrawing> track_marks_;
 };
 
 }  // namespace trackbed::render

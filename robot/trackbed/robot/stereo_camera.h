@@ -24,6 +24,7 @@
 #include "trackbed/robot/image_sensor.h"
 #include "trackbed/robot/stereo_rig.h"
 #include "trackbed/sim/occluder.h"
+#include "trackbed/sim/track_marks.h"
 #include "trackbed/sim/world.h"
 
 namespace trackbed::robot {
@@ -79,6 +80,8 @@ class StereoCamera {
   /// The boxes of the body (its frame) whose shadow the sun casts in the images when
   /// the scene's appearance asks for it (render::Renderer::SetRobotShape).
   void SetBodyShape(std::vector<render::ShadowBox> boxes_body);
+  /// The robot's track marks to draw over the ground (render::Renderer::SetTrackMarks).
+  void SetTrackMarks(const sim::TrackMarks* marks);
 
   /// The pair stamped `t_s`, the body moving as `body` then: Expose, then Finish.
   StereoCapture Capture(double t_s, const render::BodyMotion& body, GrayImage* left = nullptr,

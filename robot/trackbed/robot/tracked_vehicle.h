@@ -23,6 +23,7 @@
 #include "trackbed/render/robot_shadow.h"
 #include "trackbed/robot/platform.h"
 #include "trackbed/robot/sprocket_motor.h"
+#include "trackbed/sim/track_marks.h"
 #include "trackbed/sim/world.h"
 
 class btRigidBody;
@@ -155,6 +156,9 @@ class TrackedVehicle : public Platform {
   int stations_per_side() const;
   /// True once a track has been stalled for stall_time_s (see TrackState).
   bool stalled() const override;
+  /// Where each track's ruts go from now on (sim/track_marks.h), at every physics step;
+  /// null (the default): none recorded. Drawn only: the physics never reads it.
+  void SetTrackMarks(sim::TrackMarks* marks) { marks_ = marks; }
 
  private:
   struct Station {
@@ -185,6 +189,7 @@ class TrackedVehicle : public Platform {
                        double surface_depth_m, double approach_mps, double u_mps,
                        double v_along_mps, double dt_s, Station* st) const;
   void UpdateStall(Track* track, double dt_s) const;
+  void RecordTrackMark(const ChassisState& s, const Track& track);
   void ApplyHullContacts(const ChassisState& s);
 
   TrackedVehicleOptions options_;
@@ -194,6 +199,7 @@ class TrackedVehicle : public Platform {
   std::unique_ptr<btCollisionShape> shape_;
   std::unique_ptr<btDefaultMotionState> motion_state_;
   std::unique_ptr<btRigidBody> body_;
+  sim::TrackMarks* marks_ = nullptr;
 };
 
 }  // namespace trackbed::robot

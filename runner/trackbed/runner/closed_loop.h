@@ -23,6 +23,7 @@
 #include "trackbed/runner/run_metrics.h"
 #include "trackbed/runner/run_observers.h"
 #include "trackbed/scenario/scenario.h"
+#include "trackbed/sim/track_marks.h"
 
 namespace trackbed::runner {
 
@@ -43,6 +44,9 @@ struct ClosedLoopOptions {
   /// The robot as built and its given calibration, when already drawn for this
   /// scenario (BuildRunRobot); none: drawn at Start().
   std::optional<RobotBuild> robot;
+  /// The robot's track marks to continue (a teach pass's, for its repeat pass), with
+  /// `scene.appearance.track_marks`; null: a new record.
+  std::shared_ptr<sim::TrackMarks> track_marks;
 };
 
 /// One encoder reading: counts since the start, left and right.

@@ -12,6 +12,7 @@
 #include "trackbed/robot/stereo_camera.h"
 #include "trackbed/runner/robot_build.h"
 #include "trackbed/scenario/scenario.h"
+#include "trackbed/sim/track_marks.h"
 #include "trackbed/sim/world.h"
 
 namespace trackbed::runner {
@@ -20,6 +21,9 @@ namespace trackbed::runner {
 /// what it refers to (the world last). Not copyable.
 struct Plant {
   std::unique_ptr<sim::World> world;
+  /// The robot's track marks, with `scene.appearance.track_marks` (shared with a later
+  /// pass that continues them); null without.
+  std::shared_ptr<sim::TrackMarks> track_marks;
   /// The tracked vehicle in the physics, or the carrier of a pose path.
   std::unique_ptr<robot::Platform> vehicle;
   const robot::PosePathCarrier* carrier = nullptr;  ///< `vehicle`, when it is one
@@ -34,6 +38,9 @@ struct Plant {
 /// physics. Each part draws from its own stream of the scenario's seed
 /// (split_mix::Stream: 0 terrain, 1 IMU, 2 the rendered scene, 3 the camera's noise,
 /// 4 range sensor, 6 the image sensors' pattern; 5 draws the robot as built).
-Plant BuildPlant(const scenario::Scenario& scenario, const RobotBuild& robot, bool pose_path);
+/// With `scene.appearance.track_marks` on a tracked vehicle, its ruts are recorded into
+/// `track_marks` (a new record when null) and drawn by the camera.
+Plant BuildPlant(const scenario::Scenario& scenario, const RobotBuild& robot, bool pose_path,
+                 std::shared_ptr<sim::TrackMarks> track_marks = nullptr);
 
 }  // namespace trackbed::runner

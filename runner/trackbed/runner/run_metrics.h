@@ -1,6 +1,7 @@
 // Per-run figures scored against ground truth, accumulated sample by sample.
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
@@ -104,6 +105,13 @@ struct RunMetrics {
   double setup_wall_s = 0.0;
   /// Peak resident memory of the process at the end of the run [MB].
   double peak_rss_mb = 0.0;
+  /// The robot's track marks (`scene.appearance.track_marks`): points held and recorded
+  /// over both tracks, and the most their record holds however long the run [MB].
+  struct TrackMarkCounts {
+    std::uint64_t points_held = 0, points_recorded = 0;
+    double bound_mb = 0.0;
+  };
+  std::optional<TrackMarkCounts> track_marks;
   /// Per estimator (wheel_odometry, wheel_odometry_noslip, visual_odometry, fused).
   std::map<std::string, EstimatorMetrics> estimators;
   LocalizationSummary localization;
