@@ -7,7 +7,7 @@
 // all of them (llvmpipe's threads included: on a loaded machine steadier than the
 // wall clock). Also the world's set-up (the mesh files read, Bullet's hierarchy).
 //
-//   mesh_chunks_cost [--views N] [--error-px E ...] [--set KEY=VALUE ...] SCENARIO.yaml
+//   mesh_chunks_cost [--views N] [--error-px E ...] [--set KEY=VALUE ...] SCENARIO.yaml ...
 #include <algorithm>
 #include <cstdio>
 #include <ctime>
@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "bench_args.h"
+#include "trackbed/assets/scene_meshes.h"
 #include "trackbed/common/split_mix.h"
 #include "trackbed/render/renderer.h"
 #include "trackbed/robot/stereo_rig.h"
@@ -41,9 +42,8 @@ int main(int argc, char** argv) {
   app.add_option("--error-px", errors_px, "Far-version bounds (object_far_error_px), 0: full")
       ->capture_default_str();
   bench::AddSetOption(app, &sets);
-  bench::AddScenarioFiles(app, &files);
+  app.add_option("scenarios", files, "Scenario files")->required();
   if (const std::optional<int> status = bench::Parse(app, argc, argv)) return *status;
-  files = bench::ScenarioFilesOrDefault(files);
   try {
     std::vector<scenario::Override> overrides{{"robot.stereo.enabled", "true"}};
     for (const std::string& set : sets) overrides.push_back(scenario::ParseOverride(set));
@@ -59,9 +59,12 @@ int main(int argc, char** argv) {
       };
       runner::RunClosedLoop(s, record);
       const double world_start = CpuSeconds();
+      // Mesh obstacles on the scenario's terrain (ground meshes, elevation models and
+      // heightmaps are not read here).
+      assets::SceneMeshes meshes = assets::LoadSceneMeshes(scenario::SceneObjects(s));
       const sim::World world(s.scene.world,
                              sim::Terrain(s.scene.terrain, split_mix::Stream(s.seed, 0)),
-                             scenario::SceneObjects(s));
+                             std::move(meshes.primitives), std::move(meshes.obstacles));
       std::printf("%s: world set-up %.3f s CPU (mesh files read, Bullet's hierarchies)\n",
                   f.c_str(), CpuSeconds() - world_start);
       const robot::StereoRig rig(s.robot.stereo);
