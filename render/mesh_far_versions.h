@@ -13,10 +13,10 @@
 //
 // A version's departure is meshoptimizer's own error of it, made absolute
 // (result_error × meshopt_simplifyScale, the chunk's extent): the square root of the
-// largest quadric error among its collapses, the area-weighted mean squared distance
-// of the collapsed vertex from the planes of the full version's triangles merged into
-// it. It is a measure of how far the surface moves, not a bound on it: the pixels are
-// checked against the bound by rendering (tests/mesh_chunks_test.cpp).
+// largest quadric error among its collapses, an area-weighted sum of the squared
+// distances of the collapsed vertex from the planes of the full version's triangles
+// merged into it. It is a measure of how far the surface moves, not a bound on it: the
+// pixels are checked against the bound by rendering (tests/mesh_chunks_test.cpp).
 #pragma once
 
 #include <cstdint>
