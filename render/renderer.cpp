@@ -14,22 +14,22 @@
 #define GL_GLEXT_PROTOTYPES 1  // buffer objects (GL 1.5), which libOSMesa exports
 #include <GL/gl.h>
 #include <GL/osmesa.h>
-#include <malloc.h>
 
 #include <cstddef>
 
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <mutex>
 #include <optional>
 #include <stdexcept>
 
 #include "edge_antialiasing.h"
+#include "freed_memory.h"
 #include "gl_primitives.h"
 #include "ground_tiling.h"
 #include "leaf_crown_drawing.h"
 #include "luminaire.h"
+#include "mesh_chunks.h"
 #include "mesh_surfaces.h"
 #include "object_albedo.h"
 #include "sky_program.h"
@@ -106,28 +106,9 @@ struct TerrainDrawable {
   GLuint vertex_buffer = 0, index_buffer = 0;
   int uploaded_topology = -1;
   GLsizei index_count = 0;
-  GLsizeiptr vertex_bytes = 0;  // size of the vertex buffer's storage
+  GLsizeiptr vertex_bytes = 0;    // size of the vertex buffer's storage
+  std::vector<MeshLevel> levels;  // a mesh chunk's versions, full first (mesh_far_versions.h)
 };
-
-// llvmpipe allocates and frees its per-frame working memory (vertex and bin
-// storage, buffer uploads) at every frame. glibc hands freed memory at the
-// top of the heap back to the kernel beyond 128 KiB, and blocks of 128 KiB and
-// more are mapped and unmapped each time, so every frame faulted the same
-// pages in again: 3 % of the closed loop's CPU outdoors was the kernel's
-// page-fault handler. Keeping freed memory in the process (a process-wide
-// setting, harmless to the rest) makes the loop 1.1x faster with the same
-// bytes (docs/rendering.md).
-// Once per process, from the first renderer's constructor: mallopt is not
-// thread-safe, and the setting is the process's anyway.
-void KeepFreedMemory() {
-#ifdef __GLIBC__
-  static std::once_flag once;
-  std::call_once(once, [] {
-    mallopt(M_TRIM_THRESHOLD, 256 << 20);  // keep up to 256 MiB freed at the heap's top
-    mallopt(M_MMAP_THRESHOLD, 32 << 20);   // map only blocks of 32 MiB and more
-  });
-#endif
-}
 
 }  // namespace
 
@@ -153,7 +134,8 @@ struct Renderer::Gl {
   std::unique_ptr<TerrainDetail> detail;              // the near window's levels
   std::vector<TerrainDrawable> terrain_drawables;
   std::size_t terrain_drawable_count = 0;       // drawables[0, count) are the terrain's
-  std::vector<TerrainDrawable> mesh_drawables;  // mesh objects' parts (fixed)
+  std::vector<TerrainDrawable> mesh_drawables;  // mesh objects' chunks (fixed)
+  std::size_t mesh_triangles = 0;               // of mesh objects, drawn in this frame
   std::vector<sim::OccluderSpec> occluders;
   std::vector<GLuint> occluder_lists;
   std::vector<std::pair<double, int>> draw_order;  // per frame, kept to avoid reallocation
@@ -354,7 +336,9 @@ struct Renderer::Gl {
     }
   }
 
-  void DrawTerrain(TerrainDrawable& t, const Eigen::Vector2d& center_xy) {
+  // The terrain's mesh, or the version `level` of a mesh chunk's.
+  void DrawTerrain(TerrainDrawable& t, const Eigen::Vector2d& center_xy,
+                   const MeshLevel* level = nullptr) {
     if (t.fixed) {
       if (!t.built) {
         Upload(t);
@@ -372,7 +356,9 @@ struct Renderer::Gl {
         Upload(t);
       }
     }
-    if (t.index_count == 0) return;
+    const GLsizei count = level ? static_cast<GLsizei>(level->index_count) : t.index_count;
+    if (count == 0) return;
+    if (level) mesh_triangles += static_cast<std::size_t>(count) / 3;
     glBindTexture(GL_TEXTURE_2D_ARRAY, t.texture.name);
     glBindBuffer(GL_ARRAY_BUFFER, t.vertex_buffer);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, t.index_buffer);
@@ -380,7 +366,8 @@ struct Renderer::Gl {
     glVertexPointer(3, GL_FLOAT, sizeof(TerrainVertex), offset(offsetof(TerrainVertex, x)));
     glNormalPointer(GL_FLOAT, sizeof(TerrainVertex), offset(offsetof(TerrainVertex, nx)));
     glTexCoordPointer(2, GL_FLOAT, sizeof(TerrainVertex), offset(offsetof(TerrainVertex, s)));
-    glDrawElements(GL_TRIANGLES, t.index_count, GL_UNSIGNED_INT, nullptr);
+    glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT,
+                   offset(level ? level->first_index * sizeof(std::uint32_t) : 0));
   }
 
   // The pixels the outlines of curved objects cross: the bands about them, far to near,
@@ -564,11 +551,12 @@ struct Renderer::Gl {
         Eigen::Vector3d(o.center_m.x() + reach, o.center_m.y() + reach, o.base_z_m + top));
   }
 
-  // One drawable per part of a mesh object, read by footprint as the ground and boxes.
+  // One drawable per chunk of a part of a mesh object (mesh_chunks.h), read by footprint
+  // as the ground and boxes; with far versions where objects have them.
   void BuildMeshes(const sim::World& world) {
     for (const sim::MeshObject& m : world.meshes()) {
       const std::optional<double>& albedo = m.entry.albedo;
-      for (MeshSurface& s : MeshSurfaces(m)) {
+      for (MeshChunk& s : MeshChunks(m, appearance.object_far_error_px > 0.0)) {
         const std::string key = albedo ? "mesh " + AlbedoTextureName(*albedo) : s.texture_key;
         auto it = textures.find(key);
         if (it == textures.end()) {
@@ -585,6 +573,7 @@ struct Renderer::Gl {
         t.mesh.vertices = std::move(s.vertices);
         t.mesh.indices = std::move(s.indices);
         t.mesh.topology = 0;
+        t.levels = std::move(s.levels);
         mesh_drawables.push_back(std::move(t));
         Drawable d;
         d.box = s.box;
@@ -727,6 +716,8 @@ Renderer::~Renderer() = default;
 
 bool Renderer::pre_exposed() const { return gl_->lit; }
 
+std::size_t Renderer::mesh_triangles_submitted() const { return gl_->mesh_triangles; }
+
 void Renderer::SetExposure(double exposure) {
   if (!gl_->lit) throw std::logic_error("Renderer::SetExposure: the scene has no lighting");
   if (!(std::isfinite(exposure) && exposure > 0.0)) {
@@ -828,6 +819,7 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
   // before they are textured.
   std::vector<std::pair<double, int>>& order = g.draw_order;
   order.clear();
+  g.mesh_triangles = 0;
   for (std::size_t k = 0; k < g.drawables.size(); ++k) {
     const Drawable& d = g.drawables[k];
     if (visible(d.box)) {
@@ -848,7 +840,10 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
       } else {
         g.program->Use(SurfaceProgram::Kind::kFootprint);
       }
-      g.DrawTerrain(t, center_xy);
+      const double error_px = g.appearance.object_far_error_px;
+      g.DrawTerrain(
+          t, center_xy,
+          d.mesh < 0 ? nullptr : &MeshLevelAt(t.levels, d.box, center_xy, K.fx, error_px));
     } else {
       g.program->Use(d.flat     ? SurfaceProgram::Kind::kFootprint
                      : d.curved ? SurfaceProgram::Kind::kOutlineCore

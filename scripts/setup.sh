@@ -10,7 +10,7 @@ packages=(
   libbullet-dev libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libopencv-dev libosmesa6-dev libfuzzylite-dev libboost-math-dev
   pybind11-dev python3-dev python3-numpy libzstd-dev zlib1g-dev libgdal-dev libassimp-dev
-  libsdformat-dev liburdfdom-dev
+  libsdformat-dev liburdfdom-dev libmeshoptimizer-dev
 )
 # `--tests`: what the test suite needs beyond the build (node and npm run the
 # independent MCAP readers, tests/mcap/; xmllint checks JUnit XML), each unless its

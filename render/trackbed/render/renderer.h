@@ -7,6 +7,7 @@
 // for every frame.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -142,6 +143,11 @@ class Renderer {
   /// the exposure (SetExposure) before the 8-bit output clips, as a sensor saturates;
   /// without it, the output is the scene at exposure 1 and the caller scales it.
   bool pre_exposed() const;
+
+  /// Triangles of mesh objects the last Render() submitted (chunks in view, at the
+  /// version drawn: docs/rendering.md, "mesh objects").
+  std::size_t mesh_triangles_submitted() const;
+
   /// The exposure the following renders are pre-exposed for (relative light, > 0).
   /// Throws std::logic_error without scene lighting.
   void SetExposure(double exposure);
