@@ -12,7 +12,7 @@
 
 #include <gtest/gtest.h>
 
-#include "trackbed/scenario/scenario_yaml.h"
+#include "scenario_error_of.h"
 
 namespace trackbed::sim {
 namespace {
@@ -186,15 +186,7 @@ TEST(CorridorFittingsTest, TheSameSeedPlacesTheSameAndAnotherElsewhere) {
   EXPECT_GT(moved, 0);
 }
 
-// The message ParseScenario throws for `text` (empty when it does not throw).
-std::string ErrorOf(const std::string& text) {
-  try {
-    scenario::ParseScenario(text, "test.yaml");
-  } catch (const scenario::ScenarioError& e) {
-    return e.what();
-  }
-  return "";
-}
+using scenario::test::ErrorOf;
 
 TEST(CorridorFittingsTest, BadFittingsKeysNameTheFileTheKeyAndTheReason) {
   const std::string drive = "drive:\n  waypoints: [[0, 0], [5, 0]]\n";

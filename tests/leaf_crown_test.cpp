@@ -17,8 +17,8 @@
 #include <gtest/gtest.h>
 
 #include "render_test_scene.h"
+#include "scenario_error_of.h"
 #include "trackbed/render/renderer.h"
-#include "trackbed/scenario/scenario_yaml.h"
 
 namespace trackbed::render {
 namespace {
@@ -206,15 +206,7 @@ TEST(LeafCrownRenderTest, SpheresStayTheDefault) {
   EXPECT_NE(DrawTree(1, CrownLook::kSpheres).pixels, DrawTree(1, CrownLook::kLeaves).pixels);
 }
 
-// The message ParseScenario throws for `text` (empty when it does not throw).
-std::string ErrorOf(const std::string& text) {
-  try {
-    scenario::ParseScenario(text, "crowns.yaml");
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
-}
+using scenario::test::ErrorOf;
 
 TEST(LeafCrownScenarioTest, TheKeyReadsLeavesAndSpheresAndNamesFileKeyAndValueOtherwise) {
   const std::string drive = "drive:\n  waypoints: [[0, 0], [5, 0]]\n";
@@ -224,7 +216,7 @@ TEST(LeafCrownScenarioTest, TheKeyReadsLeavesAndSpheresAndNamesFileKeyAndValueOt
   EXPECT_EQ(scenario::ParseScenario(drive, "a.yaml").scene.appearance.crowns, CrownLook::kSpheres);
   const std::string error = ErrorOf(drive + "scene: {appearance: {crowns: needles}}\n");
   std::printf("%s\n", error.c_str());
-  EXPECT_NE(error.find("crowns.yaml"), std::string::npos) << error;
+  EXPECT_NE(error.find("test.yaml"), std::string::npos) << error;
   EXPECT_NE(error.find("scene.appearance.crowns"), std::string::npos) << error;
   EXPECT_NE(error.find("needles"), std::string::npos) << error;
   EXPECT_NE(ErrorOf(drive + "scene: {appearance: {crowns: [leaves]}}\n"), "");

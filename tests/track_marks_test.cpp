@@ -11,9 +11,9 @@
 #include <gtest/gtest.h>
 
 #include "render_test_scene.h"
+#include "scenario_error_of.h"
 #include "trackbed/render/renderer.h"
 #include "trackbed/robot/tracked_vehicle.h"
-#include "trackbed/scenario/scenario_yaml.h"
 
 namespace trackbed {
 namespace {
@@ -228,15 +228,7 @@ TEST(TrackMarksTest, TheCameraSeesTheVehiclesRutsOnSandBehindIt) {
   EXPECT_GT(darkening / changed, 1.0);
 }
 
-// The message ParseScenario throws for `text` (empty when it does not throw).
-std::string ErrorOf(const std::string& text) {
-  try {
-    scenario::ParseScenario(text, "test.yaml");
-  } catch (const scenario::ScenarioError& e) {
-    return e.what();
-  }
-  return "";
-}
+using scenario::test::ErrorOf;
 
 TEST(TrackMarksTest, BadKeysNameTheFileTheKeyAndTheReason) {
   const std::string drive = "drive:\n  waypoints: [[0, 0], [5, 0]]\n";
