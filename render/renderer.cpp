@@ -110,6 +110,26 @@ struct TerrainDrawable {
   std::vector<MeshLevel> levels;  // a mesh chunk's versions, full first (mesh_far_versions.h)
 };
 
+// Frustum culling in camera coordinates: false when all the box's corners are outside
+// one of the six planes of the view of K from T_camera_world.
+bool InFrustum(const Eigen::AlignedBox3d& box, const geometry::PinholeCamera& K,
+               const Eigen::Isometry3d& T_camera_world, double near_m, double far_m) {
+  const double w = K.width_px, h = K.height_px;
+  int outside[6] = {0, 0, 0, 0, 0, 0};
+  for (int c = 0; c < 8; ++c) {
+    const Eigen::Vector3d p =
+        T_camera_world * box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c));
+    const double X = p.x(), Y = p.y(), Z = p.z();
+    outside[0] += (K.fx * X + (K.cx + 0.5) * Z < 0);
+    outside[1] += (-K.fx * X + (w - 0.5 - K.cx) * Z < 0);
+    outside[2] += (K.fy * Y + (K.cy + 0.5) * Z < 0);
+    outside[3] += (-K.fy * Y + (h - 0.5 - K.cy) * Z < 0);
+    outside[4] += (Z < near_m);
+    outside[5] += (Z > far_m);
+  }
+  return std::none_of(std::begin(outside), std::end(outside), [](int n) { return n == 8; });
+}
+
 }  // namespace
 
 struct Renderer::Gl {
@@ -792,26 +812,8 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
   }
   g.program->Begin(view, sun_world, g.lit ? g.exposure : 1.0, K, shadow ? &*shadow : nullptr);
 
-  // Frustum culling in camera coordinates: a box is skipped when all its
-  // corners are outside one of the six planes.
   const Eigen::Matrix3d R = T_camera_world.linear();
   const Eigen::Vector3d tr = T_camera_world.translation();
-  const double w = g.width, h = g.height;
-  auto visible = [&](const Eigen::AlignedBox3d& box) {
-    int outside[6] = {0, 0, 0, 0, 0, 0};
-    for (int c = 0; c < 8; ++c) {
-      const Eigen::Vector3d p =
-          R * box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c)) + tr;
-      const double X = p.x(), Y = p.y(), Z = p.z();
-      outside[0] += (K.fx * X + (K.cx + 0.5) * Z < 0);
-      outside[1] += (-K.fx * X + (w - 0.5 - K.cx) * Z < 0);
-      outside[2] += (K.fy * Y + (K.cy + 0.5) * Z < 0);
-      outside[3] += (-K.fy * Y + (h - 0.5 - K.cy) * Z < 0);
-      outside[4] += (Z < g.near_m);
-      outside[5] += (Z > g.far_m);
-    }
-    return std::none_of(std::begin(outside), std::end(outside), [](int n) { return n == 8; });
-  };
   const Eigen::Vector2d center_xy =
       detail_center_xy ? *detail_center_xy : T_world_camera.translation().head<2>();
   g.FollowDetailCenter(center_xy);
@@ -822,7 +824,7 @@ void Renderer::Render(const geometry::PinholeCamera& K, const Eigen::Isometry3d&
   g.mesh_triangles = 0;
   for (std::size_t k = 0; k < g.drawables.size(); ++k) {
     const Drawable& d = g.drawables[k];
-    if (visible(d.box)) {
+    if (InFrustum(d.box, K, T_camera_world, g.near_m, g.far_m)) {
       order.emplace_back((R * d.box.center() + tr).squaredNorm(), static_cast<int>(k));
     }
   }
