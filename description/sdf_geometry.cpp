@@ -1,11 +1,9 @@
 // SDF geometries mapped onto scene objects (see sdf_geometry.h).
 #include "sdf_geometry.h"
 
-#include <unistd.h>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -19,6 +17,7 @@
 #include <sdf/Plane.hh>
 #include <sdf/Sphere.hh>
 
+#include "generated_file.h"
 #include "textured_unit_shapes.h"
 #include "trackbed/description/description_error.h"
 
@@ -103,13 +102,6 @@ std::string UnitSphere() {
   return PlyText(v, f);
 }
 
-std::string ReadWhole(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 // R = Rz(yaw) · Ry(pitch) · Rx(roll) (sim::RollPitchYaw).
 void SetRollPitchYaw(const Eigen::Matrix3d& r, sim::StaticObject* o) {
   o->pitch_rad = std::asin(std::clamp(-r(2, 0), -1.0, 1.0));
@@ -143,17 +135,7 @@ std::string UnitShapeFile(const std::string& dir, const std::string& name) {
                            : name == "cylinder" ? UnitCylinder()
                                                 : UnitSphere();
   const fs::path file = fs::path(dir) / ("unit_" + name + ".ply");
-  if (fs::is_regular_file(file) && ReadWhole(file) == text) return file.string();
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  const fs::path tmp = file.string() + "." + std::to_string(::getpid()) + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    if (!out) throw DescriptionError(tmp.string() + ": cannot write the unit " + name + " mesh");
-  }
-  fs::rename(tmp, file, ec);
-  if (ec) throw DescriptionError(file.string() + ": cannot write: " + ec.message());
+  WriteGeneratedFile(file, text, "the unit " + name + " mesh");
   return file.string();
 }
 

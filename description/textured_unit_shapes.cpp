@@ -1,18 +1,16 @@
 // Unit shapes with Gazebo's texture coordinates (see textured_unit_shapes.h).
 #include "textured_unit_shapes.h"
 
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <vector>
 
 #include <Eigen/Geometry>
 
+#include "generated_file.h"
 #include "trackbed/description/description_error.h"
 
 namespace trackbed::description {
@@ -116,33 +114,12 @@ void TexturedSphere(CornerSoup* soup) {
 
 // FNV-1a, 64 bits: names a shape's files by their text.
 std::uint64_t Fingerprint(const std::string& text) {
-  std::uint64_t h = 1469598103934665603ull;
+  std::uint64_t h = 14695981039346656037ull;
   for (const char c : text) {
     h ^= static_cast<unsigned char>(c);
     h *= 1099511628211ull;
   }
   return h;
-}
-
-// Writes `text` to `file` unless it holds it already (through a temporary file, so
-// that a reader never sees half of it).
-void WriteTexturedFileOnce(const fs::path& file, const std::string& text) {
-  if (fs::is_regular_file(file)) {
-    std::ifstream in(file, std::ios::binary);
-    std::ostringstream held;
-    held << in.rdbuf();
-    if (held.str() == text) return;
-  }
-  std::error_code ec;
-  fs::create_directories(file.parent_path(), ec);
-  const fs::path tmp = file.string() + "." + std::to_string(::getpid()) + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    if (!out) throw DescriptionError(tmp.string() + ": cannot write a textured unit shape");
-  }
-  fs::rename(tmp, file, ec);
-  if (ec) throw DescriptionError(file.string() + ": cannot write: " + ec.message());
 }
 
 }  // namespace
@@ -171,9 +148,9 @@ std::string TexturedUnitShapeFile(const std::string& dir, const std::string& nam
   std::snprintf(hex, sizeof hex, "%016llx",
                 static_cast<unsigned long long>(Fingerprint(name + '\n' + mtl.str())));
   const std::string stem = "textured_" + name + "_" + hex;
-  WriteTexturedFileOnce(fs::path(dir) / (stem + ".mtl"), mtl.str());
+  WriteGeneratedFile(fs::path(dir) / (stem + ".mtl"), mtl.str(), "a textured unit shape");
   const fs::path obj = fs::path(dir) / (stem + ".obj");
-  WriteTexturedFileOnce(obj, soup.Obj(stem + ".mtl"));
+  WriteGeneratedFile(obj, soup.Obj(stem + ".mtl"), "a textured unit shape");
   return obj.string();
 }
 
