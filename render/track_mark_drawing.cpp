@@ -2,6 +2,7 @@
 #include "track_mark_drawing.h"
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "gl_shader.h"
@@ -35,8 +36,9 @@ void main() {
 // ambient × the sky it sees + diffuse × max(n · sun, 0) over the flat ground's light; the
 // mean over the pixel's extent along and across (|d/dx| + |d/dy| of each coordinate) in
 // closed form from each piecewise-constant profile's integral, so the pattern does not
-// alias. The output is half the factor: the blend doubles it (dst × src × 2).
-const char* kTrackMarkFragment = R"(#version 130
+// alias. The output is half the factor: the blend doubles it (dst × src × 2). Its head
+// ends where Link() writes tan(kReposeAngleRad).
+const char* kTrackMarkFragmentHead = R"(#version 130
 uniform vec3 sun;
 uniform float ambient;
 uniform float diffuse;
@@ -44,9 +46,8 @@ uniform float pitch_m;
 uniform float grouser_m;
 in vec4 mark_v;  // grouser phase [pitches], across [m], rut depth [m], half width [m]
 in vec3 across_v;
-const float tan_repose = )"
-                                 "0.6745085168424265"
-                                 R"(;
+const float tan_repose = )";
+const char* kTrackMarkFragmentTail = R"(;
 float Light(vec3 n, float sky) { return ambient * sky + diffuse * max(dot(n, sun), 0.0); }
 // The integral from 0 to x of one pitch's profile repeated: piece k covers [e[k], e[k+1]).
 float AlongIntegral(float x, vec4 e, vec4 v) {
@@ -156,8 +157,11 @@ TrackMarkStrip BuildTrackMarkStrip(const sim::TrackMarks& marks,
 void TrackMarkDrawing::Link() {
   const GLuint vs =
       CompileShader(GL_VERTEX_SHADER, {kTrackMarkVertex}, "the track marks' vertex shader");
-  const GLuint fs =
-      CompileShader(GL_FRAGMENT_SHADER, {kTrackMarkFragment}, "the track marks' fragment shader");
+  char tan_repose[32];
+  std::snprintf(tan_repose, sizeof tan_repose, "%.17g", std::tan(kReposeAngleRad));
+  const GLuint fs = CompileShader(GL_FRAGMENT_SHADER,
+                                  {kTrackMarkFragmentHead, tan_repose, kTrackMarkFragmentTail},
+                                  "the track marks' fragment shader");
   program_ = glCreateProgram();
   glAttachShader(program_, vs);
   glAttachShader(program_, fs);
